@@ -1,0 +1,41 @@
+#pragma once
+// Annotated A* (Harabor & Botea 2008): optimal 8-connected search for an agent of any size
+// and capability, with octile distance as heuristic. A query object owns its scratch memory
+// and reuses it, so after the first query on a map it allocates nothing (given a `path`
+// vector whose capacity is reused too). One query object per thread; the AnnotatedGrid may
+// be shared.
+
+#include <cstdint>
+#include <vector>
+
+#include "pathing/annotated_grid.h"
+#include "pathing/open_list.h"
+#include "pathing/search.h"
+
+namespace warpath::pathing {
+
+class AnnotatedAStar {
+ public:
+  explicit AnnotatedAStar(const AnnotatedGrid& grid);
+
+  // Finds a shortest path for `agent` from `start` to `goal` (anchor cells). When found and
+  // `path` is not null, it receives every cell from start to goal inclusive.
+  PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path);
+
+ private:
+  // Per-cell search state, split so that the common checks touch 4 bytes a cell: the stamp
+  // holds the query generation (upper 28 bits), a closed flag (bit 3) and the direction the
+  // cell was reached by (bits 0-2); g is read only for open cells of this query.
+  static constexpr std::uint32_t kClosedBit = 8;
+  static constexpr int kGenerationShift = 4;
+
+  void beginQuery();
+
+  const AnnotatedGrid& grid_;
+  std::vector<std::uint32_t> stamps_;
+  std::vector<double> g_;
+  OpenList open_;
+  std::uint32_t generation_ = 0;
+};
+
+}  // namespace warpath::pathing

@@ -1,0 +1,79 @@
+#pragma once
+// A map annotated for agents of any size and capability: true clearance per capability,
+// legal moves and connected components per agent kind, each computed on first use and
+// cached. Safe to share between threads: the caches fill under a lock and never change
+// what they already hold.
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "pathing/clearance.h"
+#include "pathing/grid_map.h"
+
+namespace warpath::pathing {
+
+// An agent occupies size×size cells anchored at its upper-left cell and may stand only on
+// terrains in its capability.
+struct Agent {
+  int size = 1;  // [Unit: cells] [Limit: >= 1]
+  Capability capability;
+  constexpr bool operator==(const Agent&) const = default;
+  constexpr auto operator<=>(const Agent&) const = default;
+};
+
+// Everything a search needs about one agent kind, one entry per cell.
+class AgentLayer {
+ public:
+  static AgentLayer compute(const GridMap& map, const ClearanceField& clearance, Agent agent);
+
+  // Bit d set when the agent anchored at the cell may step in direction d (see moves.h).
+  std::span<const std::uint8_t> moveMasks() const { return moveMasks_; }
+  // 0 where the agent cannot stand; otherwise equal ids <=> mutually reachable.
+  std::span<const std::uint32_t> components() const { return components_; }
+  std::uint32_t componentCount() const { return componentCount_; }
+
+ private:
+  std::vector<std::uint8_t> moveMasks_;
+  std::vector<std::uint32_t> components_;
+  std::uint32_t componentCount_ = 0;
+};
+
+class AnnotatedGrid {
+ public:
+  explicit AnnotatedGrid(GridMap map);
+  AnnotatedGrid(const AnnotatedGrid&) = delete;
+  AnnotatedGrid& operator=(const AnnotatedGrid&) = delete;
+
+  const GridMap& map() const { return map_; }
+
+  // References stay valid for the grid's lifetime.
+  const ClearanceField& clearance(Capability capability) const;
+  const AgentLayer& layer(Agent agent) const;
+
+  bool canStand(Agent agent, Cell c) const {
+    return agent.size >= 1 && clearance(agent.capability).at(c) >= agent.size;
+  }
+
+  // Bytes held by the caches (clearances and agent layers) so far.
+  std::size_t cacheBytes() const;
+
+ private:
+  GridMap map_;
+  mutable std::mutex mutex_;
+  mutable std::map<Capability, std::unique_ptr<const ClearanceField>> clearances_;
+  mutable std::map<Agent, std::unique_ptr<const AgentLayer>> layers_;
+};
+
+// Checks that `path` is a sequence of legal single moves for the agent (start and goal
+// included). Returns an empty string when legal, else what is wrong and at which step.
+std::string findIllegalStep(const AnnotatedGrid& grid, Agent agent, std::span<const Cell> path);
+
+// Sum of the move costs along a path of adjacent cells.
+double pathCost(std::span<const Cell> path);
+
+}  // namespace warpath::pathing

@@ -1,0 +1,55 @@
+#pragma once
+// A rectangular grid of terrain bytes. x is the column, y the row, (0, 0) the top-left,
+// as in the MovingAI benchmark. The map knows nothing of searches or agents.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "pathing/terrain.h"
+
+namespace warpath::pathing {
+
+struct Cell {
+  int x = 0;  // [Unit: cells] column
+  int y = 0;  // [Unit: cells] row
+  constexpr bool operator==(const Cell&) const = default;
+};
+
+class GridMap {
+ public:
+  GridMap() = default;
+  // [Limit: width, height >= 0]
+  GridMap(int width, int height, Terrain fill = Terrain::Ground);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  std::size_t cellCount() const { return cells_.size(); }
+
+  bool contains(Cell c) const { return c.x >= 0 && c.y >= 0 && c.x < width_ && c.y < height_; }
+  std::uint32_t indexOf(Cell c) const {
+    return static_cast<std::uint32_t>(c.y) * static_cast<std::uint32_t>(width_) +
+           static_cast<std::uint32_t>(c.x);
+  }
+  Cell cellAt(std::uint32_t index) const {
+    return {static_cast<int>(index % static_cast<std::uint32_t>(width_)),
+            static_cast<int>(index / static_cast<std::uint32_t>(width_))};
+  }
+
+  // Out-of-bounds cells read as Blocked.
+  Terrain at(Cell c) const { return contains(c) ? cells_[indexOf(c)] : Terrain::Blocked; }
+  void set(Cell c, Terrain t) { cells_[indexOf(c)] = t; }
+
+  std::span<const Terrain> cells() const { return cells_; }
+  // The traversable terrains that occur on the map.
+  Capability terrainsPresent() const;
+
+  bool operator==(const GridMap&) const = default;
+
+ private:
+  int width_ = 0;
+  int height_ = 0;
+  std::vector<Terrain> cells_;
+};
+
+}  // namespace warpath::pathing

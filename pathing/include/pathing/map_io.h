@@ -1,0 +1,50 @@
+#pragma once
+// MovingAI benchmark formats: octile `.map` files and `.scen` query files.
+// Map:  "type octile" / "height H" / "width W" / "map", then H rows of W characters
+//       ('.' 'G' ground, 'S' swamp, 'T' trees, 'W' water, '@' 'O' blocked).
+// Scen: "version 1" (tab-separated) or "version 1.0" (space-separated), then one query a
+//       line: bucket, map path, map width, map height, start x, start y, goal x, goal y,
+//       optimal length. Blank lines are skipped.
+
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pathing/grid_map.h"
+#include "pathing/load_error.h"
+
+namespace warpath::pathing {
+
+// `sourceName` is used in error messages (usually the file path).
+Loaded<GridMap> parseMap(std::istream& in, std::string_view sourceName);
+Loaded<GridMap> loadMap(const std::filesystem::path& file);
+
+// Writes the canonical form ('.', 'S', 'T', 'W', '@'); parseMap reads it back identically.
+void writeMap(const GridMap& map, std::ostream& out);
+// Returns false (and sets `error`) when the file cannot be written.
+bool saveMap(const GridMap& map, const std::filesystem::path& file, std::string* error);
+
+struct ScenQuery {
+  int bucket = 0;
+  std::string mapName;  // as written in the file; historical, not used to find the map
+  int mapWidth = 0;
+  int mapHeight = 0;
+  Cell start;
+  Cell goal;
+  double optimalLength = 0.0;
+  int line = 0;  // 1-based line in the scen file, for reports
+};
+
+// Every query's coordinates are checked against the width and height the line declares.
+Loaded<std::vector<ScenQuery>> parseScen(std::istream& in, std::string_view sourceName);
+Loaded<std::vector<ScenQuery>> loadScen(const std::filesystem::path& file);
+
+// Checks the queries against the map they are run on: declared size matches, coordinates
+// inside. Errors name the scen file and line.
+std::optional<LoadError> checkScenAgainstMap(const std::vector<ScenQuery>& queries,
+                                             const GridMap& map, std::string_view scenName);
+
+}  // namespace warpath::pathing

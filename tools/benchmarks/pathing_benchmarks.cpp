@@ -1,0 +1,74 @@
+// Google Benchmark targets for the pathing core on generated maps (no external data needed).
+// For the MovingAI maps use `rts bench scen`.
+
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#include "pathing/aa_star.h"
+#include "pathing/map_generator.h"
+#include "pathing/random.h"
+
+namespace {
+
+using namespace warpath::pathing;
+
+GridMap benchmarkMap(int side) {
+  RandomMapSpec spec;
+  spec.width = side;
+  spec.height = side;
+  spec.seed = 2008;  // fixed: every run measures the same map
+  spec.blockedPercent = 20;
+  spec.maxPatch = 8;
+  return generateRandomMap(spec);
+}
+
+const Capability kInfantry = Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Trees});
+
+void BM_Clearance(benchmark::State& state) {
+  const GridMap map = benchmarkMap(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(ClearanceField::compute(map, kInfantry));
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(map.cellCount()));
+}
+BENCHMARK(BM_Clearance)->Arg(512)->Unit(benchmark::kMicrosecond);
+
+void BM_AgentLayer(benchmark::State& state) {
+  const GridMap map = benchmarkMap(512);
+  const ClearanceField field = ClearanceField::compute(map, kInfantry);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        AgentLayer::compute(map, field, {static_cast<int>(state.range(0)), kInfantry}));
+  }
+}
+BENCHMARK(BM_AgentLayer)->Arg(1)->Arg(3)->Unit(benchmark::kMillisecond);
+
+// Random queries between standable cells; reports expansions per second.
+void BM_AnnotatedAStar(benchmark::State& state) {
+  const int size = static_cast<int>(state.range(0));
+  const AnnotatedGrid grid(benchmarkMap(512));
+  const Agent agent{size, kInfantry};
+  std::vector<std::pair<Cell, Cell>> queries;
+  SplitMix64 rng(7);
+  while (queries.size() < 64) {
+    const Cell s{rng.between(0, 511), rng.between(0, 511)};
+    const Cell g{rng.between(0, 511), rng.between(0, 511)};
+    if (grid.canStand(agent, s) && grid.canStand(agent, g)) queries.push_back({s, g});
+  }
+  AnnotatedAStar search(grid);
+  std::vector<Cell> path;
+  std::size_t next = 0;
+  std::int64_t expanded = 0;
+  for (auto _ : state) {
+    const auto& [s, g] = queries[next++ % queries.size()];
+    expanded += static_cast<std::int64_t>(search.findPath(agent, s, g, &path).metrics.expanded);
+  }
+  state.counters["expanded_per_s"] =
+      benchmark::Counter(static_cast<double>(expanded), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_AnnotatedAStar)->Arg(1)->Arg(3)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

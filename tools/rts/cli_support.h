@@ -1,0 +1,30 @@
+#pragma once
+// Shared pieces of the `rts` subcommands: exit codes, argument parsing, loading inputs.
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "pathing/grid_map.h"
+
+namespace warpath::tools {
+
+// Process exit codes every subcommand uses.
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitFailed = 1,    // ran, but the outcome is negative (no path, a check failed)
+  kExitBadInput = 2,  // bad command line, unreadable or malformed file
+};
+
+// Thrown by subcommands for bad input; main prints it as "rts: error: ..." and exits 2.
+struct BadInput {
+  std::string message;
+};
+
+// "X,Y" with integers; throws BadInput naming `option` otherwise.
+pathing::Cell parseCell(std::string_view text, std::string_view option);
+
+// Loads a MovingAI map or throws BadInput with file, line and problem.
+pathing::GridMap loadMapOrThrow(const std::string& file);
+
+}  // namespace warpath::tools

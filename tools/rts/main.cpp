@@ -1,0 +1,34 @@
+// rts: the warpath command-line program. Each subcommand registers itself on the app.
+
+#include <fmt/core.h>
+
+#include <CLI/CLI.hpp>
+
+#include "rts/cli_support.h"
+#include "rts/commands.h"
+
+int main(int argc, char** argv) {
+  using namespace warpath::tools;
+  CLI::App app{
+      "warpath: size- and terrain-aware pathfinding for real-time strategy units.\n"
+      "Coordinates are X,Y with X the column and Y the row, from the top-left, as in MovingAI."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "warpath 0.1.0");
+
+  CommandRunner run;
+  registerPathCommand(app, run);
+  registerBenchCommand(app, run);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitBadInput;
+  }
+  try {
+    return run();
+  } catch (const BadInput& e) {
+    fmt::print(stderr, "rts: error: {}\n", e.message);
+    return kExitBadInput;
+  }
+}
