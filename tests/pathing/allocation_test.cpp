@@ -15,6 +15,9 @@ namespace {
 std::atomic<long> allocations{0};
 }
 
+// The replaced new and delete pair malloc with free; GCC cannot see that both are replaced.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
 void* operator new(std::size_t size) {
   allocations.fetch_add(1, std::memory_order_relaxed);
   if (void* p = std::malloc(size == 0 ? 1 : size)) return p;

@@ -2,19 +2,23 @@
 // The open list of the A*-family searches.
 //
 // Order: lower f first; among equal f, larger g (nearer the goal) first, which expands fewer
-// nodes on open ground. Both fold into one integer key so the heap compares a single word:
-// f in fixed point with 2^-24 cell resolution in the high bits, the tie-break in the low 20.
-// Path costs are a + b*sqrt(2) with integer a, b; two different such values differ by far
-// more than 2^-24 unless b runs into the millions, so the rounding never reorders distinct f.
+// nodes on open ground. Both fold into one integer key: f in fixed point with 2^-24 cell
+// resolution in the high bits, the tie-break in the low 20. Path costs are a + b*sqrt(2) with
+// integer a, b; two different such values differ by far more than 2^-24 unless b runs into
+// the millions, so the rounding never reorders distinct f.
 //
 // Speed: with a consistent heuristic the f of popped nodes never decreases, and a pushed node
 // whose f equals the f just popped may be expanded next without breaking optimality. Such
 // pushes (most of them on open ground, where f stays constant toward the goal) go to a LIFO
-// stack and skip the heap. The rest live in a 4-ary min-heap, whose shallow depth and
-// cache-line-sized sibling groups beat a binary heap for A*'s push-heavy pattern.
+// stack. The rest have keys above the last key popped, so the open list is a *monotone*
+// priority queue and a radix heap serves it: a push is an append to the bucket named by the
+// highest bit in which the key differs from the last popped key, and a pop rescans only the
+// lowest non-empty bucket. Measured against the 4-ary heap it replaced, it removed most of
+// the branch mispredictions that made up half of an expansion on the bg512 maps.
 // Duplicates are allowed (lazy deletion): callers skip entries of nodes already closed.
 
-#include <algorithm>
+#include <array>
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -24,24 +28,31 @@ class OpenList {
  public:
   static std::uint64_t makeKey(double f, double g) {
     const auto fixedF = static_cast<std::uint64_t>(f * kFScale + 0.5);
-    const auto coarseG = std::min(static_cast<std::uint64_t>(g * kTieScale), kTieMask);
-    return (fixedF << kTieBits) | (kTieMask - coarseG);
+    const auto coarseG = static_cast<std::uint64_t>(g * kTieScale);
+    return (fixedF << kTieBits) | (kTieMask - (coarseG < kTieMask ? coarseG : kTieMask));
   }
 
   void clear() {
-    keys_.clear();
-    nodes_.clear();
+    for (std::uint64_t used = occupied_; used != 0; used &= used - 1) {
+      buckets_[static_cast<std::size_t>(std::countr_zero(used))].clear();
+    }
+    buckets_[kBucketCount - 1].clear();
+    occupied_ = 0;
+    size_ = 0;
     sameF_.clear();
+    lastKey_ = 0;
     poppedF_ = 0;
   }
-  bool empty() const { return keys_.empty() && sameF_.empty(); }
+  bool empty() const { return size_ == 0 && sameF_.empty(); }
 
   void push(std::uint64_t key, std::uint32_t node) {
-    if ((key >> kTieBits) == poppedF_) {
+    // Rounding of g + h may put an equal f one unit below the last popped: treat it as equal.
+    if ((key >> kTieBits) <= poppedF_) {
       sameF_.push_back(node);
-    } else {
-      pushHeap(key, node);
+      return;
     }
+    insert({key, node});
+    ++size_;
   }
 
   // [Limit: !empty()]
@@ -51,7 +62,11 @@ class OpenList {
       sameF_.pop_back();
       return node;
     }
-    const Entry top = popHeap();
+    if (buckets_[0].empty()) refill();
+    const Entry top = buckets_[0].back();
+    buckets_[0].pop_back();
+    if (buckets_[0].empty()) occupied_ &= ~std::uint64_t{1};
+    --size_;
     poppedF_ = top.key >> kTieBits;
     return top.node;
   }
@@ -65,58 +80,41 @@ class OpenList {
   static constexpr std::uint64_t kTieMask = (std::uint64_t{1} << kTieBits) - 1;
   static constexpr double kFScale = 16777216.0;  // 2^24
   static constexpr double kTieScale = 64.0;      // g resolution of the tie-break: 1/64 cell
-  static constexpr std::size_t kArity = 4;
+  // Bucket 0 holds keys equal to the last popped; bucket b > 0 keys whose highest bit
+  // differing from it is bit b - 1.
+  static constexpr std::size_t kBucketCount = 65;
 
-  void pushHeap(std::uint64_t key, std::uint32_t node) {
-    keys_.push_back(key);
-    nodes_.push_back(node);
-    siftUp(keys_.size() - 1, key, node);
+  std::size_t bucketOf(std::uint64_t key) const {
+    return static_cast<std::size_t>(64 - std::countl_zero(key ^ lastKey_));
   }
 
-  void siftUp(std::size_t hole, std::uint64_t key, std::uint32_t node) {
-    while (hole > 0) {
-      const std::size_t parent = (hole - 1) / kArity;
-      if (keys_[parent] <= key) break;
-      keys_[hole] = keys_[parent];
-      nodes_[hole] = nodes_[parent];
-      hole = parent;
-    }
-    keys_[hole] = key;
-    nodes_[hole] = node;
+  void insert(const Entry& entry) {
+    const std::size_t b = bucketOf(entry.key);
+    buckets_[b].push_back(entry);
+    if (b < 64) occupied_ |= std::uint64_t{1} << b;
   }
 
-  // Bottom-up deletion: walk the hole down along the smallest children to a leaf without
-  // comparing against the displaced last entry (an unpredictable branch), then sift that
-  // entry up from the leaf, which is usually where it belongs anyway.
-  Entry popHeap() {
-    const Entry top{keys_.front(), nodes_.front()};
-    const std::uint64_t lastKey = keys_.back();
-    const std::uint32_t lastNode = nodes_.back();
-    keys_.pop_back();
-    nodes_.pop_back();
-    const std::size_t n = keys_.size();
-    if (n == 0) return top;
-    std::size_t hole = 0;
-    while (true) {
-      const std::size_t first = hole * kArity + 1;
-      if (first >= n) break;
-      std::size_t best = first;
-      const std::size_t end = std::min(first + kArity, n);
-      for (std::size_t c = first + 1; c < end; ++c) {
-        best = keys_[c] < keys_[best] ? c : best;
-      }
-      keys_[hole] = keys_[best];
-      nodes_[hole] = nodes_[best];
-      hole = best;
-    }
-    siftUp(hole, lastKey, lastNode);
-    return top;
+  // Moves the lowest non-empty bucket's entries down, keyed on its minimum. Every entry of
+  // bucket b shares the bits above b - 1 with the minimum, so each lands in a lower bucket.
+  void refill() {
+    const std::size_t b = occupied_ != 0 ? static_cast<std::size_t>(std::countr_zero(occupied_))
+                                         : kBucketCount - 1;
+    std::vector<Entry>& source = buckets_[b];
+    std::uint64_t smallest = source.front().key;
+    for (const Entry& e : source)
+      smallest = e.key < smallest ? e.key : smallest;
+    lastKey_ = smallest;
+    occupied_ &= ~(std::uint64_t{1} << (b & 63));
+    for (const Entry& e : source)
+      insert(e);
+    source.clear();
   }
 
-  // Structure of arrays: comparisons touch only the keys.
-  std::vector<std::uint64_t> keys_;
-  std::vector<std::uint32_t> nodes_;
+  std::array<std::vector<Entry>, kBucketCount> buckets_;
+  std::uint64_t occupied_ = 0;  // bit b set when buckets_[b] (b < 64) is non-empty
+  std::size_t size_ = 0;        // entries in the buckets
   std::vector<std::uint32_t> sameF_;
+  std::uint64_t lastKey_ = 0;
   std::uint64_t poppedF_ = 0;
 };
 

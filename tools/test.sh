@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds warpath and runs the whole test suite:
+#   1. Release build, every test; the MovingAI data suite (CTest label `data`) runs too when
+#      $WARPATH_DATA or ../shared/data holds the benchmark maps.
+#   2. AddressSanitizer + UndefinedBehaviorSanitizer build, every test but the data suite.
+# Pass --no-sanitizers to skip step 2 while iterating.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+sanitizers=1
+for arg in "$@"; do
+  case "$arg" in
+    --no-sanitizers) sanitizers=0 ;;
+    *) echo "usage: tools/test.sh [--no-sanitizers]" >&2; exit 2 ;;
+  esac
+done
+
+bash tools/setup.sh
+jobs=$(nproc)
+
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j "$jobs"
+ctest --test-dir build -j "$jobs" --output-on-failure
+
+if ((sanitizers)); then
+  cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWARPATH_SANITIZE=ON \
+    -DWARPATH_BUILD_BENCHMARKS=OFF
+  cmake --build build-asan -j "$jobs"
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    ctest --test-dir build-asan -j "$jobs" --output-on-failure --label-exclude data
+fi
