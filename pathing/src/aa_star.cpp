@@ -19,6 +19,8 @@ std::string_view toString(PathStatus status) {
       return "invalid-start";
     case PathStatus::InvalidGoal:
       return "invalid-goal";
+    case PathStatus::BudgetExhausted:
+      return "budget-exhausted";
   }
   return "unknown";
 }
@@ -47,7 +49,8 @@ void AnnotatedAStar::beginQuery() {
   open_.clear();
 }
 
-PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path) {
+PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
+                                    const SearchLimits& limits) {
   const auto began = std::chrono::steady_clock::now();
   PathResult result;
   if (path) path->clear();
@@ -57,17 +60,39 @@ PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vec
     return result;
   };
 
-  const GridMap& map = grid_.map();
   if (!grid_.canStand(agent, start)) return finish(PathStatus::InvalidStart);
   if (!grid_.canStand(agent, goal)) return finish(PathStatus::InvalidGoal);
+  const GridMap& map = grid_.map();
   const AgentLayer& layer = grid_.layer(agent);
-  const std::uint32_t startIndex = map.indexOf(start);
-  const std::uint32_t goalIndex = map.indexOf(goal);
-  if (layer.components()[startIndex] != layer.components()[goalIndex]) {
+  if (layer.components()[map.indexOf(start)] != layer.components()[map.indexOf(goal)]) {
     return finish(PathStatus::Unreachable);
   }
+  if (limits.region && (!limits.region->contains(start) || !limits.region->contains(goal))) {
+    return finish(PathStatus::Unreachable);
+  }
+  const PathStatus status = limits.region ? search<true>(layer, start, goal, limits, result)
+                                          : search<false>(layer, start, goal, limits, result);
+  if (status == PathStatus::Found && path) {
+    const std::uint32_t startIndex = map.indexOf(start);
+    const auto width = static_cast<std::int64_t>(map.width());
+    for (std::uint32_t at = map.indexOf(goal);;) {
+      path->push_back(map.cellAt(at));
+      if (at == startIndex) break;
+      const Direction& dir = kDirections[stamps_[at] & 7u];
+      at = static_cast<std::uint32_t>(at - (dir.dy * width + dir.dx));
+    }
+    std::reverse(path->begin(), path->end());
+  }
+  return finish(status);
+}
 
+template <bool kInRegion>
+PathStatus AnnotatedAStar::search(const AgentLayer& layer, Cell start, Cell goal,
+                                  const SearchLimits& limits, PathResult& result) {
   beginQuery();
+  const GridMap& map = grid_.map();
+  const std::uint32_t startIndex = map.indexOf(start);
+  const std::uint32_t goalIndex = map.indexOf(goal);
   const std::uint8_t* masks = layer.moveMasks().data();
   const std::uint32_t width = static_cast<std::uint32_t>(map.width());
   const double inverseWidth = 1.0 / static_cast<double>(width);
@@ -76,6 +101,7 @@ PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vec
     offset[d] = static_cast<std::int64_t>(kDirections[d].dy) * width + kDirections[d].dx;
   }
   const auto heuristic = [&](int x, int y) { return octileDistance(goal.x - x, goal.y - y); };
+  const CellRect region = limits.region.value_or(CellRect{});
 
   const std::uint32_t openStamp = generation_ << kGenerationShift;
   const std::uint32_t closedStamp = openStamp | kClosedBit;
@@ -84,7 +110,6 @@ PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vec
   open_.push(OpenList::makeKey(heuristic(start.x, start.y), 0.0), startIndex);
   ++result.metrics.generated;
 
-  bool reached = false;
   while (!open_.empty()) {
     const std::uint32_t current = open_.pop();
     std::uint32_t& stamp = stamps_[current];
@@ -93,9 +118,10 @@ PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vec
     stamp |= kClosedBit;
     ++result.metrics.expanded;
     if (current == goalIndex) {
-      reached = true;
-      break;
+      result.cost = g_[goalIndex];
+      return PathStatus::Found;
     }
+    if (result.metrics.expanded >= limits.maxExpanded) return PathStatus::BudgetExhausted;
     const double currentG = g_[current];
     // Row by multiplication instead of an integer division (a measurable share of the
     // expansion cost); the estimate is exact or off by one, and corrected.
@@ -111,6 +137,9 @@ PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vec
     for (unsigned mask = masks[current]; mask != 0; mask &= mask - 1) {
       const int d = std::countr_zero(mask);
       const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+      if constexpr (kInRegion) {
+        if (!region.contains({x + dir.dx, y + dir.dy})) continue;
+      }
       const std::uint32_t next =
           static_cast<std::uint32_t>(current + offset[static_cast<std::size_t>(d)]);
       const double g = currentG + dir.cost;
@@ -122,19 +151,8 @@ PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vec
       ++result.metrics.generated;
     }
   }
-  // Same component guarantees a path; this guards the invariant rather than assuming it.
-  if (!reached) return finish(PathStatus::Unreachable);
-
-  result.cost = g_[goalIndex];
-  if (path) {
-    for (std::uint32_t at = goalIndex;;) {
-      path->push_back(map.cellAt(at));
-      if (at == startIndex) break;
-      at = static_cast<std::uint32_t>(at - offset[stamps_[at] & 7u]);
-    }
-    std::reverse(path->begin(), path->end());
-  }
-  return finish(PathStatus::Found);
+  // Without a region, the same component guarantees a path; inside one it may not exist.
+  return PathStatus::Unreachable;
 }
 
 }  // namespace warpath::pathing

@@ -20,7 +20,8 @@ class AnnotatedAStar {
 
   // Finds a shortest path for `agent` from `start` to `goal` (anchor cells). When found and
   // `path` is not null, it receives every cell from start to goal inclusive.
-  PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path);
+  PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
+                      const SearchLimits& limits = {});
 
  private:
   // Per-cell search state, split so that the common checks touch 4 bytes a cell: the stamp
@@ -30,6 +31,9 @@ class AnnotatedAStar {
   static constexpr int kGenerationShift = 4;
 
   void beginQuery();
+  template <bool kInRegion>
+  PathStatus search(const AgentLayer& layer, Cell start, Cell goal, const SearchLimits& limits,
+                    PathResult& result);
 
   const AnnotatedGrid& grid_;
   std::vector<std::uint32_t> stamps_;

@@ -16,6 +16,17 @@ struct Cell {
   constexpr bool operator==(const Cell&) const = default;
 };
 
+// An axis-aligned block of cells.
+struct CellRect {
+  int x = 0;       // [Unit: cells] left column
+  int y = 0;       // [Unit: cells] top row
+  int width = 0;   // [Unit: cells]
+  int height = 0;  // [Unit: cells]
+  constexpr bool contains(Cell c) const {
+    return c.x >= x && c.y >= y && c.x < x + width && c.y < y + height;
+  }
+};
+
 class GridMap {
  public:
   GridMap() = default;

@@ -35,6 +35,21 @@ constexpr bool isDiagonal(int direction) {
   return direction >= 4;
 }
 
+// The direction that undoes `direction` (N <-> S, E <-> W, NE <-> SW, SE <-> NW).
+constexpr int oppositeDirection(int direction) {
+  return direction < 4 ? (direction + 2) % 4 : 4 + (direction - 2) % 4;
+}
+
+// The direction of a single move from (0, 0) to (dx, dy), or -1. [Limit: dx, dy in -1..1]
+constexpr int directionOf(int dx, int dy) {
+  for (int d = 0; d < kDirectionCount; ++d) {
+    if (kDirections[static_cast<std::size_t>(d)].dx == dx &&
+        kDirections[static_cast<std::size_t>(d)].dy == dy)
+      return d;
+  }
+  return -1;
+}
+
 // Octile distance: the exact cost between two cells on an empty grid.
 constexpr double octileDistance(int dx, int dy) {
   const int ax = dx < 0 ? -dx : dx;

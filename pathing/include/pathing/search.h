@@ -2,23 +2,40 @@
 // What every path query returns: a status and the effort it took.
 
 #include <cstdint>
+#include <optional>
 #include <string_view>
+
+#include "pathing/grid_map.h"
 
 namespace warpath::pathing {
 
 enum class PathStatus : std::uint8_t {
   Found,
-  Unreachable,   // start and goal are valid but not connected for this agent
-  InvalidStart,  // outside the map, or the agent cannot stand there
-  InvalidGoal,   // outside the map, or the agent cannot stand there
+  Unreachable,      // start and goal are valid but not connected for this agent
+  InvalidStart,     // outside the map, or the agent cannot stand there
+  InvalidGoal,      // outside the map, or the agent cannot stand there
+  BudgetExhausted,  // the search stopped at its expansion limit before reaching the goal
 };
 
 std::string_view toString(PathStatus status);
 
 struct SearchMetrics {
-  std::uint64_t expanded = 0;   // nodes taken off the open list and expanded
-  std::uint64_t generated = 0;  // nodes pushed onto the open list
+  std::uint64_t expanded = 0;   // nodes taken off the open list and expanded (all phases)
+  std::uint64_t generated = 0;  // nodes pushed onto the open list (all phases)
   double microseconds = 0.0;    // wall time of the query (a measurement, never an input)
+  // Hierarchical planners split `expanded` by phase; plain AA* counts only in `expanded`.
+  std::uint64_t insertionExpanded = 0;   // grid nodes, connecting start and goal to the graph
+  std::uint64_t abstractExpanded = 0;    // abstract nodes, searching the cluster graph
+  std::uint64_t refinementExpanded = 0;  // grid nodes, searches made while refining/smoothing
+  bool usedGridSearch = false;  // answered by AA* on the grid (hybrid short query, fallback)
+};
+
+// Caller-set bounds on one search. [Limit: maxExpanded >= 1]
+struct SearchLimits {
+  std::uint64_t maxExpanded = UINT64_MAX;  // stop with BudgetExhausted after this many
+  // When set, the agent's anchor never leaves this block (start and goal must lie in it);
+  // a goal not reachable inside it is Unreachable.
+  std::optional<CellRect> region;
 };
 
 struct PathResult {

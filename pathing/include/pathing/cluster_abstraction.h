@@ -1,0 +1,125 @@
+#pragma once
+// The annotated cluster abstraction of HAA* (Harabor & Botea 2008): the map is cut into
+// square clusters; along every border between two clusters and for every capability in use,
+// maximal entrances are found and each gets a transition (a pair of adjacent cells, one per
+// cluster); transitions become abstract nodes joined by inter-edges (one step across the
+// border) and by intra-edges (shortest paths inside a cluster), every edge annotated with the
+// capability and clearance an agent needs to use it. An agent (s, c) may use an edge e iff
+// c_e ⊆ c and cv_e >= s.
+//
+// Completeness: entrances end where the (truncated) clearance starts to rise on either side,
+// so along an entrance the clearance never increases away from its first pair; every pair an
+// agent could cross at is joined to the entrance's max-clearance transition by cells the agent
+// can stand on. Every transition kept carries the maximal clearance of its entrance for its
+// capability, and dominance pruning only removes an edge when the graph keeps another route
+// usable by every agent that could use it.
+//
+// The abstraction is immutable after build() and safe to share between threads; queries
+// (HierarchicalAStar) own their scratch memory.
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "pathing/annotated_grid.h"
+
+namespace warpath::pathing {
+
+enum class AbstractionQuality : std::uint8_t {
+  High,  // strong dominance only: abstract paths as short as the full annotated graph's
+  Low,   // weak dominance, clearances truncated to the largest agent: smaller, slightly worse
+};
+
+struct AbstractionSpec {
+  int clusterSize =
+      16;  // [Unit: cells] [Limit: >= 2] side of a cluster; edge clusters may be smaller
+  int maxAgentSize = 3;  // [Unit: cells] [Limit: 1..255] largest agent the graph serves
+  // Capabilities the graph serves; an agent's capability must be one of them. [Limit: non-empty]
+  std::vector<Capability> capabilities;
+  AbstractionQuality quality = AbstractionQuality::High;
+  // Keep every intra-edge's grid path for refinement (memory for speed; see stats()).
+  bool cachePaths = true;
+};
+
+// Empty when the spec can be built, else what is wrong with it.
+std::string problemWith(const AbstractionSpec& spec);
+
+struct AbstractEdge {
+  static constexpr std::uint32_t kNoPath = UINT32_MAX;
+
+  std::uint32_t target = 0;      // node index
+  std::uint32_t path = kNoPath;  // cached grid path (intra-edges with cachePaths), internal
+  double cost = 0.0;             // [Unit: cells]
+  Capability capability;         // terrains the edge's grid path needs
+  std::uint8_t clearance = 0;    // [Unit: cells] largest agent size the path admits
+  bool intra = false;            // false: one step across a cluster border
+  bool reversed = false;         // cached path is stored target -> source, internal
+
+  bool usableBy(Agent agent) const {
+    return capability.isSubsetOf(agent.capability) && clearance >= agent.size;
+  }
+};
+
+struct AbstractionStats {
+  int clusters = 0;
+  std::size_t nodes = 0;
+  std::size_t interEdges = 0;  // undirected
+  std::size_t intraEdges = 0;  // undirected
+  std::size_t graphBytes = 0;  // nodes, edges, cluster index
+  std::size_t pathBytes = 0;   // cached refinement paths
+  double buildMilliseconds = 0.0;
+};
+
+class ClusterAbstraction {
+ public:
+  // [Limit: problemWith(spec).empty()] The grid must outlive the abstraction.
+  static ClusterAbstraction build(const AnnotatedGrid& grid, AbstractionSpec spec);
+
+  const AnnotatedGrid& grid() const { return *grid_; }
+  const AbstractionSpec& spec() const { return spec_; }
+  const AbstractionStats& stats() const { return stats_; }
+
+  // True when the graph serves this agent: its capability is one the graph was built for and
+  // its size is at most maxAgentSize.
+  bool supports(Agent agent) const;
+
+  int clusterCount() const { return clustersX_ * clustersY_; }
+  int clusterOf(Cell c) const {
+    return (c.y / spec_.clusterSize) * clustersX_ + c.x / spec_.clusterSize;
+  }
+  CellRect clusterBounds(int cluster) const;
+
+  std::uint32_t nodeCount() const { return static_cast<std::uint32_t>(nodeCells_.size()); }
+  Cell nodeCell(std::uint32_t node) const { return nodeCells_[node]; }
+  std::span<const AbstractEdge> edgesOf(std::uint32_t node) const {
+    return {edges_.data() + edgeBegin_[node], edges_.data() + edgeBegin_[node + 1]};
+  }
+  std::span<const std::uint32_t> nodesInCluster(int cluster) const {
+    return {clusterNodes_.data() + clusterNodeBegin_[static_cast<std::size_t>(cluster)],
+            clusterNodes_.data() + clusterNodeBegin_[static_cast<std::size_t>(cluster) + 1]};
+  }
+
+  // Appends the grid cells of `edge`, taken from node `from`, excluding `from`'s cell and
+  // including the target's. [Limit: edge.path != kNoPath or !edge.intra]
+  void appendEdgeCells(std::uint32_t from, const AbstractEdge& edge, std::vector<Cell>* out) const;
+
+ private:
+  friend class AbstractionBuilder;
+  ClusterAbstraction() = default;
+
+  const AnnotatedGrid* grid_ = nullptr;
+  AbstractionSpec spec_;
+  AbstractionStats stats_;
+  int clustersX_ = 0;
+  int clustersY_ = 0;
+  std::vector<Cell> nodeCells_;
+  std::vector<std::uint32_t> edgeBegin_;  // CSR: edges of node n in [edgeBegin_[n], [n+1])
+  std::vector<AbstractEdge> edges_;
+  std::vector<std::uint32_t> clusterNodeBegin_;
+  std::vector<std::uint32_t> clusterNodes_;
+  std::vector<std::uint32_t> pathBegin_;  // cached path p: directions [pathBegin_[p], [p+1])
+  std::vector<std::uint8_t> pathSteps_;   // move directions (moves.h), source to target
+};
+
+}  // namespace warpath::pathing

@@ -1,0 +1,69 @@
+#pragma once
+// Hierarchical Annotated A* (Harabor & Botea 2008) over a ClusterAbstraction, and the hybrid
+// short/long rule of Mould & Horsch. Query objects own their scratch memory and reuse it;
+// use one per thread. The abstraction (and its grid) may be shared.
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "pathing/aa_star.h"
+#include "pathing/cluster_abstraction.h"
+#include "pathing/search.h"
+
+namespace warpath::pathing {
+
+struct HaaOptions {
+  // Shorten the refined path with straight, capability- and clearance-legal segments.
+  bool smooth = true;
+};
+
+// A query: (1) start and goal in the same cluster: AA* inside the cluster, done if found;
+// (2) insert start and goal (one Dijkstra each over their cluster reaches every node there);
+// (3) A* over the abstract graph using only edges the agent may use; (4) refine abstract
+// edges to grid cells (cached paths); (5) smooth. Agents the abstraction does not serve
+// (capability not built, size above maxAgentSize) are answered by AA* on the grid, flagged
+// in metrics.usedGridSearch. Unreachable goals are answered at once from the grid's
+// connected components.
+class HierarchicalAStar {
+ public:
+  explicit HierarchicalAStar(const ClusterAbstraction& abstraction, HaaOptions options = {});
+  ~HierarchicalAStar();
+  HierarchicalAStar(const HierarchicalAStar&) = delete;
+  HierarchicalAStar& operator=(const HierarchicalAStar&) = delete;
+
+  // When found and `path` is not null, it receives every cell from start to goal inclusive;
+  // each step is a legal move for the agent.
+  PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path);
+
+ private:
+  struct Scratch;
+  void smooth(const AgentLayer& layer);
+
+  const ClusterAbstraction& abstraction_;
+  HaaOptions options_;
+  AnnotatedAStar gridSearch_;
+  std::unique_ptr<Scratch> scratch_;  // defined in the source so the header stays small
+};
+
+struct HybridOptions {
+  // Node budget of the short-query AA* attempt. Queries whose straight-line distance is at
+  // most sqrt(tau) / 2 try AA* with this budget first, the rest (and short queries that run
+  // out of budget) go to HAA*. [Limit: >= 1]
+  std::uint64_t tau = 4096;
+};
+
+class HybridPlanner {
+ public:
+  HybridPlanner(const ClusterAbstraction& abstraction, HybridOptions hybrid = {},
+                HaaOptions haa = {});
+  PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path);
+
+ private:
+  HybridOptions options_;
+  double shortQueryDistance_;
+  AnnotatedAStar gridSearch_;
+  HierarchicalAStar hierarchical_;
+};
+
+}  // namespace warpath::pathing

@@ -1,0 +1,43 @@
+#pragma once
+// One front door to every planner, for tools and services that choose the algorithm at run
+// time: `Planner` is a query object (one per thread) bound to a shared grid and, for the
+// hierarchical algorithms, a shared abstraction of the matching quality.
+
+#include <optional>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "pathing/aa_star.h"
+#include "pathing/cluster_abstraction.h"
+#include "pathing/haa_star.h"
+
+namespace warpath::pathing {
+
+enum class Algorithm : std::uint8_t {
+  AStar,    // "aa": Annotated A* on the grid, optimal
+  HaaHigh,  // "haa-hq": HAA* on the high-quality (strong dominance) graph
+  HaaLow,   // "haa-lq": HAA* on the low-quality (weak dominance) graph
+  Hybrid,   // "hybrid": AA* within a node budget for short queries, else HAA* (HQ graph)
+};
+
+std::string_view toString(Algorithm algorithm);
+std::optional<Algorithm> algorithmFromName(std::string_view name);
+// The abstraction quality an algorithm needs; nullopt for AA*.
+std::optional<AbstractionQuality> abstractionQualityFor(Algorithm algorithm);
+
+class Planner {
+ public:
+  // [Limit: abstraction non-null with the quality abstractionQualityFor(algorithm) unless AA*]
+  Planner(const AnnotatedGrid& grid, Algorithm algorithm, const ClusterAbstraction* abstraction,
+          HybridOptions hybrid = {}, HaaOptions haa = {});
+
+  Algorithm algorithm() const { return algorithm_; }
+  PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path);
+
+ private:
+  Algorithm algorithm_;
+  std::variant<AnnotatedAStar, HierarchicalAStar, HybridPlanner> impl_;
+};
+
+}  // namespace warpath::pathing

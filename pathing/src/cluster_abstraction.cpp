@@ -1,0 +1,528 @@
+#include "pathing/cluster_abstraction.h"
+
+#include <algorithm>
+#include <chrono>
+#include <numeric>
+
+#include "cluster_dijkstra.h"
+#include "pathing/moves.h"
+
+namespace warpath::pathing {
+
+std::string problemWith(const AbstractionSpec& spec) {
+  if (spec.clusterSize < 2) return "cluster size must be at least 2";
+  if (spec.clusterSize > 1024) return "cluster size must be at most 1024";
+  if (spec.maxAgentSize < 1 || spec.maxAgentSize > 255) {
+    return "largest agent size must be between 1 and 255";
+  }
+  if (spec.capabilities.empty()) return "at least one capability is needed";
+  for (Capability c : spec.capabilities) {
+    if (c.empty()) return "a capability must allow at least one terrain";
+  }
+  return {};
+}
+
+bool ClusterAbstraction::supports(Agent agent) const {
+  return agent.size >= 1 && agent.size <= spec_.maxAgentSize &&
+         std::find(spec_.capabilities.begin(), spec_.capabilities.end(), agent.capability) !=
+             spec_.capabilities.end();
+}
+
+CellRect ClusterAbstraction::clusterBounds(int cluster) const {
+  const int b = spec_.clusterSize;
+  const int x = (cluster % clustersX_) * b;
+  const int y = (cluster / clustersX_) * b;
+  const GridMap& map = grid_->map();
+  return {x, y, std::min(b, map.width() - x), std::min(b, map.height() - y)};
+}
+
+void ClusterAbstraction::appendEdgeCells(std::uint32_t from, const AbstractEdge& edge,
+                                         std::vector<Cell>* out) const {
+  if (edge.path == AbstractEdge::kNoPath) {
+    out->push_back(nodeCells_[edge.target]);
+    return;
+  }
+  const auto first = pathSteps_.begin() + pathBegin_[edge.path];
+  const auto last = pathSteps_.begin() + pathBegin_[edge.path + 1];
+  Cell at = nodeCells_[from];
+  const auto step = [&](int d) {
+    at.x += kDirections[static_cast<std::size_t>(d)].dx;
+    at.y += kDirections[static_cast<std::size_t>(d)].dy;
+    out->push_back(at);
+  };
+  if (!edge.reversed) {
+    for (auto it = first; it != last; ++it)
+      step(*it);
+  } else {
+    for (auto it = last; it != first;)
+      step(oppositeDirection(*--it));
+  }
+}
+
+// Builds a ClusterAbstraction in stages: transitions and inter-edges per capability, then
+// intra-edges per (capability, size), then dominance pruning, then the compact graph.
+class AbstractionBuilder {
+ public:
+  AbstractionBuilder(const AnnotatedGrid& grid, AbstractionSpec spec)
+      : grid_(grid), map_(grid.map()), maxSize_(spec.maxAgentSize) {
+    out_.grid_ = &grid;
+    // Duplicate capabilities would only duplicate work.
+    std::vector<Capability> unique;
+    for (Capability c : spec.capabilities) {
+      if (std::find(unique.begin(), unique.end(), c) == unique.end()) unique.push_back(c);
+    }
+    spec.capabilities = std::move(unique);
+    out_.spec_ = std::move(spec);
+    const int b = out_.spec_.clusterSize;
+    out_.clustersX_ = (map_.width() + b - 1) / b;
+    out_.clustersY_ = (map_.height() + b - 1) / b;
+    for (Capability c : out_.spec_.capabilities)
+      fields_.push_back(&grid.clearance(c));
+    nodeOf_.assign(map_.cellCount(), kNone);
+  }
+
+  ClusterAbstraction build() {
+    const auto began = std::chrono::steady_clock::now();
+    findTransitions();
+    findIntraEdges();
+    pruneSamePairDominance();
+    if (out_.spec_.quality == AbstractionQuality::Low) {
+      pruneDominatedCrossings();
+      pruneIntraCircuits();
+    }
+    assemble();
+    out_.stats_.buildMilliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
+    return std::move(out_);
+  }
+
+ private:
+  static constexpr std::uint32_t kNone = UINT32_MAX;
+
+  struct Candidate {
+    std::uint32_t a = 0;  // node ids, a < b
+    std::uint32_t b = 0;
+    double cost = 0.0;
+    Capability capability;
+    std::uint8_t clearance = 0;
+    bool intra = false;
+    bool removed = false;
+    std::uint32_t path = kNone;  // steps a -> b in paths_
+  };
+
+  // Clearance of `cell` for capability `ci`, truncated to the largest agent size: beyond
+  // it, differences cannot matter to any agent the graph serves.
+  int truncated(std::size_t ci, Cell cell) const {
+    return std::min<int>(fields_[ci]->at(cell), maxSize_);
+  }
+
+  std::uint32_t nodeAt(Cell cell) {
+    std::uint32_t& id = nodeOf_[map_.indexOf(cell)];
+    if (id == kNone) {
+      id = static_cast<std::uint32_t>(nodeCells_.size());
+      nodeCells_.push_back(cell);
+    }
+    return id;
+  }
+
+  void addInterEdge(Cell first, Cell second, std::size_t ci, int clearance) {
+    std::uint32_t a = nodeAt(first);
+    std::uint32_t b = nodeAt(second);
+    if (a > b) std::swap(a, b);
+    Candidate e;
+    e.a = a;
+    e.b = b;
+    e.cost = 1.0;
+    e.capability = out_.spec_.capabilities[ci];
+    e.clearance = static_cast<std::uint8_t>(clearance);
+    candidates_.push_back(e);
+  }
+
+  // One border: pairs (inside[i], outside[i]) of adjacent cells in two clusters, in scan
+  // order (left to right, or top to bottom, the directions in which clearance can only rise
+  // by jumps and fall by one). Entrances are maximal runs of pairs open for the capability
+  // whose clearances never rise on either side; each gets one transition at the pair of
+  // largest clearance nearest the entrance's middle.
+  void scanBorder(std::span<const Cell> first, std::span<const Cell> second) {
+    const std::size_t n = first.size();
+    for (std::size_t ci = 0; ci < fields_.size(); ++ci) {
+      std::size_t i = 0;
+      while (i < n) {
+        int cvA = truncated(ci, first[i]);
+        int cvB = truncated(ci, second[i]);
+        if (cvA == 0 || cvB == 0) {
+          ++i;
+          continue;
+        }
+        const std::size_t begin = i;
+        // Clearances never rise along the run, so the maximal pairs are a prefix of it.
+        const int best = std::min(cvA, cvB);
+        std::size_t bestEnd = i;
+        for (++i; i < n; ++i) {
+          const int nextA = truncated(ci, first[i]);
+          const int nextB = truncated(ci, second[i]);
+          if (nextA == 0 || nextB == 0 || nextA > cvA || nextB > cvB) break;
+          cvA = nextA;
+          cvB = nextB;
+          if (std::min(cvA, cvB) == best) bestEnd = i;
+        }
+        const std::size_t middle = (begin + i - 1) / 2;
+        const std::size_t chosen = std::min(middle, bestEnd);
+        addInterEdge(first[chosen], second[chosen], ci, best);
+      }
+    }
+  }
+
+  void findTransitions() {
+    const int b = out_.spec_.clusterSize;
+    std::vector<Cell> first;
+    std::vector<Cell> second;
+    for (int cy = 0; cy < out_.clustersY_; ++cy) {
+      for (int cx = 0; cx < out_.clustersX_; ++cx) {
+        const CellRect r = out_.clusterBounds(cy * out_.clustersX_ + cx);
+        if (cx + 1 < out_.clustersX_) {  // vertical border with the east neighbour
+          first.clear();
+          second.clear();
+          for (int y = r.y; y < r.y + r.height; ++y) {
+            first.push_back({r.x + b - 1, y});
+            second.push_back({r.x + b, y});
+          }
+          scanBorder(first, second);
+        }
+        if (cy + 1 < out_.clustersY_) {  // horizontal border with the south neighbour
+          first.clear();
+          second.clear();
+          for (int x = r.x; x < r.x + r.width; ++x) {
+            first.push_back({x, r.y + b - 1});
+            second.push_back({x, r.y + b});
+          }
+          scanBorder(first, second);
+        }
+      }
+    }
+  }
+
+  // For every cluster, capability and size: one Dijkstra per transition reaches all the
+  // others. A size-s search whose paths to every higher-numbered node also admit size s+1
+  // answers the size-(s+1) search too (those paths stay optimal), so it is skipped.
+  void findIntraEdges() {
+    const int clusters = out_.clusterCount();
+    std::vector<std::vector<std::uint32_t>> members(static_cast<std::size_t>(clusters));
+    for (std::uint32_t n = 0; n < nodeCells_.size(); ++n)
+      members[static_cast<std::size_t>(out_.clusterOf(nodeCells_[n]))].push_back(n);
+
+    ClusterDijkstra dijkstra;
+    std::vector<Cell> targets;
+    std::vector<std::uint32_t> targetNodes;
+    std::vector<std::uint8_t> steps;
+    for (int k = 0; k < clusters; ++k) {
+      const std::vector<std::uint32_t>& nodes = members[static_cast<std::size_t>(k)];
+      if (nodes.size() < 2) continue;
+      const CellRect region = out_.clusterBounds(k);
+      for (std::size_t ci = 0; ci < fields_.size(); ++ci) {
+        const Capability capability = out_.spec_.capabilities[ci];
+        // coveredTo[i]: sizes up to this are already answered for sources nodes[i].
+        std::vector<int> coveredTo(nodes.size(), 0);
+        for (int size = 1; size <= maxSize_; ++size) {
+          const AgentLayer& layer = grid_.layer({size, capability});
+          for (std::size_t i = 0; i < nodes.size(); ++i) {
+            const Cell source = nodeCells_[nodes[i]];
+            if (truncated(ci, source) < size || coveredTo[i] >= size) continue;
+            targets.clear();
+            targetNodes.clear();
+            for (std::size_t j = i + 1; j < nodes.size(); ++j) {
+              if (truncated(ci, nodeCells_[nodes[j]]) < size) continue;
+              targets.push_back(nodeCells_[nodes[j]]);
+              targetNodes.push_back(nodes[j]);
+            }
+            if (targets.empty()) continue;
+            dijkstra.run(map_, layer, region, source, targets);
+            int covers = maxSize_;
+            for (std::size_t t = 0; t < targets.size(); ++t) {
+              if (!dijkstra.reached(targets[t])) continue;
+              steps.clear();
+              dijkstra.appendSteps(targets[t], &steps);
+              // The largest size for which every step stays legal: the cells walked, and
+              // for a diagonal the two cells beside it (no corner cutting).
+              int clearance = truncated(ci, source);
+              Cell at = source;
+              for (std::uint8_t d : steps) {
+                const Direction& dir = kDirections[d];
+                if (isDiagonal(d)) {
+                  clearance = std::min({clearance, truncated(ci, {at.x + dir.dx, at.y}),
+                                        truncated(ci, {at.x, at.y + dir.dy})});
+                }
+                at.x += dir.dx;
+                at.y += dir.dy;
+                clearance = std::min(clearance, truncated(ci, at));
+              }
+              covers = std::min(covers, clearance);
+              addIntraEdge(nodes[i], targetNodes[t], dijkstra.cost(targets[t]), capability,
+                           clearance, steps);
+            }
+            coveredTo[i] = covers;
+          }
+        }
+      }
+    }
+  }
+
+  void addIntraEdge(std::uint32_t from, std::uint32_t to, double cost, Capability capability,
+                    int clearance, const std::vector<std::uint8_t>& steps) {
+    Candidate e;
+    e.a = std::min(from, to);
+    e.b = std::max(from, to);
+    e.cost = cost;
+    e.capability = capability;
+    e.clearance = static_cast<std::uint8_t>(clearance);
+    e.intra = true;
+    e.path = static_cast<std::uint32_t>(pathBegin_.size());
+    pathBegin_.push_back(static_cast<std::uint32_t>(pathSteps_.size()));
+    if (from < to) {
+      pathSteps_.insert(pathSteps_.end(), steps.begin(), steps.end());
+    } else {  // stored a -> b: reverse the walk
+      for (auto it = steps.rbegin(); it != steps.rend(); ++it)
+        pathSteps_.push_back(static_cast<std::uint8_t>(oppositeDirection(*it)));
+    }
+    candidates_.push_back(e);
+  }
+
+  // e2 serves every agent e1 serves: needs no terrain e1 does not and admits any size e1 does.
+  static bool servesAllOf(const Candidate& e2, const Candidate& e1) {
+    return e2.capability.isSubsetOf(e1.capability) && e2.clearance >= e1.clearance;
+  }
+
+  // Between the same two nodes, drop an edge when another serves all its agents: at no
+  // greater cost (strong dominance, HQ), or at any cost (weak dominance, LQ). Of edges that
+  // dominate each other, the cheapest (then the first built) stays.
+  void pruneSamePairDominance() {
+    const bool weak = out_.spec_.quality == AbstractionQuality::Low;
+    std::vector<std::uint32_t> order(candidates_.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(), [&](std::uint32_t l, std::uint32_t r) {
+      const Candidate& x = candidates_[l];
+      const Candidate& y = candidates_[r];
+      if (x.a != y.a) return x.a < y.a;
+      if (x.b != y.b) return x.b < y.b;
+      if (x.cost != y.cost) return x.cost < y.cost;
+      return l < r;
+    });
+    constexpr double kSameCost = 1e-9;
+    for (std::size_t begin = 0; begin < order.size();) {
+      std::size_t end = begin + 1;
+      while (end < order.size() && candidates_[order[end]].a == candidates_[order[begin]].a &&
+             candidates_[order[end]].b == candidates_[order[begin]].b)
+        ++end;
+      // Sorted by cost: an edge can only be strongly dominated by an earlier one.
+      for (std::size_t i = begin; i < end; ++i) {
+        Candidate& e1 = candidates_[order[i]];
+        for (std::size_t j = begin; j < end && !e1.removed; ++j) {
+          if (j == i) continue;
+          const Candidate& e2 = candidates_[order[j]];
+          if (e2.removed || !servesAllOf(e2, e1)) continue;
+          const bool cheaper = e2.cost <= e1.cost + kSameCost;
+          const bool mutual = servesAllOf(e1, e2);
+          // Mutually dominating edges: the earlier in cost order stays.
+          if ((weak || cheaper) && (!mutual || j < i)) e1.removed = true;
+        }
+      }
+      begin = end;
+    }
+  }
+
+  // LQ: a crossing (inter-edge a-b) is dominated when another crossing a'-b' of the same
+  // two clusters serves all its agents and a-a', b-b' are joined by intra-edges that do too;
+  // it is dropped, and transitions left without any crossing go with their intra-edges. The
+  // intra-edges among the remaining nodes still join every pair an agent can join inside a
+  // cluster, so detours through a removed node are not needed.
+  void pruneDominatedCrossings() {
+    rebuildAdjacency();
+    for (std::uint32_t id = 0; id < candidates_.size(); ++id) {
+      Candidate& e = candidates_[id];
+      if (e.removed || e.intra) continue;
+      bool dominated = false;
+      for (std::uint32_t ia : adjacency_[e.a]) {
+        const Candidate& toA = candidates_[ia];
+        if (toA.removed || !toA.intra || !servesAllOf(toA, e)) continue;
+        const std::uint32_t a2 = toA.a == e.a ? toA.b : toA.a;
+        for (std::uint32_t ic : adjacency_[a2]) {
+          const Candidate& cross = candidates_[ic];
+          if (ic == id || cross.removed || cross.intra || !servesAllOf(cross, e)) continue;
+          const std::uint32_t b2 = cross.a == a2 ? cross.b : cross.a;
+          dominated = b2 == e.b || linked(b2, e.b, e);
+          if (dominated) break;
+        }
+        if (dominated) break;
+      }
+      if (dominated) e.removed = true;
+    }
+    // Transitions without a crossing left serve no agent: drop them and their edges.
+    std::vector<bool> keeps(nodeCells_.size(), false);
+    for (const Candidate& e : candidates_) {
+      if (!e.removed && !e.intra) keeps[e.a] = keeps[e.b] = true;
+    }
+    for (Candidate& e : candidates_) {
+      if (!keeps[e.a] || !keeps[e.b]) e.removed = true;
+    }
+  }
+
+  // True when a live intra-edge joins x and y and serves every agent `e` serves.
+  bool linked(std::uint32_t x, std::uint32_t y, const Candidate& e) const {
+    for (std::uint32_t i : adjacency_[x]) {
+      const Candidate& c = candidates_[i];
+      if (!c.removed && c.intra && (c.a == y || c.b == y) && servesAllOf(c, e)) return true;
+    }
+    return false;
+  }
+
+  // LQ: an intra-edge u-v is dominated by a circuit u-w-v of live intra-edges that each serve
+  // all its agents, as long as the detour costs at most kCircuitSlack times the edge (weak
+  // dominance alone would accept any detour; the bound keeps LQ paths from wandering).
+  void pruneIntraCircuits() {
+    constexpr double kCircuitSlack = 1.2;
+    rebuildAdjacency();
+    std::vector<std::uint32_t> order;
+    for (std::uint32_t id = 0; id < candidates_.size(); ++id) {
+      if (!candidates_[id].removed && candidates_[id].intra) order.push_back(id);
+    }
+    // Longest first: long edges are the likeliest to pass near a third transition.
+    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t l, std::uint32_t r) {
+      return candidates_[l].cost > candidates_[r].cost;
+    });
+    for (std::uint32_t id : order) {
+      Candidate& e = candidates_[id];
+      for (std::uint32_t iu : adjacency_[e.a]) {
+        const Candidate& first = candidates_[iu];
+        if (iu == id || first.removed || !first.intra || !servesAllOf(first, e)) continue;
+        const std::uint32_t w = first.a == e.a ? first.b : first.a;
+        if (w == e.b) continue;
+        for (std::uint32_t iw : adjacency_[w]) {
+          const Candidate& second = candidates_[iw];
+          if (second.removed || !second.intra || !servesAllOf(second, e)) continue;
+          if ((second.a == w ? second.b : second.a) != e.b) continue;
+          if (first.cost + second.cost <= kCircuitSlack * e.cost) {
+            e.removed = true;
+            break;
+          }
+        }
+        if (e.removed) break;
+      }
+    }
+  }
+
+  void rebuildAdjacency() {
+    adjacency_.assign(nodeCells_.size(), {});
+    for (std::uint32_t id = 0; id < candidates_.size(); ++id) {
+      if (candidates_[id].removed) continue;
+      adjacency_[candidates_[id].a].push_back(id);
+      adjacency_[candidates_[id].b].push_back(id);
+    }
+  }
+
+  // The compact graph: live nodes renumbered cluster by cluster, edges in CSR form (each
+  // undirected edge stored once per endpoint), and the cached paths that live edges use.
+  void assemble() {
+    std::vector<bool> live(nodeCells_.size(), false);
+    for (const Candidate& e : candidates_) {
+      if (!e.removed) live[e.a] = live[e.b] = true;
+    }
+    std::vector<std::uint32_t> order;
+    for (std::uint32_t n = 0; n < nodeCells_.size(); ++n) {
+      if (live[n]) order.push_back(n);
+    }
+    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t l, std::uint32_t r) {
+      const int cl = out_.clusterOf(nodeCells_[l]);
+      const int cr = out_.clusterOf(nodeCells_[r]);
+      if (cl != cr) return cl < cr;
+      return map_.indexOf(nodeCells_[l]) < map_.indexOf(nodeCells_[r]);
+    });
+    std::vector<std::uint32_t> newId(nodeCells_.size(), kNone);
+    for (std::uint32_t i = 0; i < order.size(); ++i)
+      newId[order[i]] = i;
+
+    const std::size_t nodeCount = order.size();
+    out_.nodeCells_.resize(nodeCount);
+    for (std::uint32_t i = 0; i < nodeCount; ++i)
+      out_.nodeCells_[i] = nodeCells_[order[i]];
+
+    out_.clusterNodeBegin_.assign(static_cast<std::size_t>(out_.clusterCount()) + 1, 0);
+    for (std::uint32_t i = 0; i < nodeCount; ++i)
+      ++out_.clusterNodeBegin_[static_cast<std::size_t>(out_.clusterOf(out_.nodeCells_[i])) + 1];
+    std::partial_sum(out_.clusterNodeBegin_.begin(), out_.clusterNodeBegin_.end(),
+                     out_.clusterNodeBegin_.begin());
+    out_.clusterNodes_.resize(nodeCount);
+    std::iota(out_.clusterNodes_.begin(), out_.clusterNodes_.end(), 0u);
+
+    std::vector<std::uint32_t> degree(nodeCount + 1, 0);
+    for (const Candidate& e : candidates_) {
+      if (e.removed) continue;
+      ++degree[newId[e.a] + 1];
+      ++degree[newId[e.b] + 1];
+      if (e.intra) {
+        ++out_.stats_.intraEdges;
+      } else {
+        ++out_.stats_.interEdges;
+      }
+    }
+    std::partial_sum(degree.begin(), degree.end(), degree.begin());
+    out_.edgeBegin_ = degree;
+    out_.edges_.resize(degree.back());
+    std::vector<std::uint32_t> fill(degree.begin(), degree.end() - 1);
+
+    const bool cachePaths = out_.spec_.cachePaths;
+    for (const Candidate& e : candidates_) {
+      if (e.removed) continue;
+      std::uint32_t path = AbstractEdge::kNoPath;
+      if (e.intra && cachePaths) {
+        path = static_cast<std::uint32_t>(out_.pathBegin_.size());
+        out_.pathBegin_.push_back(static_cast<std::uint32_t>(out_.pathSteps_.size()));
+        const auto first = pathSteps_.begin() + pathBegin_[e.path];
+        const auto last = e.path + 1 < pathBegin_.size()
+                              ? pathSteps_.begin() + pathBegin_[e.path + 1]
+                              : pathSteps_.end();
+        out_.pathSteps_.insert(out_.pathSteps_.end(), first, last);
+      }
+      AbstractEdge forward;
+      forward.target = newId[e.b];
+      forward.path = path;
+      forward.cost = e.cost;
+      forward.capability = e.capability;
+      forward.clearance = e.clearance;
+      forward.intra = e.intra;
+      AbstractEdge backward = forward;
+      backward.target = newId[e.a];
+      backward.reversed = true;
+      out_.edges_[fill[newId[e.a]]++] = forward;
+      out_.edges_[fill[newId[e.b]]++] = backward;
+    }
+    if (cachePaths) out_.pathBegin_.push_back(static_cast<std::uint32_t>(out_.pathSteps_.size()));
+
+    AbstractionStats& stats = out_.stats_;
+    stats.clusters = out_.clusterCount();
+    stats.nodes = nodeCount;
+    stats.graphBytes = out_.nodeCells_.size() * sizeof(Cell) +
+                       out_.edgeBegin_.size() * sizeof(std::uint32_t) +
+                       out_.edges_.size() * sizeof(AbstractEdge) +
+                       out_.clusterNodeBegin_.size() * sizeof(std::uint32_t) +
+                       out_.clusterNodes_.size() * sizeof(std::uint32_t);
+    stats.pathBytes = out_.pathBegin_.size() * sizeof(std::uint32_t) + out_.pathSteps_.size();
+  }
+
+  const AnnotatedGrid& grid_;
+  const GridMap& map_;
+  int maxSize_;
+  ClusterAbstraction out_;
+  std::vector<const ClearanceField*> fields_;
+  std::vector<std::uint32_t> nodeOf_;
+  std::vector<Cell> nodeCells_;
+  std::vector<Candidate> candidates_;
+  std::vector<std::uint32_t> pathBegin_;
+  std::vector<std::uint8_t> pathSteps_;
+  std::vector<std::vector<std::uint32_t>> adjacency_;
+};
+
+ClusterAbstraction ClusterAbstraction::build(const AnnotatedGrid& grid, AbstractionSpec spec) {
+  return AbstractionBuilder(grid, std::move(spec)).build();
+}
+
+}  // namespace warpath::pathing

@@ -1,0 +1,49 @@
+#pragma once
+// Dijkstra over one block of cells for one agent kind: the building block of the abstraction
+// (one search from a transition reaches every other transition of its cluster) and of HAA*
+// insertion (one search from the start reaches every node of its cluster at once, instead of
+// one A* per node). Owns its scratch memory, sized by the largest block seen.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "pathing/annotated_grid.h"
+#include "pathing/moves.h"
+#include "pathing/open_list.h"
+
+namespace warpath::pathing {
+
+class ClusterDijkstra {
+ public:
+  // Settles cells of `region` reachable from `source` (inside it) in cost order, and stops
+  // early once every cell of `targets` that lies in the region is settled.
+  // [Limit: region inside the map, source in region]
+  void run(const GridMap& map, const AgentLayer& layer, CellRect region, Cell source,
+           std::span<const Cell> targets);
+
+  bool reached(Cell c) const { return region_.contains(c) && stamp_[local(c)] == settledStamp(); }
+  // [Limit: reached(c)]
+  double cost(Cell c) const { return g_[local(c)]; }
+  // Directions of the moves from the source to `target`, in order. [Limit: reached(target)]
+  void appendSteps(Cell target, std::vector<std::uint8_t>* steps) const;
+  std::uint64_t expanded() const { return expanded_; }
+
+ private:
+  std::size_t local(Cell c) const {
+    return static_cast<std::size_t>(c.y - region_.y) * static_cast<std::size_t>(region_.width) +
+           static_cast<std::size_t>(c.x - region_.x);
+  }
+  std::uint32_t settledStamp() const { return generation_ * 4 + 2; }
+
+  CellRect region_;
+  std::vector<std::uint32_t> stamp_;  // generation*4 + {1 open, 2 settled}, +3 target marker
+  std::vector<std::uint32_t> target_;
+  std::vector<double> g_;
+  std::vector<std::uint8_t> via_;  // direction of the move that reached the cell
+  OpenList open_;
+  std::uint32_t generation_ = 0;
+  std::uint64_t expanded_ = 0;
+};
+
+}  // namespace warpath::pathing

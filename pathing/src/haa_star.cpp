@@ -1,0 +1,406 @@
+#include "pathing/haa_star.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "cluster_dijkstra.h"
+#include "pathing/moves.h"
+#include "pathing/open_list.h"
+
+namespace warpath::pathing {
+namespace {
+
+double elapsedMicroseconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - since)
+      .count();
+}
+
+// Appends the cells reached by walking `steps` from `from`.
+void appendWalk(Cell from, std::span<const std::uint8_t> steps, std::vector<Cell>* out) {
+  for (std::uint8_t d : steps) {
+    from.x += kDirections[d].dx;
+    from.y += kDirections[d].dy;
+    out->push_back(from);
+  }
+}
+
+}  // namespace
+
+struct HierarchicalAStar::Scratch {
+  static constexpr std::uint32_t kNone = UINT32_MAX;
+
+  ClusterDijkstra startSearch;
+  ClusterDijkstra goalSearch;
+  std::vector<Cell> clusterCells;
+  std::vector<Cell> refined;
+  std::vector<Cell> smoothed;
+  std::vector<std::uint8_t> steps;
+  std::vector<double> prefixCost;
+
+  // Abstract search over the graph's nodes plus two: start (n) and goal (n + 1).
+  std::vector<std::uint32_t> stamp;  // generation * 2 + {0 open, 1 closed}
+  std::vector<double> g;
+  std::vector<std::uint32_t> parent;
+  std::vector<const AbstractEdge*> parentEdge;  // null for the start and goal links
+  std::vector<std::uint32_t> goalLinkStamp;
+  std::vector<double> goalLinkCost;
+  std::vector<std::pair<std::uint32_t, double>> startLinks;
+  std::vector<std::uint32_t> abstractPath;
+  OpenList open;
+  std::uint32_t generation = 0;
+
+  // Per-cell stamps for loop removal in smoothing (cell -> index in the path).
+  std::vector<std::uint32_t> cellStamp;
+  std::vector<std::uint32_t> cellIndex;
+  std::uint32_t cellGeneration = 0;
+
+  void begin(std::size_t nodes) {
+    if (stamp.size() != nodes + 2) {
+      stamp.assign(nodes + 2, 0);
+      g.assign(nodes + 2, 0.0);
+      parent.assign(nodes + 2, kNone);
+      parentEdge.assign(nodes + 2, nullptr);
+      goalLinkStamp.assign(nodes + 2, 0);
+      goalLinkCost.assign(nodes + 2, 0.0);
+      generation = 0;
+    }
+    if (++generation >= (1u << 30)) {
+      std::fill(stamp.begin(), stamp.end(), 0);
+      std::fill(goalLinkStamp.begin(), goalLinkStamp.end(), 0);
+      generation = 1;
+    }
+    open.clear();
+    startLinks.clear();
+    abstractPath.clear();
+  }
+};
+
+HierarchicalAStar::HierarchicalAStar(const ClusterAbstraction& abstraction, HaaOptions options)
+    : abstraction_(abstraction),
+      options_(options),
+      gridSearch_(abstraction.grid()),
+      scratch_(std::make_unique<Scratch>()) {}
+
+HierarchicalAStar::~HierarchicalAStar() = default;
+
+namespace {
+
+// Straight connections for smoothing: the octile-shortest walks from a to b that keep to a
+// simple shape (all diagonal moves first, all straight moves first, or the two interleaved
+// as evenly as a line), tried in turn; the first legal one for the agent is appended.
+class StraightWalker {
+ public:
+  StraightWalker(const GridMap& map, const AgentLayer& layer) : map_(map), layer_(layer) {}
+
+  bool tryAppend(Cell a, Cell b, std::vector<Cell>* out) const {
+    const int dx = b.x - a.x;
+    const int dy = b.y - a.y;
+    const int ax = std::abs(dx);
+    const int ay = std::abs(dy);
+    const int diagonals = std::min(ax, ay);
+    const int straights = std::max(ax, ay) - diagonals;
+    const int sx = dx > 0 ? 1 : (dx < 0 ? -1 : 0);
+    const int sy = dy > 0 ? 1 : (dy < 0 ? -1 : 0);
+    const int diagonal = directionOf(sx, sy);
+    const int straight = ax >= ay ? directionOf(sx, 0) : directionOf(0, sy);
+    const int total = diagonals + straights;
+    for (int shape = 0; shape < 3; ++shape) {
+      const auto moveAt = [&](int k) {
+        if (diagonals == 0) return straight;
+        if (straights == 0) return diagonal;
+        if (shape == 0) return k < diagonals ? diagonal : straight;
+        if (shape == 1) return k < straights ? straight : diagonal;
+        // Interleaved: step k is diagonal when the running share of diagonals crosses an
+        // integer, like a line drawn from a to b.
+        return ((k + 1) * diagonals) / total != (k * diagonals) / total ? diagonal : straight;
+      };
+      if (legal(a, total, moveAt)) {
+        Cell at = a;
+        for (int k = 0; k < total; ++k) {
+          const Direction& dir = kDirections[static_cast<std::size_t>(moveAt(k))];
+          at = {at.x + dir.dx, at.y + dir.dy};
+          out->push_back(at);
+        }
+        return true;
+      }
+    }
+    return false;
+  }
+
+ private:
+  template <class MoveAt>
+  bool legal(Cell from, int total, const MoveAt& moveAt) const {
+    const std::uint8_t* masks = layer_.moveMasks().data();
+    Cell at = from;
+    for (int k = 0; k < total; ++k) {
+      const int d = moveAt(k);
+      if ((masks[map_.indexOf(at)] & (1u << d)) == 0) return false;
+      at = {at.x + kDirections[static_cast<std::size_t>(d)].dx,
+            at.y + kDirections[static_cast<std::size_t>(d)].dy};
+    }
+    return true;
+  }
+
+  const GridMap& map_;
+  const AgentLayer& layer_;
+};
+
+}  // namespace
+
+PathResult HierarchicalAStar::findPath(Agent agent, Cell start, Cell goal,
+                                       std::vector<Cell>* path) {
+  const auto began = std::chrono::steady_clock::now();
+  PathResult result;
+  if (path) path->clear();
+  const auto finish = [&](PathStatus status) {
+    result.status = status;
+    result.metrics.microseconds = elapsedMicroseconds(began);
+    return result;
+  };
+  const AnnotatedGrid& grid = abstraction_.grid();
+  if (!grid.canStand(agent, start)) return finish(PathStatus::InvalidStart);
+  if (!grid.canStand(agent, goal)) return finish(PathStatus::InvalidGoal);
+  if (!abstraction_.supports(agent)) {
+    result = gridSearch_.findPath(agent, start, goal, path);
+    result.metrics.usedGridSearch = true;
+    return finish(result.status);
+  }
+  const GridMap& map = grid.map();
+  const AgentLayer& layer = grid.layer(agent);
+  if (layer.components()[map.indexOf(start)] != layer.components()[map.indexOf(goal)]) {
+    return finish(PathStatus::Unreachable);
+  }
+  if (start == goal) {
+    if (path) path->push_back(start);
+    return finish(PathStatus::Found);
+  }
+
+  Scratch& s = *scratch_;
+  const int startCluster = abstraction_.clusterOf(start);
+  const int goalCluster = abstraction_.clusterOf(goal);
+  std::vector<Cell>& cells = s.refined;
+  cells.clear();
+
+  // Same cluster: a path inside it, when there is one, is found by AA* at local cost.
+  bool refinedLocally = false;
+  if (startCluster == goalCluster) {
+    SearchLimits inCluster;
+    inCluster.region = abstraction_.clusterBounds(startCluster);
+    const PathResult local = gridSearch_.findPath(agent, start, goal, &cells, inCluster);
+    result.metrics.insertionExpanded += local.metrics.expanded;
+    result.metrics.generated += local.metrics.generated;
+    refinedLocally = local.found();
+  }
+
+  if (!refinedLocally) {
+    const std::uint32_t nodeCount = abstraction_.nodeCount();
+    const std::uint32_t startNode = nodeCount;
+    const std::uint32_t goalNode = nodeCount + 1;
+    s.begin(nodeCount);
+
+    // Insertion: one Dijkstra from each end over its cluster reaches every node there.
+    const auto clusterCells = [&](int cluster) {
+      s.clusterCells.clear();
+      for (std::uint32_t n : abstraction_.nodesInCluster(cluster))
+        s.clusterCells.push_back(abstraction_.nodeCell(n));
+      return std::span<const Cell>(s.clusterCells);
+    };
+    s.startSearch.run(map, layer, abstraction_.clusterBounds(startCluster), start,
+                      clusterCells(startCluster));
+    for (std::uint32_t n : abstraction_.nodesInCluster(startCluster)) {
+      const Cell c = abstraction_.nodeCell(n);
+      if (s.startSearch.reached(c)) s.startLinks.push_back({n, s.startSearch.cost(c)});
+    }
+    s.goalSearch.run(map, layer, abstraction_.clusterBounds(goalCluster), goal,
+                     clusterCells(goalCluster));
+    for (std::uint32_t n : abstraction_.nodesInCluster(goalCluster)) {
+      const Cell c = abstraction_.nodeCell(n);
+      if (!s.goalSearch.reached(c)) continue;
+      s.goalLinkStamp[n] = s.generation;
+      s.goalLinkCost[n] = s.goalSearch.cost(c);
+    }
+    result.metrics.insertionExpanded += s.startSearch.expanded() + s.goalSearch.expanded();
+
+    // Abstract A* over the edges this agent may use.
+    const auto heuristic = [&](Cell c) { return octileDistance(goal.x - c.x, goal.y - c.y); };
+    const std::uint32_t openStamp = s.generation * 2;
+    const std::uint32_t closedStamp = openStamp + 1;
+    const auto relax = [&](std::uint32_t from, std::uint32_t to, double cost,
+                           const AbstractEdge* edge, Cell toCell) {
+      const double ng = s.g[from] + cost;
+      if (s.stamp[to] == closedStamp || (s.stamp[to] == openStamp && ng >= s.g[to])) return;
+      s.stamp[to] = openStamp;
+      s.g[to] = ng;
+      s.parent[to] = from;
+      s.parentEdge[to] = edge;
+      s.open.push(OpenList::makeKey(ng + heuristic(toCell), ng), to);
+      ++result.metrics.generated;
+    };
+    s.stamp[startNode] = openStamp;
+    s.g[startNode] = 0.0;
+    s.parent[startNode] = Scratch::kNone;
+    s.open.push(OpenList::makeKey(heuristic(start), 0.0), startNode);
+    bool reached = false;
+    while (!s.open.empty()) {
+      const std::uint32_t u = s.open.pop();
+      if (s.stamp[u] == closedStamp) continue;
+      s.stamp[u] = closedStamp;
+      ++result.metrics.abstractExpanded;
+      if (u == goalNode) {
+        reached = true;
+        break;
+      }
+      if (u == startNode) {
+        for (const auto& [n, cost] : s.startLinks)
+          relax(u, n, cost, nullptr, abstraction_.nodeCell(n));
+        continue;
+      }
+      for (const AbstractEdge& e : abstraction_.edgesOf(u)) {
+        if (e.usableBy(agent)) relax(u, e.target, e.cost, &e, abstraction_.nodeCell(e.target));
+      }
+      if (s.goalLinkStamp[u] == s.generation) relax(u, goalNode, s.goalLinkCost[u], nullptr, goal);
+    }
+    // The grid's components say a path exists, and the abstraction is complete; this guards
+    // the invariant rather than assuming it.
+    if (!reached) return finish(PathStatus::Unreachable);
+
+    // Refinement: start link, cached (or re-planned) edge paths, goal link.
+    for (std::uint32_t at = goalNode; at != Scratch::kNone; at = s.parent[at])
+      s.abstractPath.push_back(at);
+    std::reverse(s.abstractPath.begin(), s.abstractPath.end());
+    cells.push_back(start);
+    for (std::size_t i = 1; i < s.abstractPath.size(); ++i) {
+      const std::uint32_t from = s.abstractPath[i - 1];
+      const std::uint32_t to = s.abstractPath[i];
+      if (from == startNode) {
+        s.steps.clear();
+        s.startSearch.appendSteps(abstraction_.nodeCell(to), &s.steps);
+        appendWalk(start, s.steps, &cells);
+      } else if (to == goalNode) {
+        s.steps.clear();
+        s.goalSearch.appendSteps(abstraction_.nodeCell(from), &s.steps);
+        Cell at = abstraction_.nodeCell(from);
+        for (auto it = s.steps.rbegin(); it != s.steps.rend(); ++it) {
+          const Direction& dir = kDirections[static_cast<std::size_t>(oppositeDirection(*it))];
+          at = {at.x + dir.dx, at.y + dir.dy};
+          cells.push_back(at);
+        }
+      } else {
+        const AbstractEdge& edge = *s.parentEdge[to];
+        if (!edge.intra || edge.path != AbstractEdge::kNoPath) {
+          abstraction_.appendEdgeCells(from, edge, &cells);
+        } else {
+          // Paths not cached: the edge promises a path inside the cluster for this agent.
+          SearchLimits inCluster;
+          inCluster.region =
+              abstraction_.clusterBounds(abstraction_.clusterOf(abstraction_.nodeCell(from)));
+          std::vector<Cell>& piece = s.smoothed;
+          const PathResult r = gridSearch_.findPath(agent, abstraction_.nodeCell(from),
+                                                    abstraction_.nodeCell(to), &piece, inCluster);
+          result.metrics.refinementExpanded += r.metrics.expanded;
+          result.metrics.generated += r.metrics.generated;
+          cells.insert(cells.end(), piece.begin() + 1, piece.end());
+        }
+      }
+    }
+  }
+
+  if (options_.smooth) smooth(layer);
+  result.cost = pathCost(cells);
+  result.metrics.expanded = result.metrics.insertionExpanded + result.metrics.abstractExpanded +
+                            result.metrics.refinementExpanded;
+  if (path) path->assign(cells.begin(), cells.end());
+  return finish(PathStatus::Found);
+}
+
+// Smoothing keeps every step legal: (1) cut loops (a cell visited twice), then (2) greedily
+// replace stretches of the path by straight octile walks that are legal for the agent and
+// shorter, looking up to a few clusters ahead.
+void HierarchicalAStar::smooth(const AgentLayer& layer) {
+  Scratch& s = *scratch_;
+  const GridMap& map = abstraction_.grid().map();
+  std::vector<Cell>& cells = s.refined;
+
+  // (1) Loops: keep the first visit of a cell and drop everything up to its last visit.
+  if (s.cellStamp.size() != map.cellCount()) {
+    s.cellStamp.assign(map.cellCount(), 0);
+    s.cellIndex.assign(map.cellCount(), 0);
+    s.cellGeneration = 0;
+  }
+  if (++s.cellGeneration == 0) {
+    std::fill(s.cellStamp.begin(), s.cellStamp.end(), 0);
+    s.cellGeneration = 1;
+  }
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const std::uint32_t index = map.indexOf(cells[i]);
+    if (s.cellStamp[index] == s.cellGeneration && s.cellIndex[index] < kept &&
+        cells[s.cellIndex[index]] == cells[i]) {
+      kept = s.cellIndex[index];  // back to the first visit; the loop is dropped
+    } else {
+      cells[kept] = cells[i];
+      s.cellStamp[index] = s.cellGeneration;
+      s.cellIndex[index] = static_cast<std::uint32_t>(kept);
+    }
+    ++kept;
+  }
+  cells.resize(kept);
+
+  // (2) Straight shortcuts.
+  const std::size_t n = cells.size();
+  if (n < 3) return;
+  s.prefixCost.assign(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i) {
+    const bool diagonal = cells[i].x != cells[i - 1].x && cells[i].y != cells[i - 1].y;
+    s.prefixCost[i] = s.prefixCost[i - 1] + (diagonal ? kSqrt2 : 1.0);
+  }
+  const std::size_t lookahead = static_cast<std::size_t>(abstraction_.spec().clusterSize) * 3;
+  const StraightWalker walker(map, layer);
+  std::vector<Cell>& out = s.smoothed;
+  out.clear();
+  out.push_back(cells[0]);
+  std::size_t i = 0;
+  while (i + 1 < n) {
+    std::size_t next = i + 1;
+    const std::size_t farthest = std::min(n - 1, i + lookahead);
+    for (std::size_t j = farthest; j >= i + 2; --j) {
+      const double direct = octileDistance(cells[j].x - cells[i].x, cells[j].y - cells[i].y);
+      if (direct >= s.prefixCost[j] - s.prefixCost[i] - 1e-9) continue;
+      if (walker.tryAppend(cells[i], cells[j], &out)) {
+        next = j;
+        break;
+      }
+    }
+    if (next == i + 1) out.push_back(cells[i + 1]);
+    i = next;
+  }
+  cells.swap(out);
+}
+
+HybridPlanner::HybridPlanner(const ClusterAbstraction& abstraction, HybridOptions hybrid,
+                             HaaOptions haa)
+    : options_(hybrid),
+      shortQueryDistance_(std::sqrt(static_cast<double>(hybrid.tau)) / 2.0),
+      gridSearch_(abstraction.grid()),
+      hierarchical_(abstraction, haa) {}
+
+PathResult HybridPlanner::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path) {
+  const double dx = goal.x - start.x;
+  const double dy = goal.y - start.y;
+  if (std::sqrt(dx * dx + dy * dy) <= shortQueryDistance_) {
+    SearchLimits budget;
+    budget.maxExpanded = options_.tau;
+    PathResult quick = gridSearch_.findPath(agent, start, goal, path, budget);
+    quick.metrics.usedGridSearch = true;
+    if (quick.status != PathStatus::BudgetExhausted) return quick;
+    PathResult full = hierarchical_.findPath(agent, start, goal, path);
+    full.metrics.expanded += quick.metrics.expanded;
+    full.metrics.generated += quick.metrics.generated;
+    full.metrics.microseconds += quick.metrics.microseconds;
+    return full;
+  }
+  return hierarchical_.findPath(agent, start, goal, path);
+}
+
+}  // namespace warpath::pathing
