@@ -66,18 +66,22 @@ class AbstractionBuilder {
   AbstractionBuilder(const AnnotatedGrid& grid, AbstractionSpec spec)
       : grid_(grid), map_(grid.map()), maxSize_(spec.maxAgentSize) {
     out_.grid_ = &grid;
-    // Duplicate capabilities would only duplicate work.
-    std::vector<Capability> unique;
-    for (Capability c : spec.capabilities) {
-      if (std::find(unique.begin(), unique.end(), c) == unique.end()) unique.push_back(c);
-    }
-    spec.capabilities = std::move(unique);
     out_.spec_ = std::move(spec);
     const int b = out_.spec_.clusterSize;
     out_.clustersX_ = (map_.width() + b - 1) / b;
     out_.clustersY_ = (map_.height() + b - 1) / b;
-    for (Capability c : out_.spec_.capabilities)
-      fields_.push_back(&grid.clearance(c));
+    // Terrains absent from the map lie on no path, so capabilities equal on the map's
+    // terrains share one clearance field and one set of edges, annotated with the smaller
+    // (effective) capability, which every agent of the larger one may use.
+    const Capability present = map_.terrainsPresent();
+    for (Capability c : out_.spec_.capabilities) {
+      const Capability effective = Capability::fromMask(c.mask() & present.mask());
+      if (effective.empty() ||
+          std::find(capabilities_.begin(), capabilities_.end(), effective) != capabilities_.end())
+        continue;
+      capabilities_.push_back(effective);
+      fields_.push_back(&grid.clearance(effective));
+    }
     nodeOf_.assign(map_.cellCount(), kNone);
   }
 
@@ -133,7 +137,7 @@ class AbstractionBuilder {
     e.a = a;
     e.b = b;
     e.cost = 1.0;
-    e.capability = out_.spec_.capabilities[ci];
+    e.capability = capabilities_[ci];
     e.clearance = static_cast<std::uint8_t>(clearance);
     candidates_.push_back(e);
   }
@@ -220,7 +224,7 @@ class AbstractionBuilder {
       if (nodes.size() < 2) continue;
       const CellRect region = out_.clusterBounds(k);
       for (std::size_t ci = 0; ci < fields_.size(); ++ci) {
-        const Capability capability = out_.spec_.capabilities[ci];
+        const Capability capability = capabilities_[ci];
         // coveredTo[i]: sizes up to this are already answered for sources nodes[i].
         std::vector<int> coveredTo(nodes.size(), 0);
         for (int size = 1; size <= maxSize_; ++size) {
@@ -512,6 +516,7 @@ class AbstractionBuilder {
   const GridMap& map_;
   int maxSize_;
   ClusterAbstraction out_;
+  std::vector<Capability> capabilities_;  // effective capabilities, built
   std::vector<const ClearanceField*> fields_;
   std::vector<std::uint32_t> nodeOf_;
   std::vector<Cell> nodeCells_;
