@@ -9,6 +9,7 @@ void ClusterDijkstra::run(const GridMap& map, const AgentLayer& layer, CellRect 
                           std::span<const Cell> targets) {
   region_ = region;
   expanded_ = 0;
+  generated_ = 1;  // the source
   const std::size_t cells = static_cast<std::size_t>(region.width) * region.height;
   if (stamp_.size() < cells) {
     stamp_.assign(cells, 0);
@@ -68,6 +69,7 @@ void ClusterDijkstra::run(const GridMap& map, const AgentLayer& layer, CellRect 
       g_[next] = ng;
       via_[next] = static_cast<std::uint8_t>(d);
       open_.push(OpenList::makeKey(ng, ng), static_cast<std::uint32_t>(next));
+      ++generated_;
     }
   }
 }

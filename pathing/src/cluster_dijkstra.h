@@ -28,6 +28,7 @@ class ClusterDijkstra {
   // Directions of the moves from the source to `target`, in order. [Limit: reached(target)]
   void appendSteps(Cell target, std::vector<std::uint8_t>* steps) const;
   std::uint64_t expanded() const { return expanded_; }
+  std::uint64_t generated() const { return generated_; }
 
  private:
   std::size_t local(Cell c) const {
@@ -44,6 +45,7 @@ class ClusterDijkstra {
   OpenList open_;
   std::uint32_t generation_ = 0;
   std::uint64_t expanded_ = 0;
+  std::uint64_t generated_ = 0;
 };
 
 }  // namespace warpath::pathing

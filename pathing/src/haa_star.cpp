@@ -163,6 +163,7 @@ PathResult HierarchicalAStar::findPath(Agent agent, Cell start, Cell goal,
   if (!grid.canStand(agent, goal)) return finish(PathStatus::InvalidGoal);
   if (!abstraction_.supports(agent)) {
     result = gridSearch_.findPath(agent, start, goal, path);
+    result.metrics.gridExpanded = result.metrics.expanded;
     result.metrics.usedGridSearch = true;
     return finish(result.status);
   }
@@ -221,6 +222,7 @@ PathResult HierarchicalAStar::findPath(Agent agent, Cell start, Cell goal,
       s.goalLinkCost[n] = s.goalSearch.cost(c);
     }
     result.metrics.insertionExpanded += s.startSearch.expanded() + s.goalSearch.expanded();
+    result.metrics.generated += s.startSearch.generated() + s.goalSearch.generated();
 
     // Abstract A* over the edges this agent may use.
     const auto heuristic = [&](Cell c) { return octileDistance(goal.x - c.x, goal.y - c.y); };
@@ -309,7 +311,7 @@ PathResult HierarchicalAStar::findPath(Agent agent, Cell start, Cell goal,
   if (options_.smooth) smooth(layer);
   result.cost = pathCost(cells);
   result.metrics.expanded = result.metrics.insertionExpanded + result.metrics.abstractExpanded +
-                            result.metrics.refinementExpanded;
+                            result.metrics.refinementExpanded + result.metrics.gridExpanded;
   if (path) path->assign(cells.begin(), cells.end());
   return finish(PathStatus::Found);
 }
@@ -392,9 +394,11 @@ PathResult HybridPlanner::findPath(Agent agent, Cell start, Cell goal, std::vect
     SearchLimits budget;
     budget.maxExpanded = options_.tau;
     PathResult quick = gridSearch_.findPath(agent, start, goal, path, budget);
+    quick.metrics.gridExpanded = quick.metrics.expanded;
     quick.metrics.usedGridSearch = true;
     if (quick.status != PathStatus::BudgetExhausted) return quick;
     PathResult full = hierarchical_.findPath(agent, start, goal, path);
+    full.metrics.gridExpanded += quick.metrics.expanded;
     full.metrics.expanded += quick.metrics.expanded;
     full.metrics.generated += quick.metrics.generated;
     full.metrics.microseconds += quick.metrics.microseconds;

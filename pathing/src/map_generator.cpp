@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <span>
+#include <vector>
 
 #include "pathing/random.h"
 
@@ -32,6 +34,96 @@ GridMap generateRandomMap(const RandomMapSpec& spec) {
     }
   }
   return map;
+}
+
+GridMap withSoftObstacles(const GridMap& map, int percent, Terrain soft, std::uint64_t seed) {
+  GridMap out = map;
+  const std::span<const Terrain> cells = map.cells();
+  std::vector<std::uint32_t> candidates;  // traversable cells not yet `soft`
+  std::size_t traversable = 0;
+  for (std::uint32_t i = 0; i < cells.size(); ++i) {
+    if (!isTraversable(cells[i])) continue;
+    ++traversable;
+    if (cells[i] != soft) candidates.push_back(i);
+  }
+  const std::size_t share = static_cast<std::size_t>(std::clamp(percent, 0, 100));
+  std::size_t remaining = std::min(candidates.size(), (traversable * share + 50) / 100);
+
+  SplitMix64 rng(seed);
+  while (remaining > 0) {
+    // Anchors are drawn among the candidates, so every patch paints at least its anchor and
+    // the loop ends; an anchor painted by an earlier patch is dropped and drawn again.
+    const std::uint32_t pick = rng.below(static_cast<std::uint32_t>(candidates.size()));
+    const Cell anchor = map.cellAt(candidates[pick]);
+    candidates[pick] = candidates.back();
+    candidates.pop_back();
+    if (out.at(anchor) == soft) continue;
+    const int w = rng.between(1, kSoftPatchSide);
+    const int h = rng.between(1, kSoftPatchSide);
+    // A random offset places the anchor anywhere inside its patch, so patches do not all grow
+    // down and right from the cell drawn.
+    const int x0 = anchor.x - rng.between(0, w - 1);
+    const int y0 = anchor.y - rng.between(0, h - 1);
+    for (int y = y0; y < y0 + h && remaining > 0; ++y) {
+      for (int x = x0; x < x0 + w && remaining > 0; ++x) {
+        const Terrain t = out.at({x, y});
+        if (!isTraversable(t) || t == soft) continue;
+        out.set({x, y}, soft);
+        --remaining;
+      }
+    }
+  }
+  return out;
+}
+
+QuerySampler::QuerySampler(const AnnotatedGrid& grid, Agent agent) : map_(&grid.map()) {
+  const AgentLayer& layer = grid.layer(agent);
+  const std::span<const std::uint32_t> components = layer.components();
+  // Counting sort of the standable cells by component id (ids run 1..count; 0 = cannot stand),
+  // in cell order within a component so the layout is deterministic.
+  const std::size_t count = layer.componentCount();
+  componentBegin_.assign(count + 1, 0);
+  for (std::uint32_t id : components) {
+    if (id != 0) ++componentBegin_[id];  // size of component id lands at slot id (shifted below)
+  }
+  std::uint32_t running = 0;
+  for (std::size_t k = 1; k <= count; ++k) {
+    const std::uint32_t size = componentBegin_[k];
+    componentBegin_[k - 1] = running;
+    running += size;
+  }
+  componentBegin_[count] = running;
+  cells_.resize(running);
+  std::vector<std::uint32_t> fill(componentBegin_.begin(), componentBegin_.end() - 1);
+  for (std::uint32_t i = 0; i < components.size(); ++i) {
+    if (components[i] != 0) cells_[fill[components[i] - 1]++] = i;
+  }
+  pairWeights_.assign(count + 1, 0);
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::uint64_t n = componentBegin_[k + 1] - componentBegin_[k];
+    pairWeights_[k + 1] = pairWeights_[k] + n * (n - 1);
+  }
+}
+
+Query QuerySampler::anyPair(SplitMix64& rng) const {
+  const auto n = static_cast<std::uint32_t>(cells_.size());
+  const Cell start = map_->cellAt(cells_[rng.below(n)]);
+  const Cell goal = map_->cellAt(cells_[rng.below(n)]);
+  return {start, goal};
+}
+
+Query QuerySampler::reachablePair(SplitMix64& rng) const {
+  // A component is chosen with probability proportional to its ordered pairs n(n-1), then two
+  // distinct cells in it. The modulo bias is below 2^-25 for any map that fits in memory.
+  const std::uint64_t r = rng.next() % pairWeights_.back();
+  const auto k = static_cast<std::size_t>(
+      std::upper_bound(pairWeights_.begin(), pairWeights_.end(), r) - pairWeights_.begin() - 1);
+  const std::uint32_t begin = componentBegin_[k];
+  const std::uint32_t n = componentBegin_[k + 1] - begin;
+  const std::uint32_t s = rng.below(n);
+  std::uint32_t g = rng.below(n - 1);
+  if (g >= s) ++g;
+  return {map_->cellAt(cells_[begin + s]), map_->cellAt(cells_[begin + g])};
 }
 
 }  // namespace warpath::pathing

@@ -47,6 +47,28 @@ std::string fixture(const std::string& name) {
   return "'" + (kFixtures / name).string() + "'";
 }
 
+// Runs `rts args` and checks that it is refused as bad input: exit 2, `message` on stderr.
+void expectBadInput(const std::string& args, const std::string& message) {
+  const CommandRun run = rts(args);
+  EXPECT_EQ(run.exitCode, 2) << args;
+  EXPECT_NE(run.err.find(message), std::string::npos) << args << "\n" << run.err;
+}
+
+// The keys DESIGN.md §5 promises in every bench report.
+const char* const kContractKeys[] = {"queries",
+                                     "solved",
+                                     "unreachable",
+                                     "optimal_matches",
+                                     "max_abs_error",
+                                     "mean_suboptimality_pct",
+                                     "max_suboptimality_pct",
+                                     "median_us",
+                                     "p95_us",
+                                     "mean_expanded",
+                                     "preprocess_ms",
+                                     "abstract_nodes",
+                                     "abstract_edges"};
+
 TEST(RtsCliTest, HelpExitsZeroAndListsSubcommands) {
   const CommandRun run = rts("--help");
   EXPECT_EQ(run.exitCode, 0);
@@ -74,33 +96,17 @@ TEST(RtsCliTest, PathWithoutRouteExitsOne) {
 }
 
 TEST(RtsCliTest, BadInputExitsTwoWithFileLineAndProblem) {
-  CommandRun run = rts("path " + fixture("bad_row_length.map") + " --from 0,0 --to 1,1");
-  EXPECT_EQ(run.exitCode, 2);
-  EXPECT_NE(run.err.find("bad_row_length.map:7: row y=2 has 5 characters, expected 6"),
-            std::string::npos)
-      << run.err;
-
-  run = rts("path " + fixture("small.map") + " --from 0,0 --to 9,1");
-  EXPECT_EQ(run.exitCode, 2);
-  EXPECT_NE(run.err.find("--to 9,1 is outside the map"), std::string::npos) << run.err;
-
-  run = rts("path " + fixture("small.map") + " --from '0;0' --to 1,1");
-  EXPECT_EQ(run.exitCode, 2);
-  EXPECT_NE(run.err.find("--from: expected X,Y"), std::string::npos) << run.err;
-
-  run = rts("path " + fixture("small.map") + " --capability lava --from 0,0 --to 1,1");
-  EXPECT_EQ(run.exitCode, 2);
-  EXPECT_NE(run.err.find("'lava' is not a traversable terrain"), std::string::npos) << run.err;
-
-  run = rts("path " + fixture("missing.map") + " --from 0,0 --to 1,1");
-  EXPECT_EQ(run.exitCode, 2);
-  EXPECT_NE(run.err.find("missing.map: cannot open file"), std::string::npos) << run.err;
-
-  run = rts("path " + fixture("small.map") + " --size 0 --from 0,0 --to 1,1");
-  EXPECT_EQ(run.exitCode, 2);
-
-  run = rts("frobnicate");
-  EXPECT_EQ(run.exitCode, 2);
+  expectBadInput("path " + fixture("bad_row_length.map") + " --from 0,0 --to 1,1",
+                 "bad_row_length.map:7: row y=2 has 5 characters, expected 6");
+  expectBadInput("path " + fixture("small.map") + " --from 0,0 --to 9,1",
+                 "--to 9,1 is outside the map");
+  expectBadInput("path " + fixture("small.map") + " --from '0;0' --to 1,1", "--from: expected X,Y");
+  expectBadInput("path " + fixture("small.map") + " --capability lava --from 0,0 --to 1,1",
+                 "'lava' is not a traversable terrain");
+  expectBadInput("path " + fixture("missing.map") + " --from 0,0 --to 1,1",
+                 "missing.map: cannot open file");
+  EXPECT_EQ(rts("path " + fixture("small.map") + " --size 0 --from 0,0 --to 1,1").exitCode, 2);
+  EXPECT_EQ(rts("frobnicate").exitCode, 2);
 }
 
 TEST(RtsCliTest, BenchScenReportsTheContractKeys) {
@@ -108,11 +114,8 @@ TEST(RtsCliTest, BenchScenReportsTheContractKeys) {
                              fixture("small.map.scen") + " --algo aa --json --check-optimal");
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const auto json = nlohmann::json::parse(run.out);
-  for (const char* key : {"queries", "solved", "unreachable", "optimal_matches", "max_abs_error",
-                          "mean_suboptimality_pct", "max_suboptimality_pct", "median_us", "p95_us",
-                          "mean_expanded", "preprocess_ms", "abstract_nodes", "abstract_edges"}) {
+  for (const char* key : kContractKeys)
     EXPECT_TRUE(json.contains(key)) << key;
-  }
   EXPECT_EQ(json["queries"], 3);
   EXPECT_EQ(json["optimal_matches"], 3);
   EXPECT_EQ(json["unreachable"], 0);
@@ -128,18 +131,152 @@ TEST(RtsCliTest, BenchScenCheckOptimalFailsOnAWrongLength) {
       << run.err;
 }
 
-TEST(RtsCliTest, BenchScenRejectsAScenForAnotherMap) {
-  CommandRun run = rts("bench scen " + fixture("small.map") + " " + fixture("wrong_size.map.scen"));
-  EXPECT_EQ(run.exitCode, 2);
-  EXPECT_NE(run.err.find("wrong_size.map.scen:3:"), std::string::npos) << run.err;
+TEST(RtsCliTest, BenchScenRejectsBadInput) {
+  const std::string small = "bench scen " + fixture("small.map") + " ";
+  expectBadInput(small + fixture("wrong_size.map.scen"), "wrong_size.map.scen:3:");
+  expectBadInput(small + fixture("bad_coordinate.scen"), "bad_coordinate.scen:3:");
+  expectBadInput(small + fixture("small.map.scen") + " --algo dijkstra",
+                 "--algo: unknown planner 'dijkstra'");
+  expectBadInput(small + fixture("small.map.scen") + " --algo haa-hq --cluster-size 1",
+                 "--cluster-size 1");
+  expectBadInput(small + fixture("small.map.scen") + " --bucket-min 2", "--bucket-min 2: no query");
+}
 
-  run = rts("bench scen " + fixture("small.map") + " " + fixture("bad_coordinate.scen"));
-  EXPECT_EQ(run.exitCode, 2);
-  EXPECT_NE(run.err.find("bad_coordinate.scen:3:"), std::string::npos) << run.err;
+TEST(RtsCliTest, BenchScenRunsTheHierarchicalPlanners) {
+  for (const std::string algo : {"haa-hq", "haa-lq", "hybrid"}) {
+    const CommandRun run =
+        rts("bench scen " + fixture("small.map") + " " + fixture("small.map.scen") + " --algo " +
+            algo + " --cluster-size 4 --json");
+    ASSERT_EQ(run.exitCode, 0) << algo << ": " << run.err;
+    const auto json = nlohmann::json::parse(run.out);
+    for (const char* key : kContractKeys)
+      EXPECT_TRUE(json.contains(key)) << key;
+    for (const char* key :
+         {"abstract_inter_edges", "abstract_intra_edges", "abstraction_bytes", "cached_path_bytes",
+          "mean_insertion_expanded", "mean_abstract_expanded", "mean_refinement_expanded",
+          "grid_search_queries"}) {
+      EXPECT_TRUE(json.contains(key)) << key;
+    }
+    EXPECT_EQ(json["algo"], algo);
+    EXPECT_EQ(json["cluster_size"], 4);
+    EXPECT_EQ(json["queries"], 3);
+    EXPECT_EQ(json["solved"], 3);
+    // Two clusters side by side: the border between them has entrances.
+    EXPECT_GT(json["abstract_nodes"].get<int>(), 0);
+    EXPECT_EQ(json["abstract_edges"].get<int>(),
+              json["abstract_inter_edges"].get<int>() + json["abstract_intra_edges"].get<int>());
+  }
+}
 
-  run = rts("bench scen " + fixture("small.map") + " " + fixture("small.map.scen") +
-            " --algo dijkstra");
-  EXPECT_EQ(run.exitCode, 2);
+TEST(RtsCliTest, BenchScenBucketMinKeepsTheLongQueries) {
+  const CommandRun run = rts("bench scen " + fixture("small.map") + " " +
+                             fixture("small.map.scen") + " --bucket-min 1 --json");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(nlohmann::json::parse(run.out)["queries"], 1);
+}
+
+TEST(RtsCliTest, BenchRandomFindsNoCompletenessFailures) {
+  for (const std::string algo : {"aa", "haa-hq", "haa-lq", "hybrid"}) {
+    const std::string args = "bench random " + fixture("terrain.map") +
+                             " --size 2 --capability ground,swamp --queries 150 --seed 5 --algo " +
+                             algo + " --cluster-size 8 --json";
+    const CommandRun run = rts(args);
+    ASSERT_EQ(run.exitCode, 0) << algo << ": " << run.err;
+    const auto json = nlohmann::json::parse(run.out);
+    for (const char* key : kContractKeys)
+      EXPECT_TRUE(json.contains(key)) << key;
+    EXPECT_EQ(json["algo"], algo);
+    EXPECT_EQ(json["queries"], 150);
+    EXPECT_EQ(json["completeness_failures"], 0);
+    EXPECT_EQ(json["illegal_paths"], 0);
+    EXPECT_EQ(json["cheaper_than_optimal"], 0);
+    // Random standable pairs on a multi-terrain map: some connect, some do not.
+    EXPECT_GT(json["solved"].get<int>(), 50);
+    EXPECT_GT(json["unreachable"].get<int>(), 0);
+    if (algo == "aa") {
+      EXPECT_EQ(json["optimal_matches"], json["solved"]);
+      EXPECT_EQ(json["abstract_nodes"], 0);
+    } else {
+      EXPECT_GT(json["abstract_nodes"].get<int>(), 0);
+    }
+    // The queries and answers (not the timings) repeat exactly.
+    const auto again = nlohmann::json::parse(rts(args).out);
+    for (const char* key : {"solved", "optimal_matches", "max_abs_error", "total_expanded"})
+      EXPECT_EQ(json[key], again[key]) << key;
+  }
+}
+
+TEST(RtsCliTest, BenchRandomRejectsBadInput) {
+  const std::string random = "bench random " + fixture("terrain.map");
+  expectBadInput(random + " --algo astar", "--algo: unknown planner 'astar'");
+  expectBadInput(random + " --algo haa-lq --cluster-size 1", "cluster size");
+  expectBadInput(random + " --size 30 --capability water", "can stand nowhere");
+  expectBadInput("bench random " + fixture("missing.map"), "missing.map: cannot open file");
+}
+
+TEST(RtsCliTest, BenchPaperPrintsItsTables) {
+  CommandRun run = rts("bench paper " + fixture("terrain.map") +
+                       " --queries 10 --percents 0,20 --cluster-sizes 8 --markdown");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("| map | trees % | cluster | quality | grid nodes |"), std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("| map | trees % | cluster | quality | mean error % |"), std::string::npos)
+      << run.out;
+  // One row per map x share x cluster size x quality in each table.
+  for (const char* row : {"| terrain | 0 | 8 | HQ |", "| terrain | 0 | 8 | LQ |",
+                          "| terrain | 20 | 8 | HQ |", "| terrain | 20 | 8 | LQ |"}) {
+    const std::size_t first = run.out.find(row);
+    ASSERT_NE(first, std::string::npos) << row;
+    EXPECT_NE(run.out.find(row, first + 1), std::string::npos) << row;
+  }
+
+  run = rts("bench paper " + fixture("terrain.map") + " " + fixture("small.map") +
+            " --queries 10 --percents 10 --cluster-sizes 4,8");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  ASSERT_EQ(json["rows"].size(), 8u);  // 2 maps x 1 share x 2 cluster sizes x 2 qualities
+  for (const auto& row : json["rows"]) {
+    EXPECT_EQ(row["queries"], 10);
+    EXPECT_EQ(row["solved"], 10);
+    EXPECT_EQ(row["failures"], 0);
+    EXPECT_GE(row["mean_error_pct"].get<double>(), 0.0);
+    EXPECT_GT(row["grid_nodes"].get<int>(), 0);
+  }
+}
+
+TEST(RtsCliTest, BenchPaperRejectsBadInput) {
+  const std::string paper = "bench paper " + fixture("terrain.map") + " --queries 5";
+  expectBadInput(paper + " --percents 0,x", "--percents: expected comma-separated whole numbers");
+  expectBadInput(paper + " --percents 150", "--percents: 150 is not in 0..100");
+  expectBadInput(paper + " --cluster-sizes 1", "--cluster-size 1");
+}
+
+TEST(RtsCliTest, PathWithTheHierarchicalPlanners) {
+  for (const std::string algo : {"haa-hq", "haa-lq", "hybrid"}) {
+    const CommandRun run = rts("path " + fixture("terrain.map") +
+                               " --size 2 --capability ground,swamp --from 0,0 --to 46,38 "
+                               "--cluster-size 8 --json --algo " +
+                               algo);
+    ASSERT_EQ(run.exitCode, 0) << algo << ": " << run.err;
+    const auto json = nlohmann::json::parse(run.out);
+    EXPECT_EQ(json["algo"], algo);
+    EXPECT_EQ(json["status"], "found");
+    EXPECT_EQ(json["path"].front(), nlohmann::json::array({0, 0}));
+    EXPECT_EQ(json["path"].back(), nlohmann::json::array({46, 38}));
+    for (const char* key : {"insertion_expanded", "abstract_expanded", "refinement_expanded",
+                            "used_grid_search", "preprocess_ms"}) {
+      EXPECT_TRUE(json["metrics"].contains(key)) << key;
+    }
+    EXPECT_GT(json["abstraction"]["abstract_nodes"].get<int>(), 0);
+  }
+  const CommandRun text = rts("path " + fixture("terrain.map") +
+                              " --capability ground,swamp --from 0,0 --to 46,38 --algo haa-hq");
+  ASSERT_EQ(text.exitCode, 0) << text.err;
+  EXPECT_NE(text.out.find("phases    insertion"), std::string::npos) << text.out;
+
+  const std::string small = "path " + fixture("small.map") + " --from 0,0 --to 5,3";
+  expectBadInput(small + " --algo nope", "--algo: unknown planner 'nope'");
+  expectBadInput(small + " --algo haa-hq --cluster-size 1", "--cluster-size 1");
 }
 
 }  // namespace

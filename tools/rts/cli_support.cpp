@@ -5,16 +5,13 @@
 #include "pathing/map_io.h"
 
 namespace warpath::tools {
-namespace {
 
 std::optional<int> parseInt(std::string_view text) {
   int value = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
   return value;
 }
-
-}  // namespace
 
 pathing::Cell parseCell(std::string_view text, std::string_view option) {
   const std::size_t comma = text.find(',');

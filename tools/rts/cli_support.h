@@ -21,6 +21,9 @@ struct BadInput {
   std::string message;
 };
 
+// A whole decimal number filling all of `text`, else nullopt.
+std::optional<int> parseInt(std::string_view text);
+
 // "X,Y" with integers; throws BadInput naming `option` otherwise.
 pathing::Cell parseCell(std::string_view text, std::string_view option);
 

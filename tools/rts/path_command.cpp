@@ -2,17 +2,17 @@
 
 #include <fmt/core.h>
 
-#include <chrono>
+#include <algorithm>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "pathing/aa_star.h"
 #include "pathing/annotated_grid.h"
 #include "pathing/terrain.h"
 #include "rts/cli_support.h"
 #include "rts/commands.h"
+#include "rts/planner_choice.h"
 
 namespace warpath::tools {
 namespace {
@@ -21,10 +21,10 @@ using namespace pathing;
 
 struct PathOptions {
   std::string mapFile;
-  int size = 1;
-  std::string capability = "ground";
+  AgentChoice agent;
   std::string from;
   std::string to;
+  PlannerChoice planner;
   bool json = false;
   bool draw = false;
 };
@@ -72,9 +72,8 @@ std::string drawPath(const GridMap& map, Agent agent, const std::vector<Cell>& p
 }
 
 int runPath(const PathOptions& options) {
-  std::string capabilityError;
-  const auto capability = parseCapability(options.capability, &capabilityError);
-  if (!capability) throw BadInput{"--capability: " + capabilityError};
+  const Algorithm algorithm = parseAlgorithm(options.planner.algo);
+  const Agent agent = parseAgent(options.agent);
   const Cell from = parseCell(options.from, "--from");
   const Cell to = parseCell(options.to, "--to");
 
@@ -88,46 +87,69 @@ int runPath(const PathOptions& options) {
     }
   }
 
-  const Agent agent{options.size, *capability};
-  // Annotate first, so the query's metrics measure the search alone.
-  const auto annotateBegan = std::chrono::steady_clock::now();
-  if (grid.canStand(agent, from)) grid.layer(agent);
-  const double annotateMs =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - annotateBegan)
-          .count();
-  AnnotatedAStar search(grid);
+  // Annotate (and build the abstraction) first, so the query's metrics measure the search
+  // alone. The abstraction serves this capability, for agents up to max(3, size).
+  std::vector<Agent> annotate;
+  if (grid.canStand(agent, from)) annotate.push_back(agent);
+  const PreparedPlanner prepared =
+      preparePlanner(grid, algorithm, options.planner, annotate,
+                     {.capabilities = {agent.capability}, .maxAgentSize = std::max(3, agent.size)});
+  const double annotateMs = prepared.preprocessMs;
+  Planner planner = prepared.makePlanner(grid);
   std::vector<Cell> path;
-  const PathResult result = search.findPath(agent, from, to, &path);
+  const PathResult result = planner.findPath(agent, from, to, &path);
+  const SearchMetrics& m = result.metrics;
 
   if (options.json) {
     nlohmann::json out;
     out["map"] = options.mapFile;
-    out["agent"] = {{"size", agent.size}, {"capability", agent.capability.toString()}};
+    out["agent"] = agentJson(agent);
     out["from"] = {from.x, from.y};
     out["to"] = {to.x, to.y};
-    out["algo"] = "aa";
+    out["algo"] = std::string(toString(algorithm));
     out["status"] = std::string(toString(result.status));
     out["length"] = result.found() ? nlohmann::json(result.cost) : nlohmann::json(nullptr);
     nlohmann::json cells = nlohmann::json::array();
     for (Cell c : path)
       cells.push_back({c.x, c.y});
     out["path"] = std::move(cells);
-    out["metrics"] = {{"expanded", result.metrics.expanded},
-                      {"generated", result.metrics.generated},
-                      {"microseconds", result.metrics.microseconds},
-                      {"preprocess_ms", annotateMs}};
+    out["metrics"] = {{"expanded", m.expanded},
+                      {"generated", m.generated},
+                      {"microseconds", m.microseconds},
+                      {"preprocess_ms", annotateMs},
+                      {"insertion_expanded", m.insertionExpanded},
+                      {"abstract_expanded", m.abstractExpanded},
+                      {"refinement_expanded", m.refinementExpanded},
+                      {"grid_expanded", m.gridExpanded},
+                      {"used_grid_search", m.usedGridSearch}};
+    if (prepared.abstraction) {
+      nlohmann::json abstraction{{"cluster_size", options.planner.clusterSize}};
+      writeAbstractionKeys(prepared.abstractionOrNull(), abstraction);
+      out["abstraction"] = std::move(abstraction);
+    }
     fmt::print("{}\n", out.dump());
   } else {
     fmt::print("map       {} ({}x{})\n", options.mapFile, map.width(), map.height());
     fmt::print("agent     size {}, capability {}\n", agent.size, agent.capability.toString());
     fmt::print("query     {},{} -> {},{}\n", from.x, from.y, to.x, to.y);
+    fmt::print("algo      {}\n", toString(algorithm));
     fmt::print("status    {}\n", toString(result.status));
     if (result.found()) {
       fmt::print("length    {:.2f} ({} moves)\n", result.cost, path.size() - 1);
     }
-    fmt::print("metrics   expanded {}, generated {}, {:.1f} us (annotating the map: {:.2f} ms)\n",
-               result.metrics.expanded, result.metrics.generated, result.metrics.microseconds,
+    fmt::print("metrics   expanded {}, generated {}, {:.1f} us ({}: {:.2f} ms)\n", m.expanded,
+               m.generated, m.microseconds,
+               prepared.abstraction ? "annotating the map and building the abstraction"
+                                    : "annotating the map",
                annotateMs);
+    if (prepared.abstraction) {
+      const AbstractionStats& stats = prepared.abstraction->stats();
+      fmt::print("phases    insertion {}, abstract {}, refinement {}, grid {} expanded{}\n",
+                 m.insertionExpanded, m.abstractExpanded, m.refinementExpanded, m.gridExpanded,
+                 m.usedGridSearch ? "; answered by AA* on the grid" : "");
+      fmt::print("graph     cluster size {}, {} nodes, {} inter-edges, {} intra-edges\n",
+                 options.planner.clusterSize, stats.nodes, stats.interEdges, stats.intraEdges);
+    }
     if (result.found()) {
       std::string cells;
       for (Cell c : path)
@@ -142,24 +164,21 @@ int runPath(const PathOptions& options) {
 }  // namespace
 
 void registerPathCommand(CLI::App& app, CommandRunner& run) {
-  auto options = std::make_shared<PathOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "path",
-      "Plan a shortest path for one agent on a MovingAI .map and print it.\n"
+  auto [cmd, options] = addSubcommand<PathOptions>(
+      app, run, "path",
+      "Plan a path for one agent on a MovingAI .map and print it: the shortest with --algo aa, "
+      "else the hierarchical planner's (abstraction for the agent's capability, sizes up to "
+      "max(3, size)).\n"
       "Exit status: 0 path found, 1 no path (unreachable, or the agent cannot stand at an "
-      "end), 2 bad input.");
+      "end), 2 bad input.",
+      runPath);
   cmd->add_option("map", options->mapFile, "MovingAI .map file")->required();
-  cmd->add_option("--size", options->size, "agent size in cells (occupies size x size)")
-      ->check(CLI::Range(1, 1024))
-      ->capture_default_str();
-  cmd->add_option("--capability", options->capability,
-                  "terrains the agent may stand on, comma-separated: ground,swamp,trees,water")
-      ->capture_default_str();
+  addAgentOptions(*cmd, options->agent);
   cmd->add_option("--from", options->from, "start anchor (upper-left cell) as X,Y")->required();
   cmd->add_option("--to", options->to, "goal anchor (upper-left cell) as X,Y")->required();
+  addPlannerOptions(*cmd, options->planner);
   cmd->add_flag("--json", options->json, "print one JSON object instead of text");
   cmd->add_flag("--draw", options->draw, "also print the map with the path drawn on it");
-  cmd->callback([&run, options] { run = [options] { return runPath(*options); }; });
 }
 
 }  // namespace warpath::tools

@@ -23,11 +23,15 @@ struct SearchMetrics {
   std::uint64_t expanded = 0;   // nodes taken off the open list and expanded (all phases)
   std::uint64_t generated = 0;  // nodes pushed onto the open list (all phases)
   double microseconds = 0.0;    // wall time of the query (a measurement, never an input)
-  // Hierarchical planners split `expanded` by phase; plain AA* counts only in `expanded`.
-  std::uint64_t insertionExpanded = 0;   // grid nodes, connecting start and goal to the graph
+  // Hierarchical planners split `expanded` by phase (the four add up to it); plain AA*
+  // counts only in `expanded`.
+  std::uint64_t insertionExpanded = 0;   // grid: linking start and goal to the graph, and the
+                                         // in-cluster AA* tried when both share a cluster
   std::uint64_t abstractExpanded = 0;    // abstract nodes, searching the cluster graph
-  std::uint64_t refinementExpanded = 0;  // grid nodes, searches made while refining/smoothing
-  bool usedGridSearch = false;  // answered by AA* on the grid (hybrid short query, fallback)
+  std::uint64_t refinementExpanded = 0;  // grid: re-planning edges whose paths are not cached
+  std::uint64_t gridExpanded = 0;  // grid: AA* on the whole map (hybrid's short-query attempt,
+                                   // agents the graph does not serve)
+  bool usedGridSearch = false;     // answered by AA* on the grid (hybrid short query, fallback)
 };
 
 // Caller-set bounds on one search. [Limit: maxExpanded >= 1]

@@ -1,0 +1,430 @@
+// The completeness proof of HAA* and the hybrid planner: on random multi-terrain maps, for
+// every agent kind of the catalogue and the MovingAI classes, they find a path exactly when
+// AA* does, every path is legal, and none is cheaper than AA*'s optimum.
+
+#include "pathing/haa_star.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "pathing/aa_star.h"
+#include "pathing/cluster_abstraction.h"
+#include "pathing/map_generator.h"
+#include "pathing/map_io.h"
+#include "pathing/moves.h"
+#include "pathing/planner.h"
+#include "support/completeness.h"
+
+namespace warpath::pathing {
+namespace {
+
+using testing::checkCompleteness;
+using testing::completenessCapabilities;
+using testing::CompletenessCase;
+using testing::CompletenessTally;
+using testing::drawCompletenessCases;
+
+const Capability kGround = Capability::of({Terrain::Ground});
+const Capability kInfantry = Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Trees});
+
+// Map sizes divisible by none of the cluster sizes used, so edge clusters are cut short; the
+// patch size and obstacle share range from open fields to dense chokepoints.
+struct RandomMapCase {
+  std::uint64_t seed;
+  int width;
+  int height;
+  int maxPatch;
+  int blockedPercent;
+};
+constexpr int kRandomMapCount = 16;
+
+// Sizes 48..96 and patch sizes 1..10, with 10-30 % blocked; width and height are nudged off
+// multiples of 8 and 10 (16 included).
+constexpr RandomMapCase randomMapCase(int i) {
+  const auto uneven = [](int n) { return (n % 8 == 0 || n % 10 == 0) ? n + 1 : n; };
+  return {static_cast<std::uint64_t>(11 + i), uneven(48 + (i * 13) % 49),
+          uneven(48 + (i * 29 + 7) % 49), 1 + (i * 7) % 10, 10 + (i * 11) % 21};
+}
+
+GridMap randomMap(const RandomMapCase& c) {
+  RandomMapSpec spec;
+  spec.width = c.width;
+  spec.height = c.height;
+  spec.seed = c.seed;
+  spec.blockedPercent = c.blockedPercent;
+  spec.swampPercent = 12;
+  spec.treesPercent = 12;
+  spec.waterPercent = 12;
+  spec.maxPatch = c.maxPatch;
+  return generateRandomMap(spec);
+}
+
+GridMap mapFromRows(const std::string& text) {
+  std::istringstream in(text);
+  auto map = parseMap(in, "inline");
+  EXPECT_TRUE(map) << map.error().describe();
+  return map.value();
+}
+
+AbstractionSpec catalogueSpec(int clusterSize, AbstractionQuality quality, bool cachePaths = true) {
+  return AbstractionSpec{.clusterSize = clusterSize,
+                         .maxAgentSize = 3,
+                         .capabilities = completenessCapabilities(),
+                         .quality = quality,
+                         .cachePaths = cachePaths};
+}
+
+std::string label(const RandomMapCase& m, const AbstractionSpec& spec, const char* what) {
+  std::ostringstream out;
+  out << "map seed " << m.seed << " (" << m.width << "x" << m.height << "), cluster "
+      << spec.clusterSize << (spec.quality == AbstractionQuality::High ? " HQ" : " LQ")
+      << (spec.cachePaths ? "" : " uncached") << ", " << what;
+  return out.str();
+}
+
+TEST(HaaStarTest, CompleteLegalAndNeverBelowTheOptimumOnRandomMaps) {
+  CompletenessTally tally;
+  for (int i = 0; i < kRandomMapCount; ++i) {
+    const RandomMapCase m = randomMapCase(i);
+    const AnnotatedGrid grid(randomMap(m));
+    const std::vector<CompletenessCase> cases =
+        drawCompletenessCases(grid, testing::completenessAgents(), m.seed, 8, 16, 2);
+    for (int clusterSize : {8, 10, 16}) {
+      for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
+        // Uncached intra-edges are refined by search instead: check that route once per map.
+        for (bool cachePaths : {true, false}) {
+          if (!cachePaths && clusterSize != 10) continue;
+          const AbstractionSpec spec = catalogueSpec(clusterSize, quality, cachePaths);
+          ASSERT_EQ(problemWith(spec), "");
+          const ClusterAbstraction abstraction = ClusterAbstraction::build(grid, spec);
+          HierarchicalAStar smoothed(abstraction, HaaOptions{.smooth = true});
+          HierarchicalAStar raw(abstraction, HaaOptions{.smooth = false});
+          checkCompleteness(grid, cases, smoothed, label(m, spec, "smoothed"), tally);
+          checkCompleteness(grid, cases, raw, label(m, spec, "unsmoothed"), tally);
+        }
+      }
+    }
+  }
+  EXPECT_EQ(tally.failures, 0);
+  // Both outcomes must be exercised, or the test proves little.
+  EXPECT_GT(tally.found, 70000);
+  EXPECT_GT(tally.notFound, 20000);
+}
+
+// The completeness check itself must catch each kind of wrong answer.
+TEST(HaaStarTest, TheCheckCatchesWrongAnswers) {
+  const AnnotatedGrid grid(GridMap(6, 4, Terrain::Ground));
+  const Agent agent{1, kGround};
+  AnnotatedAStar search(grid);
+  std::vector<Cell> path;
+  const PathResult optimum = search.findPath(agent, {0, 0}, {5, 0}, &path);
+  ASSERT_TRUE(optimum.found());
+  const auto problem = [&](const PathResult& r, const std::vector<Cell>& p) {
+    return testing::completenessProblem(grid, agent, {0, 0}, {5, 0}, optimum, r, p);
+  };
+  EXPECT_EQ(problem(optimum, path), "");
+  PathResult wrong = optimum;
+  wrong.status = PathStatus::Unreachable;
+  EXPECT_NE(problem(wrong, {}), "");
+  EXPECT_NE(problem(optimum, {{0, 0}, {1, 0}}), "");  // stops short of the goal
+  std::vector<Cell> jump{{0, 0}, {2, 0}, {3, 0}, {4, 0}, {5, 0}};
+  EXPECT_NE(problem(optimum, jump), "");  // not a single move
+  wrong = optimum;
+  wrong.cost += 1.0;
+  EXPECT_NE(problem(wrong, path), "");  // cost does not match the path
+  std::vector<Cell> detour{{0, 0}, {1, 1}, {2, 1}, {3, 1}, {4, 1}, {5, 0}};
+  wrong.cost = pathCost(detour);
+  EXPECT_EQ(problem(wrong, detour), "");  // longer is allowed
+  PathResult claimed = optimum;
+  claimed.cost = optimum.cost + 0.5;
+  EXPECT_NE(testing::completenessProblem(grid, agent, {0, 0}, {5, 0}, claimed, optimum, path),
+            "");  // below a (claimed) optimum
+  wrong = optimum;
+  wrong.metrics.insertionExpanded = wrong.metrics.expanded + 1;
+  EXPECT_NE(problem(wrong, path), "");
+}
+
+TEST(HaaStarTest, HybridPlannerIsCompleteAndShortQueriesGetTheOptimum) {
+  CompletenessTally tally;
+  int shortOptimal = 0;
+  for (int i = 0; i < kRandomMapCount; i += 4) {
+    const RandomMapCase m = randomMapCase(i);
+    const AnnotatedGrid grid(randomMap(m));
+    const std::vector<CompletenessCase> cases =
+        drawCompletenessCases(grid, testing::completenessAgents(), m.seed + 100, 3, 6, 1);
+    const AbstractionSpec spec = catalogueSpec(10, AbstractionQuality::High);
+    const ClusterAbstraction abstraction = ClusterAbstraction::build(grid, spec);
+    for (std::uint64_t tau : {std::uint64_t{16}, std::uint64_t{4096}}) {
+      HybridPlanner hybrid(abstraction, HybridOptions{.tau = tau});
+      checkCompleteness(grid, cases, hybrid, label(m, spec, "hybrid"), tally);
+      // A short query whose AA* search fits the budget well is answered by that search.
+      std::vector<Cell> path;
+      for (const CompletenessCase& c : cases) {
+        if (!c.optimum.found() || c.optimum.metrics.expanded * 2 > tau) continue;
+        const double air =
+            std::hypot(c.query.goal.x - c.query.start.x, c.query.goal.y - c.query.start.y);
+        if (air > std::sqrt(static_cast<double>(tau)) / 2.0 - 0.5) continue;
+        const PathResult result = hybrid.findPath(c.agent, c.query.start, c.query.goal, &path);
+        EXPECT_TRUE(result.metrics.usedGridSearch);
+        EXPECT_NEAR(result.cost, c.optimum.cost, 1e-9);
+        ++shortOptimal;
+      }
+    }
+  }
+  EXPECT_EQ(tally.failures, 0);
+  EXPECT_GT(tally.found, 800);
+  EXPECT_GT(tally.notFound, 250);
+  EXPECT_GT(shortOptimal, 300);
+}
+
+TEST(HaaStarTest, AgentsTheGraphDoesNotServeAreAnsweredByGridSearch) {
+  const AnnotatedGrid grid(randomMap(randomMapCase(1)));
+  const ClusterAbstraction abstraction = ClusterAbstraction::build(
+      grid, AbstractionSpec{.clusterSize = 10, .maxAgentSize = 2, .capabilities = {kGround}});
+  EXPECT_TRUE(abstraction.supports({2, kGround}));
+  EXPECT_FALSE(abstraction.supports({3, kGround}));    // too large
+  EXPECT_FALSE(abstraction.supports({1, kInfantry}));  // capability not built
+  HierarchicalAStar search(abstraction);
+  const std::vector<Agent> unserved{{3, kGround}, {1, kInfantry}, {2, kInfantry}};
+  const std::vector<CompletenessCase> cases = drawCompletenessCases(grid, unserved, 7, 6, 10, 2);
+  CompletenessTally tally;
+  checkCompleteness(grid, cases, search, "unserved agents", tally);
+  EXPECT_EQ(tally.failures, 0);
+  EXPECT_GT(tally.found, 30);
+  std::vector<Cell> path;
+  for (const CompletenessCase& c : cases) {
+    if (!c.optimum.found()) continue;
+    const PathResult result = search.findPath(c.agent, c.query.start, c.query.goal, &path);
+    EXPECT_TRUE(result.metrics.usedGridSearch);
+    EXPECT_NEAR(result.cost, c.optimum.cost, 1e-9);  // it is AA*, so optimal
+  }
+}
+
+TEST(HaaStarTest, LongQueriesOnAnOpenMapUseTheGraph) {
+  const AnnotatedGrid grid(GridMap(70, 45, Terrain::Ground));
+  for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
+    const ClusterAbstraction abstraction = ClusterAbstraction::build(
+        grid,
+        AbstractionSpec{
+            .clusterSize = 8, .maxAgentSize = 3, .capabilities = {kGround}, .quality = quality});
+    HierarchicalAStar search(abstraction);
+    std::vector<Cell> path;
+    const PathResult result = search.findPath({2, kGround}, {1, 2}, {66, 40}, &path);
+    ASSERT_TRUE(result.found());
+    EXPECT_FALSE(result.metrics.usedGridSearch);
+    EXPECT_GT(result.metrics.abstractExpanded, 0u);
+    EXPECT_EQ(findIllegalStep(grid, {2, kGround}, path), "");
+    // Smoothing straightens an open map's path to the octile optimum or close to it.
+    EXPECT_GE(result.cost, octileDistance(65, 38) - 1e-9);
+    EXPECT_LE(result.cost, octileDistance(65, 38) * 1.1);
+  }
+}
+
+TEST(HaaStarTest, InvalidEndsGetTheirStatus) {
+  GridMap map(30, 30, Terrain::Ground);
+  map.set({5, 5}, Terrain::Blocked);
+  map.set({20, 20}, Terrain::Water);
+  const AnnotatedGrid grid(map);
+  for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
+    const ClusterAbstraction abstraction =
+        ClusterAbstraction::build(grid, catalogueSpec(8, quality));
+    HierarchicalAStar haa(abstraction);
+    HybridPlanner hybrid(abstraction);
+    std::vector<Cell> path;
+    const auto checkEnds = [&](auto& planner, Agent agent) {
+      const auto status = [&](Cell s, Cell g) {
+        return planner.findPath(agent, s, g, &path).status;
+      };
+      EXPECT_EQ(status({5, 5}, {25, 25}), PathStatus::InvalidStart);
+      EXPECT_EQ(status({-1, 3}, {25, 25}), PathStatus::InvalidStart);
+      EXPECT_EQ(status({25, 25}, {5, 5}), PathStatus::InvalidGoal);
+      EXPECT_EQ(status({25, 25}, {30, 2}), PathStatus::InvalidGoal);
+      EXPECT_EQ(status({25, 25}, {20, 20}), PathStatus::InvalidGoal);  // water
+      // A size-2 agent anchored in the last column would hang off the map.
+      EXPECT_EQ(status({29, 0}, {1, 1}),
+                agent.size == 2 ? PathStatus::InvalidStart : PathStatus::Found);
+    };
+    for (const Agent agent : {Agent{1, kGround}, Agent{2, kGround}, Agent{1, kInfantry}}) {
+      checkEnds(haa, agent);
+      checkEnds(hybrid, agent);
+    }
+    EXPECT_EQ(haa.findPath({0, kGround}, {1, 1}, {2, 2}, &path).status, PathStatus::InvalidStart);
+  }
+}
+
+TEST(HaaStarTest, SameClusterQueries) {
+  // Cluster 0 is columns 0-15, rows 0-15. The wall splits it: from (2,2) to (12,2) the route
+  // leaves the cluster below the wall's end and comes back.
+  std::string rows;
+  for (int y = 0; y < 32; ++y) {
+    std::string row(32, '.');
+    if (y < 18) row[8] = '@';
+    rows += row + "\n";
+  }
+  const AnnotatedGrid grid(mapFromRows("type octile\nheight 32\nwidth 32\nmap\n" + rows));
+  AnnotatedAStar optimal(grid);
+  for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
+    const ClusterAbstraction abstraction = ClusterAbstraction::build(
+        grid,
+        AbstractionSpec{
+            .clusterSize = 16, .maxAgentSize = 2, .capabilities = {kGround}, .quality = quality});
+    ASSERT_EQ(abstraction.clusterOf({2, 2}), abstraction.clusterOf({12, 2}));
+    HierarchicalAStar search(abstraction);
+    std::vector<Cell> path;
+    for (const Agent agent : {Agent{1, kGround}, Agent{2, kGround}}) {
+      // Open inside the cluster: the in-cluster search is the optimum.
+      PathResult result = search.findPath(agent, {10, 1}, {14, 12}, &path);
+      ASSERT_TRUE(result.found());
+      EXPECT_NEAR(result.cost, octileDistance(4, 11), 1e-9);
+      EXPECT_EQ(findIllegalStep(grid, agent, path), "");
+      // Split inside the cluster: the path must leave it.
+      const PathResult best = optimal.findPath(agent, {2, 2}, {12, 2}, nullptr);
+      ASSERT_TRUE(best.found());
+      result = search.findPath(agent, {2, 2}, {12, 2}, &path);
+      EXPECT_EQ(testing::completenessProblem(grid, agent, {2, 2}, {12, 2}, best, result, path), "");
+      const bool leftCluster = std::any_of(path.begin(), path.end(), [&](Cell c) {
+        return abstraction.clusterOf(c) != abstraction.clusterOf({2, 2});
+      });
+      EXPECT_TRUE(leftCluster);
+      // Same start and goal.
+      result = search.findPath(agent, {3, 3}, {3, 3}, &path);
+      ASSERT_TRUE(result.found());
+      EXPECT_EQ(result.cost, 0.0);
+      EXPECT_EQ(path, (std::vector<Cell>{{3, 3}}));
+    }
+  }
+}
+
+TEST(HaaStarTest, ResultsAndGraphsAreDeterministic) {
+  const AnnotatedGrid grid(randomMap(randomMapCase(2)));
+  const AbstractionSpec spec = catalogueSpec(10, AbstractionQuality::Low);
+  const ClusterAbstraction a = ClusterAbstraction::build(grid, spec);
+  const ClusterAbstraction b = ClusterAbstraction::build(grid, spec);
+  EXPECT_EQ(a.stats().nodes, b.stats().nodes);
+  EXPECT_EQ(a.stats().interEdges, b.stats().interEdges);
+  EXPECT_EQ(a.stats().intraEdges, b.stats().intraEdges);
+  EXPECT_EQ(a.stats().pathBytes, b.stats().pathBytes);
+  ASSERT_EQ(a.nodeCount(), b.nodeCount());
+  for (std::uint32_t n = 0; n < a.nodeCount(); ++n)
+    EXPECT_EQ(a.nodeCell(n), b.nodeCell(n));
+
+  HierarchicalAStar first(a);
+  HierarchicalAStar second(b);
+  const std::vector<CompletenessCase> cases =
+      drawCompletenessCases(grid, testing::completenessAgents(2), 3, 0, 4, 0);
+  std::vector<Cell> p1, p2, p3;
+  int found = 0;
+  for (const CompletenessCase& c : cases) {
+    const PathResult r1 = first.findPath(c.agent, c.query.start, c.query.goal, &p1);
+    first.findPath({1, kInfantry}, c.query.goal, c.query.start, nullptr);  // interleave other work
+    const PathResult r2 = first.findPath(c.agent, c.query.start, c.query.goal, &p2);
+    const PathResult r3 = second.findPath(c.agent, c.query.start, c.query.goal, &p3);
+    EXPECT_EQ(r1.status, r2.status);
+    EXPECT_EQ(r1.status, r3.status);
+    EXPECT_EQ(r1.cost, r2.cost);
+    EXPECT_EQ(r1.cost, r3.cost);
+    EXPECT_EQ(r1.metrics.expanded, r2.metrics.expanded);
+    EXPECT_EQ(p1, p2);
+    EXPECT_EQ(p1, p3);
+    found += r1.found();
+  }
+  EXPECT_GT(found, 20);
+}
+
+TEST(HaaStarTest, GraphStatistics) {
+  const AnnotatedGrid grid(randomMap(randomMapCase(3)));
+  const ClusterAbstraction hq =
+      ClusterAbstraction::build(grid, catalogueSpec(10, AbstractionQuality::High));
+  const ClusterAbstraction lq =
+      ClusterAbstraction::build(grid, catalogueSpec(10, AbstractionQuality::Low));
+  const ClusterAbstraction bare =
+      ClusterAbstraction::build(grid, catalogueSpec(10, AbstractionQuality::High, false));
+  // 87x93 in clusters of 10: the last column and row are short.
+  ASSERT_EQ(grid.map().width(), 87);
+  ASSERT_EQ(grid.map().height(), 93);
+  EXPECT_EQ(hq.clusterCount(), 9 * 10);
+  EXPECT_EQ(hq.clusterBounds(hq.clusterCount() - 1).width, 7);
+  EXPECT_EQ(hq.clusterBounds(hq.clusterCount() - 1).height, 3);
+  EXPECT_GT(hq.stats().nodes, 0u);
+  EXPECT_EQ(hq.stats().nodes, hq.nodeCount());
+  EXPECT_GT(hq.stats().interEdges, 0u);
+  EXPECT_GT(hq.stats().intraEdges, 0u);
+  EXPECT_GT(hq.stats().graphBytes, 0u);
+  EXPECT_GT(hq.stats().pathBytes, 0u);
+  EXPECT_EQ(bare.stats().pathBytes, 0u);
+  EXPECT_EQ(bare.stats().nodes, hq.stats().nodes);
+  // The LQ graph keeps a subset of what the HQ graph needs.
+  EXPECT_LE(lq.stats().nodes, hq.stats().nodes);
+  EXPECT_LE(lq.stats().interEdges + lq.stats().intraEdges,
+            hq.stats().interEdges + hq.stats().intraEdges);
+  // Every node lies in the cluster that lists it, and every edge's annotation is sane.
+  std::size_t directedEdges = 0;
+  for (int cluster = 0; cluster < hq.clusterCount(); ++cluster) {
+    for (std::uint32_t n : hq.nodesInCluster(cluster)) {
+      EXPECT_TRUE(hq.clusterBounds(cluster).contains(hq.nodeCell(n)));
+      EXPECT_EQ(hq.clusterOf(hq.nodeCell(n)), cluster);
+    }
+  }
+  for (std::uint32_t n = 0; n < hq.nodeCount(); ++n) {
+    for (const AbstractEdge& e : hq.edgesOf(n)) {
+      ++directedEdges;
+      EXPECT_LT(e.target, hq.nodeCount());
+      EXPECT_GE(e.clearance, 1);
+      EXPECT_FALSE(e.capability.empty());
+      EXPECT_GE(e.cost, 1.0 - 1e-9);
+    }
+  }
+  EXPECT_EQ(directedEdges, 2 * (hq.stats().interEdges + hq.stats().intraEdges));
+}
+
+TEST(HaaStarTest, SpecsAreValidated) {
+  EXPECT_EQ(problemWith(catalogueSpec(8, AbstractionQuality::High)), "");
+  AbstractionSpec spec = catalogueSpec(8, AbstractionQuality::High);
+  spec.clusterSize = 1;
+  EXPECT_NE(problemWith(spec), "");
+  spec = catalogueSpec(8, AbstractionQuality::High);
+  spec.maxAgentSize = 0;
+  EXPECT_NE(problemWith(spec), "");
+  spec.maxAgentSize = 256;
+  EXPECT_NE(problemWith(spec), "");
+  spec = catalogueSpec(8, AbstractionQuality::High);
+  spec.capabilities.clear();
+  EXPECT_NE(problemWith(spec), "");
+}
+
+TEST(HaaStarTest, PlannerFacadeRunsEveryAlgorithm) {
+  for (const char* name : {"aa", "haa-hq", "haa-lq", "hybrid"}) {
+    const auto algorithm = algorithmFromName(name);
+    ASSERT_TRUE(algorithm) << name;
+    EXPECT_EQ(toString(*algorithm), name);
+  }
+  EXPECT_FALSE(algorithmFromName("dijkstra"));
+  EXPECT_FALSE(abstractionQualityFor(Algorithm::AStar));
+  EXPECT_EQ(abstractionQualityFor(Algorithm::HaaHigh), AbstractionQuality::High);
+  EXPECT_EQ(abstractionQualityFor(Algorithm::HaaLow), AbstractionQuality::Low);
+  EXPECT_EQ(abstractionQualityFor(Algorithm::Hybrid), AbstractionQuality::High);
+
+  const AnnotatedGrid grid(randomMap(randomMapCase(0)));
+  const std::vector<CompletenessCase> cases =
+      drawCompletenessCases(grid, testing::completenessAgents(), 21, 2, 3, 1);
+  CompletenessTally tally;
+  for (Algorithm algorithm :
+       {Algorithm::AStar, Algorithm::HaaHigh, Algorithm::HaaLow, Algorithm::Hybrid}) {
+    std::optional<ClusterAbstraction> abstraction;
+    if (const auto quality = abstractionQualityFor(algorithm)) {
+      abstraction.emplace(ClusterAbstraction::build(grid, catalogueSpec(8, *quality)));
+    }
+    Planner planner(grid, algorithm, abstraction ? &*abstraction : nullptr);
+    EXPECT_EQ(planner.algorithm(), algorithm);
+    checkCompleteness(grid, cases, planner, std::string(toString(algorithm)), tally);
+  }
+  EXPECT_EQ(tally.failures, 0);
+  EXPECT_GT(tally.found, 200);
+}
+
+}  // namespace
+}  // namespace warpath::pathing

@@ -1,0 +1,152 @@
+// `rts bench random`: a planner against AA* (the optimum) on random queries for one agent.
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "pathing/aa_star.h"
+#include "pathing/annotated_grid.h"
+#include "pathing/map_generator.h"
+#include "pathing/random.h"
+#include "rts/bench_support.h"
+#include "rts/cli_support.h"
+#include "rts/commands.h"
+#include "rts/planner_choice.h"
+
+namespace warpath::tools {
+namespace {
+
+using namespace pathing;
+
+struct RandomBenchOptions {
+  std::string mapFile;
+  AgentChoice agent;
+  int queries = 1000;
+  std::uint64_t seed = 1;
+  PlannerChoice planner;
+  bool json = false;
+};
+
+// The unit catalogue's capabilities (infantry; jeep and tank; amphibious), which the
+// abstraction serves besides the agent's own, as a shared service would.
+const std::vector<Capability> kCatalogueCapabilities{
+    Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Trees}),
+    Capability::of({Terrain::Ground}),
+    Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Water}),
+};
+
+int runRandomBench(const RandomBenchOptions& options) {
+  const Algorithm algorithm = parseAlgorithm(options.planner.algo);
+  const Agent agent = parseAgent(options.agent);
+  const AnnotatedGrid grid(loadMapOrThrow(options.mapFile));
+
+  const QuerySampler sampler(grid, agent);
+  if (!sampler.canStandAnywhere()) {
+    throw BadInput{fmt::format("a size-{} agent with capability {} can stand nowhere on {}",
+                               agent.size, agent.capability.toString(), options.mapFile)};
+  }
+  SplitMix64 rng(options.seed);
+  std::vector<Query> queries(static_cast<std::size_t>(options.queries));
+  for (Query& q : queries)
+    q = sampler.anyPair(rng);
+
+  AbstractionNeeds needs{.capabilities = kCatalogueCapabilities,
+                         .maxAgentSize = std::max(3, agent.size)};
+  needs.capabilities.push_back(agent.capability);
+  const std::vector<Agent> annotate{agent};
+  const PreparedPlanner prepared =
+      preparePlanner(grid, algorithm, options.planner, annotate, std::move(needs));
+  Planner planner = prepared.makePlanner(grid);
+  AnnotatedAStar optimal(grid);
+
+  ResultTally tally;
+  ResultTally reference;
+  std::size_t completenessFailures = 0, illegalPaths = 0, cheaperThanOptimal = 0;
+  std::vector<std::string> problems;
+  const auto report = [&](const Query& q, const std::string& what) {
+    if (problems.size() < 10) {
+      problems.push_back(
+          fmt::format("{},{} -> {},{}: {}", q.start.x, q.start.y, q.goal.x, q.goal.y, what));
+    }
+  };
+  std::vector<Cell> path;
+  for (const Query& q : queries) {
+    const PathResult best = optimal.findPath(agent, q.start, q.goal, nullptr);
+    path.clear();  // so that a found result without its path cannot pass on a stale one
+    const PathResult result = planner.findPath(agent, q.start, q.goal, &path);
+    reference.add(best, best.found() ? std::optional(best.cost) : std::nullopt);
+    tally.add(result, best.found() ? std::optional(best.cost) : std::nullopt);
+    if (result.found() != best.found()) {
+      ++completenessFailures;
+      report(q, fmt::format("{} says {}, AA* says {}", toString(algorithm), toString(result.status),
+                            toString(best.status)));
+    }
+    if (!result.found()) continue;
+    if (std::string problem = pathProblem(grid, agent, q.start, q.goal, result, path);
+        !problem.empty()) {
+      ++illegalPaths;
+      report(q, problem);
+    }
+    if (best.found() && result.cost < best.cost - 1e-6) {
+      ++cheaperThanOptimal;
+      report(q, fmt::format("cost {:.6f} is below the optimum {:.6f}", result.cost, best.cost));
+    }
+  }
+
+  nlohmann::json out;
+  out["map"] = options.mapFile;
+  out["algo"] = std::string(toString(algorithm));
+  out["agent"] = agentJson(agent);
+  out["seed"] = options.seed;
+  if (prepared.abstraction) out["cluster_size"] = options.planner.clusterSize;
+  if (algorithm == Algorithm::Hybrid) out["tau"] = options.planner.tau;
+  tally.writeTo(out);
+  out["completeness_failures"] = completenessFailures;
+  out["illegal_paths"] = illegalPaths;
+  out["cheaper_than_optimal"] = cheaperThanOptimal;
+  out["preprocess_ms"] = prepared.preprocessMs;
+  writeAbstractionKeys(prepared.abstractionOrNull(), out);
+  out["aa_median_us"] = reference.medianMicroseconds();
+  out["aa_mean_us"] = reference.meanMicroseconds();
+  out["aa_mean_expanded"] = reference.meanExpanded();
+  printReport(out, options.json);
+
+  for (const std::string& problem : problems)
+    fmt::print(stderr, "{}: {}\n", options.mapFile, problem);
+  const bool failed = completenessFailures + illegalPaths + cheaperThanOptimal > 0;
+  if (failed) {
+    fmt::print(stderr,
+               "rts: {} completeness failures, {} illegal paths, {} paths cheaper than optimal\n",
+               completenessFailures, illegalPaths, cheaperThanOptimal);
+  }
+  return failed ? kExitFailed : kExitOk;
+}
+
+}  // namespace
+
+void registerBenchRandomCommand(CLI::App& bench, CommandRunner& run) {
+  auto [cmd, options] = addSubcommand<RandomBenchOptions>(
+      bench, run, "random",
+      "Compare a planner with AA* (the optimum) on random queries for one agent: start and goal "
+      "drawn uniformly (seeded) among the cells where the agent can stand, reachable or not. "
+      "The hierarchical planners' abstraction serves the agent's capability and the unit "
+      "catalogue's, agents up to max(3, size).\n"
+      "Exit status: 0 done, 1 a completeness failure, an illegal path or a path cheaper than "
+      "AA*'s, 2 bad input.",
+      runRandomBench);
+  cmd->add_option("map", options->mapFile, "MovingAI .map file")->required();
+  addAgentOptions(*cmd, options->agent);
+  cmd->add_option("--queries", options->queries, "number of random queries")
+      ->check(CLI::Range(1, 10'000'000))
+      ->capture_default_str();
+  cmd->add_option("--seed", options->seed, "seed of the query generator")->capture_default_str();
+  options->planner.algo = "haa-hq";  // comparing AA* with itself is the odd case here
+  addPlannerOptions(*cmd, options->planner);
+  cmd->add_flag("--json", options->json, "print one JSON object");
+}
+
+}  // namespace warpath::tools

@@ -1,0 +1,106 @@
+#include "rts/planner_choice.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "rts/cli_support.h"
+
+namespace warpath::tools {
+
+using namespace pathing;
+
+void addAgentOptions(CLI::App& cmd, AgentChoice& choice) {
+  cmd.add_option("--size", choice.size, "agent size in cells (occupies size x size)")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  cmd.add_option("--capability", choice.capability,
+                 "terrains the agent may stand on, comma-separated: ground,swamp,trees,water")
+      ->capture_default_str();
+}
+
+Agent parseAgent(const AgentChoice& choice) {
+  std::string error;
+  const auto capability = parseCapability(choice.capability, &error);
+  if (!capability) throw BadInput{"--capability: " + error};
+  return {choice.size, *capability};
+}
+
+nlohmann::json agentJson(Agent agent) {
+  return {{"size", agent.size}, {"capability", agent.capability.toString()}};
+}
+
+void addPlannerOptions(CLI::App& cmd, PlannerChoice& choice) {
+  cmd.add_option("--algo", choice.algo,
+                 "planner: aa (Annotated A*, optimal), haa-hq / haa-lq (hierarchical, high- or "
+                 "low-quality graph), hybrid (AA* within a node budget for short queries, else "
+                 "haa-hq)")
+      ->capture_default_str();
+  cmd.add_option("--cluster-size", choice.clusterSize,
+                 "side of the clusters of the hierarchical algorithms, in cells")
+      ->capture_default_str();
+  cmd.add_option("--tau", choice.tau,
+                 "hybrid: node budget of the short-query AA* attempt; queries up to sqrt(tau)/2 "
+                 "apart try it first")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40))
+      ->capture_default_str();
+  cmd.add_flag("--no-smooth", choice.noSmooth,
+               "hierarchical algorithms: keep the refined path as it is, unsmoothed");
+}
+
+Algorithm parseAlgorithm(const std::string& name) {
+  if (const auto algorithm = algorithmFromName(name)) return *algorithm;
+  throw BadInput{"--algo: unknown planner '" + name + "' (choose aa, haa-hq, haa-lq or hybrid)"};
+}
+
+void checkSpecOrThrow(const AbstractionSpec& spec) {
+  if (const std::string problem = problemWith(spec); !problem.empty()) {
+    throw BadInput{
+        fmt::format("cannot build the abstraction (--cluster-size {}, agents up to size {}): {}",
+                    spec.clusterSize, spec.maxAgentSize, problem)};
+  }
+}
+
+ClusterAbstraction buildAbstractionOrThrow(const AnnotatedGrid& grid, AbstractionSpec spec) {
+  checkSpecOrThrow(spec);
+  return ClusterAbstraction::build(grid, std::move(spec));
+}
+
+PreparedPlanner preparePlanner(const AnnotatedGrid& grid, Algorithm algorithm,
+                               const PlannerChoice& choice, std::span<const Agent> annotate,
+                               AbstractionNeeds needs) {
+  PreparedPlanner prepared;
+  prepared.algorithm = algorithm;
+  prepared.hybrid.tau = choice.tau;
+  prepared.haa.smooth = !choice.noSmooth;
+  const auto began = std::chrono::steady_clock::now();
+  for (const Agent& agent : annotate)
+    grid.layer(agent);
+  if (const auto quality = abstractionQualityFor(algorithm)) {
+    std::sort(needs.capabilities.begin(), needs.capabilities.end());
+    needs.capabilities.erase(std::unique(needs.capabilities.begin(), needs.capabilities.end()),
+                             needs.capabilities.end());
+    prepared.abstraction.emplace(
+        buildAbstractionOrThrow(grid, AbstractionSpec{.clusterSize = choice.clusterSize,
+                                                      .maxAgentSize = needs.maxAgentSize,
+                                                      .capabilities = std::move(needs.capabilities),
+                                                      .quality = *quality,
+                                                      .cachePaths = true}));
+  }
+  prepared.preprocessMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
+  return prepared;
+}
+
+void writeAbstractionKeys(const ClusterAbstraction* abstraction, nlohmann::json& out) {
+  const AbstractionStats stats = abstraction ? abstraction->stats() : AbstractionStats{};
+  out["abstract_nodes"] = stats.nodes;
+  out["abstract_edges"] = stats.interEdges + stats.intraEdges;
+  out["abstract_inter_edges"] = stats.interEdges;
+  out["abstract_intra_edges"] = stats.intraEdges;
+  out["abstraction_bytes"] = stats.graphBytes;
+  out["cached_path_bytes"] = stats.pathBytes;
+}
+
+}  // namespace warpath::tools

@@ -1,0 +1,92 @@
+#pragma once
+// Choosing and preparing a planner from the command line, shared by `rts path` and the
+// `rts bench` subcommands: the --algo family of options, the abstraction the hierarchical
+// algorithms need, and the JSON keys that describe it.
+
+#include <CLI/App.hpp>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "pathing/annotated_grid.h"
+#include "pathing/cluster_abstraction.h"
+#include "pathing/planner.h"
+
+namespace warpath::tools {
+
+// The agent options (--size, --capability) as given on the command line.
+struct AgentChoice {
+  int size = 1;
+  std::string capability = "ground";
+};
+
+// Adds --size and --capability to `cmd`, bound to `choice` (which must outlive the parse).
+void addAgentOptions(CLI::App& cmd, AgentChoice& choice);
+
+// The agent the options describe; throws BadInput on an unknown terrain.
+pathing::Agent parseAgent(const AgentChoice& choice);
+
+// {"size": s, "capability": "ground,swamp"}
+nlohmann::json agentJson(pathing::Agent agent);
+
+// The planner options as given on the command line.
+struct PlannerChoice {
+  std::string algo = "aa";
+  int clusterSize = pathing::AbstractionSpec{}.clusterSize;
+  std::uint64_t tau = pathing::HybridOptions{}.tau;
+  bool noSmooth = false;
+};
+
+// Adds --algo, --cluster-size, --tau and --no-smooth to `cmd`, bound to `choice` (which must
+// outlive the parse).
+void addPlannerOptions(CLI::App& cmd, PlannerChoice& choice);
+
+// The algorithm named by `name` ("aa", "haa-hq", "haa-lq", "hybrid"); throws BadInput.
+pathing::Algorithm parseAlgorithm(const std::string& name);
+
+// A planner ready for queries: the abstraction (none for AA*) and what preparing it cost.
+// Planners made from it refer to its abstraction, so it must stay where it is meanwhile.
+struct PreparedPlanner {
+  pathing::Algorithm algorithm = pathing::Algorithm::AStar;
+  pathing::HybridOptions hybrid;
+  pathing::HaaOptions haa;
+  std::optional<pathing::ClusterAbstraction> abstraction;
+  double preprocessMs = 0.0;  // [Unit: ms] annotating the grid for the agents + abstraction
+
+  const pathing::ClusterAbstraction* abstractionOrNull() const {
+    return abstraction ? &*abstraction : nullptr;
+  }
+  // One query object (one per thread).
+  pathing::Planner makePlanner(const pathing::AnnotatedGrid& grid) const {
+    return pathing::Planner(grid, algorithm, abstractionOrNull(), hybrid, haa);
+  }
+};
+
+// What a hierarchical abstraction must serve.
+struct AbstractionNeeds {
+  std::vector<pathing::Capability> capabilities;  // duplicates are dropped
+  int maxAgentSize = 1;
+};
+
+// Annotates the grid for every agent in `annotate` and, when `algorithm` is hierarchical, builds
+// the abstraction of its quality for `needs`; preprocessMs times both. Throws BadInput when the
+// abstraction cannot be built with these options (e.g. a bad --cluster-size).
+PreparedPlanner preparePlanner(const pathing::AnnotatedGrid& grid, pathing::Algorithm algorithm,
+                               const PlannerChoice& choice,
+                               std::span<const pathing::Agent> annotate, AbstractionNeeds needs);
+
+// Throws BadInput naming the options when `spec` cannot be built.
+void checkSpecOrThrow(const pathing::AbstractionSpec& spec);
+
+// Validates and builds one abstraction; throws BadInput naming the options when it cannot.
+pathing::ClusterAbstraction buildAbstractionOrThrow(const pathing::AnnotatedGrid& grid,
+                                                    pathing::AbstractionSpec spec);
+
+// abstract_nodes, abstract_edges (inter + intra), abstract_inter_edges, abstract_intra_edges,
+// abstraction_bytes, cached_path_bytes: zeros without an abstraction (AA* searches the grid).
+void writeAbstractionKeys(const pathing::ClusterAbstraction* abstraction, nlohmann::json& out);
+
+}  // namespace warpath::tools
