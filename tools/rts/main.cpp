@@ -18,6 +18,8 @@ int main(int argc, char** argv) {
   CommandRunner run;
   registerPathCommand(app, run);
   registerBenchCommand(app, run);
+  registerRunCommand(app, run);
+  registerTestCommand(app, run);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,102 @@
+#pragma once
+// The one path service every unit asks. Requests queue in arrival order and are served in
+// that order, a tick at a time, until the tick's budget of node expansions is spent (the
+// request that crosses the budget finishes; a tick always serves at least one). Budgets count
+// expansions, never wall time, so the simulation stays deterministic. Terrain never changes
+// during a run, so answers are cached by (agent, start, goal): identical requests within a tick
+// are coalesced and repeated ones later are free.
+
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "engine/handle.h"
+#include "pathing/annotated_grid.h"
+#include "pathing/cluster_abstraction.h"
+#include "pathing/planner.h"
+
+namespace warpath::engine {
+
+struct PathServiceSettings {
+  pathing::Algorithm algorithm = pathing::Algorithm::Hybrid;
+  int clusterSize = 16;                   // [Unit: cells] [Limit: >= 2]
+  std::uint64_t expansionBudget = 20000;  // [Limit: >= 1] node expansions per tick
+  std::size_t cacheCapacity = 4096;       // answers kept; the oldest go first
+};
+
+struct PathRequest {
+  UnitId unit;
+  std::uint64_t serial = 0;  // the unit's request number; stale answers are ignored
+  pathing::Agent agent;
+  pathing::Cell start;
+  pathing::Cell goal;
+};
+
+using SharedPath = std::shared_ptr<const std::vector<pathing::Cell>>;
+
+struct PathDelivery {
+  UnitId unit;
+  std::uint64_t serial = 0;
+  pathing::PathStatus status = pathing::PathStatus::Unreachable;
+  SharedPath path;  // set when found
+};
+
+struct PathServiceMetrics {
+  std::uint64_t requests = 0;
+  std::uint64_t cacheHits = 0;  // answered from the cache, coalesced duplicates included
+  std::uint64_t searches = 0;
+  std::uint64_t found = 0;
+  std::uint64_t failed = 0;  // unreachable or invalid start/goal
+  std::uint64_t expanded = 0;
+  std::size_t maxQueue = 0;
+  double microseconds = 0.0;  // wall time of the searches: measurement only
+  double preprocessMilliseconds = 0.0;
+  bool operator==(const PathServiceMetrics& o) const {  // wall-clock fields excluded
+    return std::tie(requests, cacheHits, searches, found, failed, expanded, maxQueue) ==
+           std::tie(o.requests, o.cacheHits, o.searches, o.found, o.failed, o.expanded, o.maxQueue);
+  }
+};
+
+class PathService {
+ public:
+  // Builds the abstraction the algorithm needs for these capabilities and agent sizes up to
+  // maxAgentSize. The grid must outlive the service.
+  PathService(const pathing::AnnotatedGrid& grid, const PathServiceSettings& settings,
+              std::vector<pathing::Capability> capabilities, int maxAgentSize);
+  ~PathService();
+  PathService(const PathService&) = delete;
+  PathService& operator=(const PathService&) = delete;
+
+  void request(const PathRequest& request);
+  // Serves queued requests in order within the budget, appending one delivery each.
+  void serve(std::vector<PathDelivery>& out);
+
+  std::size_t queued() const { return queue_.size(); }
+  const PathServiceMetrics& metrics() const { return metrics_; }
+  const PathServiceSettings& settings() const { return settings_; }
+
+ private:
+  using Key = std::tuple<int, std::uint8_t, int, int, int, int>;
+  struct Answer {
+    pathing::PathStatus status;
+    SharedPath path;
+  };
+
+  PathServiceSettings settings_;
+  std::unique_ptr<pathing::ClusterAbstraction> abstraction_;
+  std::optional<pathing::Planner> planner_;
+  std::deque<PathRequest> queue_;
+  std::map<Key, Answer> cache_;
+  std::deque<Key> cacheOrder_;  // insertion order, for eviction
+  PathServiceMetrics metrics_;
+};
+
+// Empty when the settings can be used, else what is wrong.
+std::string problemWith(const PathServiceSettings& settings);
+
+}  // namespace warpath::engine

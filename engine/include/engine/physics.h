@@ -1,0 +1,56 @@
+#pragma once
+// Local collision avoidance with Box2D 2.4, behind a header that does not include Box2D (only
+// engine/src/physics includes it). Units are dynamic circles; terrain a unit may not enter is
+// static geometry whose collision category only the masks of the units it forbids include.
+
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "pathing/grid_map.h"
+#include "units/steering.h"
+
+namespace warpath::engine {
+
+// Collision categories: one per traversable terrain slot, one for blocked cells and the map
+// border, one for units. A unit's mask is the categories of the terrains its capability
+// forbids, plus blocked and units.
+inline constexpr std::uint16_t kBlockedCategory = 1u << pathing::kTraversableTerrainSlots;
+inline constexpr std::uint16_t kUnitCategory = kBlockedCategory << 1;
+constexpr std::uint16_t terrainCategory(pathing::Terrain t) {
+  return pathing::isTraversable(t) ? static_cast<std::uint16_t>(1u << static_cast<unsigned>(t))
+                                   : kBlockedCategory;
+}
+std::uint16_t collisionMaskFor(pathing::Capability capability);
+
+struct PhysicsStats {
+  int staticBoxes = 0;  // boxes of terrain geometry, border included
+  int bodies = 0;
+};
+
+class Physics {
+ public:
+  // Builds the static geometry of every terrain that some capability in `capabilities`
+  // forbids (blocked cells and the border always): cells merged into row runs, then runs
+  // stacked into boxes. [Unit: 1 cell = 1 Box2D metre]
+  Physics(const pathing::GridMap& map, std::span<const pathing::Capability> capabilities);
+  ~Physics();
+  Physics(const Physics&) = delete;
+  Physics& operator=(const Physics&) = delete;
+
+  // Adds a dynamic circle; returns its index (bodies are never removed).
+  std::uint32_t addBody(units::Vec2 centre, double radius, pathing::Capability capability);
+  void setVelocity(std::uint32_t body, units::Vec2 velocity);
+  // Advances every body by dt seconds.
+  void step(double dt);
+  units::Vec2 position(std::uint32_t body) const;
+  units::Vec2 velocity(std::uint32_t body) const;
+  const PhysicsStats& stats() const { return stats_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  PhysicsStats stats_;
+};
+
+}  // namespace warpath::engine

@@ -1,0 +1,75 @@
+#include "engine/path_service.h"
+
+#include <chrono>
+
+namespace warpath::engine {
+
+using namespace pathing;
+
+std::string problemWith(const PathServiceSettings& settings) {
+  if (settings.clusterSize < 2) return "cluster_size must be at least 2";
+  if (settings.expansionBudget < 1) return "budget must be at least 1";
+  return {};
+}
+
+PathService::PathService(const AnnotatedGrid& grid, const PathServiceSettings& settings,
+                         std::vector<Capability> capabilities, int maxAgentSize)
+    : settings_(settings) {
+  const auto began = std::chrono::steady_clock::now();
+  if (const auto quality = abstractionQualityFor(settings.algorithm)) {
+    AbstractionSpec spec;
+    spec.clusterSize = settings.clusterSize;
+    spec.maxAgentSize = maxAgentSize;
+    spec.capabilities = std::move(capabilities);
+    spec.quality = *quality;
+    abstraction_ = std::make_unique<ClusterAbstraction>(ClusterAbstraction::build(grid, spec));
+  }
+  planner_.emplace(grid, settings.algorithm, abstraction_.get());
+  metrics_.preprocessMilliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
+}
+
+PathService::~PathService() = default;
+
+void PathService::request(const PathRequest& request) {
+  queue_.push_back(request);
+  ++metrics_.requests;
+  metrics_.maxQueue = std::max(metrics_.maxQueue, queue_.size());
+}
+
+void PathService::serve(std::vector<PathDelivery>& out) {
+  std::uint64_t spent = 0;
+  while (!queue_.empty() && spent < settings_.expansionBudget) {
+    const PathRequest request = queue_.front();
+    queue_.pop_front();
+    const Key key{request.agent.size, request.agent.capability.mask(),
+                  request.start.x,    request.start.y,
+                  request.goal.x,     request.goal.y};
+    auto hit = cache_.find(key);
+    if (hit != cache_.end()) {
+      ++metrics_.cacheHits;
+    } else {
+      auto path = std::make_shared<std::vector<Cell>>();
+      const PathResult result =
+          planner_->findPath(request.agent, request.start, request.goal, path.get());
+      ++metrics_.searches;
+      metrics_.expanded += result.metrics.expanded;
+      metrics_.microseconds += result.metrics.microseconds;
+      spent += result.metrics.expanded;
+      if (result.found())
+        ++metrics_.found;
+      else
+        ++metrics_.failed;
+      if (cache_.size() >= settings_.cacheCapacity && !cacheOrder_.empty()) {
+        cache_.erase(cacheOrder_.front());
+        cacheOrder_.pop_front();
+      }
+      hit = cache_.emplace(key, Answer{result.status, result.found() ? std::move(path) : nullptr})
+                .first;
+      cacheOrder_.push_back(key);
+    }
+    out.push_back({request.unit, request.serial, hit->second.status, hit->second.path});
+  }
+}
+
+}  // namespace warpath::engine

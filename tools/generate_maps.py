@@ -1,0 +1,104 @@
+#!/usr/bin/env python3
+"""Writes the scenario maps under assets/maps/ (MovingAI .map format). Deterministic: run it
+again and the files come out byte for byte the same. Usage: tools/generate_maps.py"""
+import os
+import random
+
+OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "assets", "maps")
+
+
+def blank(w, h, fill="."):
+    g = [[fill] * w for _ in range(h)]
+    for x in range(w):
+        g[0][x] = g[h - 1][x] = "@"
+    for y in range(h):
+        g[y][0] = g[y][w - 1] = "@"
+    return g
+
+
+def rect(g, x0, y0, x1, y1, c):
+    """Fills [x0, x1) x [y0, y1), inside the border."""
+    for y in range(max(y0, 1), min(y1, len(g) - 1)):
+        for x in range(max(x0, 1), min(x1, len(g[0]) - 1)):
+            g[y][x] = c
+
+
+def blob(g, cx, cy, r, c, rng):
+    for y in range(cy - r, cy + r + 1):
+        for x in range(cx - r, cx + r + 1):
+            if 0 < y < len(g) - 1 and 0 < x < len(g[0]) - 1:
+                if (x - cx) ** 2 + (y - cy) ** 2 <= r * r + rng.randint(-r, r):
+                    g[y][x] = c
+
+
+def save(name, g):
+    with open(os.path.join(OUT, name), "w") as f:
+        f.write("type octile\nheight %d\nwidth %d\nmap\n" % (len(g), len(g[0])))
+        for row in g:
+            f.write("".join(row) + "\n")
+
+
+def river():
+    # A river 8 wide; a ground bridge (rows 8-12) and a swamp ford (rows 28-30).
+    g = blank(64, 40)
+    rect(g, 28, 0, 36, 40, "W")
+    rect(g, 28, 8, 36, 13, ".")
+    rect(g, 28, 28, 36, 31, "S")
+    return g
+
+
+def forest():
+    # A forest block in the middle; open ground above and below it.
+    g = blank(64, 48)
+    rect(g, 20, 7, 44, 41, "T")
+    return g
+
+
+def narrow_pass():
+    # A mountain ridge with one pass 4 cells wide: tanks (size 3) go through one at a time.
+    g = blank(64, 40)
+    rect(g, 30, 0, 34, 40, "@")
+    rect(g, 30, 18, 34, 22, ".")
+    return g
+
+
+def swamp():
+    # A swamp lake across the middle, ground corridors at the top and bottom.
+    g = blank(64, 48)
+    rect(g, 16, 6, 48, 42, "S")
+    return g
+
+
+def demo():
+    # 96x64: a river with a bridge and a ford, a forest, a swamp and rocks.
+    rng = random.Random(4)
+    g = blank(96, 64)
+    rect(g, 44, 0, 50, 64, "W")
+    rect(g, 44, 28, 50, 34, ".")
+    rect(g, 44, 50, 50, 53, "S")
+    rect(g, 18, 6, 32, 22, "T")
+    rect(g, 62, 42, 80, 58, "S")
+    for cx, cy in [(24, 40), (70, 14), (84, 30), (12, 54)]:
+        blob(g, cx, cy, 3, "@", rng)
+    return g
+
+
+def stress():
+    # 512x512: lakes, forests, swamps and rocks scattered with a fixed seed; open lanes
+    # along rows and columns every 64 cells keep every region connected for every unit.
+    rng = random.Random(512)
+    g = blank(512, 512)
+    for kind, count, rmin, rmax in [("W", 40, 6, 14), ("T", 60, 5, 12), ("S", 40, 5, 12),
+                                    ("@", 120, 2, 5)]:
+        for _ in range(count):
+            blob(g, rng.randint(8, 503), rng.randint(8, 503), rng.randint(rmin, rmax), kind, rng)
+    for k in range(32, 512, 64):
+        rect(g, 1, k - 3, 511, k + 4, ".")
+        rect(g, k - 3, 1, k + 4, 511, ".")
+    return g
+
+
+if __name__ == "__main__":
+    for name, make in [("river.map", river), ("forest.map", forest), ("pass.map", narrow_pass),
+                       ("swamp.map", swamp), ("demo.map", demo), ("stress512.map", stress)]:
+        save(name, make())

@@ -1,0 +1,127 @@
+// `rts run`: run a scenario headless, print progress and expectations, write the report.
+
+#include <fmt/core.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <optional>
+#include <string>
+
+#include "rts/cli_support.h"
+#include "rts/commands.h"
+#include "rts/scenario_support.h"
+
+namespace warpath::tools {
+namespace {
+
+struct RunOptions {
+  std::string scenario;
+  std::optional<std::uint64_t> seed;
+  std::string report;
+  std::optional<std::int64_t> until;
+  bool quiet = false;
+};
+
+int arrivedCount(const engine::World& world) {
+  int n = 0;
+  for (const engine::Unit& u : world.units())
+    n += u.arrivalTick >= 0 ? 1 : 0;
+  return n;
+}
+
+int stuckCount(const engine::World& world) {
+  int n = 0;
+  for (const engine::Unit& u : world.units())
+    n += u.everStuck ? 1 : 0;
+  return n;
+}
+
+// A bar redrawn in place on a terminal; on a pipe, a plain line every tenth of the run.
+class Progress {
+ public:
+  Progress(std::int64_t total, bool tty) : total_(std::max<std::int64_t>(total, 1)), tty_(tty) {}
+
+  void update(const engine::ScenarioRun& run) {
+    const std::int64_t tick = run.world().tick();
+    const auto tenth = std::max<std::int64_t>(total_ / 10, 1);
+    if (tty_ ? tick % 10 != 0 && tick != total_ : tick % tenth != 0 && tick != total_) return;
+    constexpr int kWidth = 20;
+    const auto done = static_cast<int>(std::min<std::int64_t>(tick * kWidth / total_, kWidth));
+    const std::string line =
+        fmt::format("tick {}/{} [{}{}] {:3d}%  units {}  arrived {}  stuck {}", tick, total_,
+                    std::string(static_cast<std::size_t>(done), '#'),
+                    std::string(static_cast<std::size_t>(kWidth - done), ' '),
+                    static_cast<int>(std::min<std::int64_t>(tick * 100 / total_, 100)),
+                    run.world().units().size(), arrivedCount(run.world()), stuckCount(run.world()));
+    if (tty_) {
+      fmt::print(stderr, "\r  {}", line);
+      drawn_ = true;
+    } else {
+      fmt::print(stderr, "  {}\n", line);
+    }
+  }
+  void finish() {
+    if (drawn_) fmt::print(stderr, "\n");
+  }
+
+ private:
+  std::int64_t total_;
+  bool tty_;
+  bool drawn_ = false;
+};
+
+int runRun(const RunOptions& options) {
+  const engine::Scenario scenario = loadScenarioOrThrow(options.scenario);
+  engine::ScenarioRun run(scenario, options.seed);
+  installInterruptHandlers();
+
+  const std::int64_t total =
+      options.until ? std::min(*options.until, scenario.durationTicks()) : scenario.durationTicks();
+  Progress progress(total, isatty(STDERR_FILENO) != 0);
+  RunLimits limits;
+  limits.untilTick = options.until;
+  if (!options.quiet) limits.onTick = [&](const engine::ScenarioRun& r) { progress.update(r); };
+  const RunOutcome outcome = runToEnd(run, limits);
+  progress.finish();
+
+  const engine::Report& report = outcome.report;
+  if (!options.quiet) {
+    for (const engine::ExpectationResult& e : report.expectations)
+      fmt::print("expectation \"{}\": {} ({:.4g})\n", e.text, e.pass ? "PASS" : "FAIL", e.actual);
+    const engine::TickTiming t = run.world().meanTiming();
+    fmt::print(
+        "{} ticks, {:.1f} s simulated in {:.2f} s; {:.3f} ms/tick (pathing {:.3f}, steering "
+        "{:.3f}, physics {:.3f}, bookkeeping {:.3f}); state hash {:016x}\n",
+        report.ticks, report.simSeconds, outcome.wallSeconds,
+        (t.pathingMicros + t.steeringMicros + t.physicsMicros + t.bookkeepingMicros) / 1000.0,
+        t.pathingMicros / 1000.0, t.steeringMicros / 1000.0, t.physicsMicros / 1000.0,
+        t.bookkeepingMicros / 1000.0, report.stateHash);
+  }
+  if (!options.report.empty()) {
+    std::ofstream out(options.report);
+    out << reportJson(outcome, run).dump(2) << '\n';
+    if (!out) throw BadInput{"cannot write the report to '" + options.report + "'"};
+    if (!options.quiet) fmt::print("report: {}\n", options.report);
+  }
+  if (outcome.interrupted) {
+    fmt::print(stderr, "rts: interrupted at tick {}; the report is partial\n", report.ticks);
+    return kExitFailed;
+  }
+  return report.passed() ? kExitOk : kExitFailed;
+}
+
+}  // namespace
+
+void registerRunCommand(CLI::App& app, CommandRunner& run) {
+  auto [cmd, options] = addSubcommand<RunOptions>(
+      app, run, "run",
+      "Run a scenario headless; exit 0 when every expectation holds, 1 when one fails", runRun);
+  cmd->add_option("scenario", options->scenario, "Scenario YAML file")->required();
+  cmd->add_option("--seed", options->seed, "Replace the scenario's seed");
+  cmd->add_option("--report", options->report, "Write the report (JSON) to this file");
+  cmd->add_option("--until", options->until, "Stop after this tick")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--quiet", options->quiet, "Print nothing but errors");
+}
+
+}  // namespace warpath::tools

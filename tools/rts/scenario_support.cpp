@@ -1,0 +1,139 @@
+#include "rts/scenario_support.h"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+
+#include "pathing/planner.h"
+#include "rts/cli_support.h"
+
+namespace warpath::tools {
+namespace {
+
+// The one mutable global: set by the signal handler, read between ticks.
+std::atomic<bool> gInterrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
+
+extern "C" void onSignal(int) {
+  gInterrupted.store(true);
+}
+
+// inf (a percentile of units that never arrived) has no JSON form: null.
+nlohmann::json finiteOrNull(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+nlohmann::json secondsOrNull(double v) {
+  return v < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(v);
+}
+
+}  // namespace
+
+engine::Scenario loadScenarioOrThrow(const std::string& file) {
+  engine::ScenarioResult<engine::Scenario> loaded = engine::loadScenario(file);
+  if (!loaded.ok()) throw BadInput{loaded.error.describe()};
+  return std::move(*loaded.value);
+}
+
+void installInterruptHandlers() {
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+}
+
+bool interruptRequested() {
+  return gInterrupted.load();
+}
+
+RunOutcome runToEnd(engine::ScenarioRun& run, const RunLimits& limits) {
+  RunOutcome outcome;
+  const auto began = std::chrono::steady_clock::now();
+  while (!run.done()) {
+    if (limits.untilTick && run.world().tick() >= *limits.untilTick) break;
+    if (interruptRequested()) {
+      outcome.interrupted = true;
+      break;
+    }
+    run.step();
+    if (limits.onTick) limits.onTick(run);
+  }
+  outcome.wallSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  outcome.report = run.report();
+  return outcome;
+}
+
+nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& run) {
+  using nlohmann::json;
+  const engine::Report& r = outcome.report;
+  json j;
+  j["scenario"] = r.scenario;
+  j["file"] = run.scenario().file.string();
+  j["seed"] = r.seed;
+  j["ticks"] = r.ticks;
+  j["sim_seconds"] = r.simSeconds;
+  j["wall_seconds"] = outcome.wallSeconds;
+  char hash[32];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(r.stateHash));
+  j["state_hash"] = hash;
+  j["complete"] = r.complete;
+  j["interrupted"] = outcome.interrupted;
+  j["units"] = run.world().units().size();
+
+  json arrivals = json::array();
+  int deaths = 0;
+  for (const engine::ArrivalStats& s : r.arrivals) {
+    arrivals.push_back({{"team", s.team},
+                        {"type", s.type},
+                        {"units", s.units},
+                        {"arrived", s.arrived},
+                        {"rate", s.rate},
+                        {"dead", s.dead},
+                        {"time_to_arrive",
+                         {{"p50", secondsOrNull(s.p50)},
+                          {"p90", secondsOrNull(s.p90)},
+                          {"max", secondsOrNull(s.max)}}}});
+    deaths += s.dead;
+  }
+  j["arrivals"] = arrivals;
+  j["deaths"] = deaths;
+  j["stuck_units"] = {{"count", r.stuckUnits.size()}, {"ids", r.stuckUnits}};
+  j["no_path_units"] = r.noPath;
+  j["repaths"] = r.repaths;
+
+  const engine::PathServiceMetrics& m = r.pathing;
+  const engine::PathServiceSettings& ps = run.world().pathService().settings();
+  j["pathing"] = {{"algo", std::string(pathing::toString(ps.algorithm))},
+                  {"cluster_size", ps.clusterSize},
+                  {"budget", ps.expansionBudget},
+                  {"requests", m.requests},
+                  {"cache_hits", m.cacheHits},
+                  {"searches", m.searches},
+                  {"found", m.found},
+                  {"failed", m.failed},
+                  {"expanded", m.expanded},
+                  {"max_queue", m.maxQueue},
+                  {"search_us", m.microseconds},
+                  {"preprocess_ms", m.preprocessMilliseconds}};
+
+  json expectations = json::array();
+  for (const engine::ExpectationResult& e : r.expectations)
+    expectations.push_back(
+        {{"text", e.text}, {"actual", finiteOrNull(e.actual)}, {"pass", e.pass}});
+  j["expectations"] = expectations;
+  j["passed"] = r.passed();
+
+  // Wall time per tick, by phase: a measurement, never an input to the simulation.
+  const engine::TickTiming t = run.world().meanTiming();
+  const double total = t.pathingMicros + t.steeringMicros + t.physicsMicros + t.bookkeepingMicros;
+  j["timing"] = {{"ms_per_tick", total / 1000.0},
+                 {"pathing_ms", t.pathingMicros / 1000.0},
+                 {"steering_ms", t.steeringMicros / 1000.0},
+                 {"physics_ms", t.physicsMicros / 1000.0},
+                 {"bookkeeping_ms", t.bookkeepingMicros / 1000.0},
+                 {"static_boxes", run.world().physics().stats().staticBoxes}};
+  return j;
+}
+
+}  // namespace warpath::tools

@@ -1,0 +1,39 @@
+#pragma once
+// What `rts run` and `rts test` share: running a scenario to its end (or a tick limit, or an
+// interrupt) and the report as JSON.
+
+#include <cstdint>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "engine/scenario.h"
+#include "engine/scenario_run.h"
+
+namespace warpath::tools {
+
+// Loads a scenario or throws BadInput with file, line, column and problem.
+engine::Scenario loadScenarioOrThrow(const std::string& file);
+
+// Installs SIGINT/SIGTERM handlers that ask runs to stop between ticks.
+void installInterruptHandlers();
+bool interruptRequested();
+
+struct RunLimits {
+  std::optional<std::int64_t> untilTick;  // stop after this tick
+  // Called after every tick (progress display); may be empty.
+  std::function<void(const engine::ScenarioRun&)> onTick;
+};
+
+struct RunOutcome {
+  engine::Report report;
+  double wallSeconds = 0.0;
+  bool interrupted = false;
+};
+
+// Steps `run` until its duration, the tick limit or an interrupt.
+RunOutcome runToEnd(engine::ScenarioRun& run, const RunLimits& limits);
+
+nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& run);
+
+}  // namespace warpath::tools

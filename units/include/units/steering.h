@@ -1,0 +1,59 @@
+#pragma once
+// Steering along a planned path: from a unit's position and its waypoints to the velocity it
+// wants, then limited by what the unit can do in one tick. Pure functions of their inputs.
+//
+// Positions here are body centres in cell units; the planner works with anchor cells (the
+// upper-left cell of the footprint). anchorToCentre / centreToAnchor are the only conversion.
+
+#include <cmath>
+#include <cstddef>
+#include <span>
+
+#include "pathing/grid_map.h"
+
+namespace warpath::units {
+
+struct Vec2 {
+  double x = 0.0;
+  double y = 0.0;
+  constexpr Vec2 operator+(Vec2 o) const { return {x + o.x, y + o.y}; }
+  constexpr Vec2 operator-(Vec2 o) const { return {x - o.x, y - o.y}; }
+  constexpr Vec2 operator*(double k) const { return {x * k, y * k}; }
+  constexpr bool operator==(const Vec2&) const = default;
+  double length() const { return std::sqrt(x * x + y * y); }
+};
+
+// [Unit: cells] The body centre of a size-s unit anchored at `anchor`: (x + s/2, y + s/2).
+constexpr Vec2 anchorToCentre(pathing::Cell anchor, int size) {
+  return {anchor.x + 0.5 * size, anchor.y + 0.5 * size};
+}
+// The anchor cell whose footprint is nearest to a body centre (inverse of anchorToCentre).
+inline pathing::Cell centreToAnchor(Vec2 centre, int size) {
+  return {static_cast<int>(std::floor(centre.x - 0.5 * size + 0.5)),
+          static_cast<int>(std::floor(centre.y - 0.5 * size + 0.5))};
+}
+
+struct SteeringParams {
+  double waypointRadius = 0.6;    // [Unit: cells] an intermediate waypoint counts as passed
+  double arrivalRadius = 0.2;     // [Unit: cells] the last waypoint counts as reached
+  double slowdownDistance = 1.5;  // [Unit: cells] speed falls linearly to 0 over this distance
+};
+
+struct SteeringResult {
+  Vec2 desiredVelocity;  // [Unit: cells/s]
+  std::size_t next = 0;  // index of the waypoint now steered to
+  bool reachedEnd = false;
+};
+
+// Desired velocity toward waypoint `next` of `path` (anchor cells) for a unit of `size` whose
+// centre is `centre` and whose top speed here is `maxSpeed`. Passed waypoints are skipped,
+// including ones the unit was pushed beyond; the last one is approached with slow-down.
+// [Limit: next < path.size()]
+SteeringResult steer(std::span<const pathing::Cell> path, std::size_t next, int size, Vec2 centre,
+                     double maxSpeed, const SteeringParams& params = {});
+
+// The velocity a unit reaches in `dt` seconds going from `current` toward `desired`, turning
+// by at most turnRate·dt and changing speed by at most acceleration·dt.
+Vec2 limitVelocity(Vec2 current, Vec2 desired, double acceleration, double turnRate, double dt);
+
+}  // namespace warpath::units
