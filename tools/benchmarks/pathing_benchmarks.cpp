@@ -3,9 +3,11 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
 #include <vector>
 
 #include "pathing/aa_star.h"
+#include "pathing/haa_star.h"
 #include "pathing/map_generator.h"
 #include "pathing/random.h"
 
@@ -68,6 +70,57 @@ void BM_AnnotatedAStar(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(expanded), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_AnnotatedAStar)->Arg(1)->Arg(3)->Unit(benchmark::kMicrosecond);
+
+// The catalogue's capabilities (infantry, jeep and tank, amphibious), sizes 1-3.
+AbstractionSpec catalogueSpec(int clusterSize, AbstractionQuality quality) {
+  AbstractionSpec spec;
+  spec.clusterSize = clusterSize;
+  spec.maxAgentSize = 3;
+  spec.capabilities = {kInfantry, Capability::of({Terrain::Ground}),
+                       Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Water})};
+  spec.quality = quality;
+  return spec;
+}
+
+// Building the graph alone: the grid's clearance and agent layers are computed beforehand.
+void BM_AbstractionBuild(benchmark::State& state) {
+  const AnnotatedGrid grid(benchmarkMap(512));
+  const auto quality = static_cast<AbstractionQuality>(state.range(1));
+  const AbstractionSpec spec = catalogueSpec(static_cast<int>(state.range(0)), quality);
+  ClusterAbstraction::build(grid, spec);  // warms the grid's caches
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(ClusterAbstraction::build(grid, spec));
+  }
+}
+BENCHMARK(BM_AbstractionBuild)
+    ->Args({16, static_cast<int>(AbstractionQuality::High)})
+    ->Args({16, static_cast<int>(AbstractionQuality::Low)})
+    ->Unit(benchmark::kMillisecond);
+
+// Random long queries (endpoints at least 256 cells apart) for infantry of sizes 1 and 3.
+void BM_HierarchicalAStar(benchmark::State& state) {
+  const int size = static_cast<int>(state.range(0));
+  const AnnotatedGrid grid(benchmarkMap(512));
+  const ClusterAbstraction graph =
+      ClusterAbstraction::build(grid, catalogueSpec(16, AbstractionQuality::High));
+  const Agent agent{size, kInfantry};
+  std::vector<std::pair<Cell, Cell>> queries;
+  SplitMix64 rng(7);
+  while (queries.size() < 64) {
+    const Cell s{rng.between(0, 511), rng.between(0, 511)};
+    const Cell g{rng.between(0, 511), rng.between(0, 511)};
+    if (std::abs(s.x - g.x) + std::abs(s.y - g.y) < 256) continue;
+    if (grid.canStand(agent, s) && grid.canStand(agent, g)) queries.push_back({s, g});
+  }
+  HierarchicalAStar search(graph);
+  std::vector<Cell> path;
+  std::size_t next = 0;
+  for (auto _ : state) {
+    const auto& [s, g] = queries[next++ % queries.size()];
+    benchmark::DoNotOptimize(search.findPath(agent, s, g, &path));
+  }
+}
+BENCHMARK(BM_HierarchicalAStar)->Arg(1)->Arg(3)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
