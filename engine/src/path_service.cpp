@@ -39,13 +39,16 @@ void PathService::request(const PathRequest& request) {
 
 void PathService::serve(std::vector<PathDelivery>& out) {
   std::uint64_t spent = 0;
-  while (!queue_.empty() && spent < settings_.expansionBudget) {
-    const PathRequest request = queue_.front();
-    queue_.pop_front();
-    const Key key{request.agent.size, request.agent.capability.mask(),
-                  request.start.x,    request.start.y,
-                  request.goal.x,     request.goal.y};
+  while (!queue_.empty()) {
+    const PathRequest& front = queue_.front();
+    const Key key{front.agent.size, front.agent.capability.mask(),
+                  front.start.x,    front.start.y,
+                  front.goal.x,     front.goal.y};
     auto hit = cache_.find(key);
+    // Cached answers cost no budget, so duplicates queued behind a search ride along with it.
+    if (hit == cache_.end() && spent >= settings_.expansionBudget) break;
+    const PathRequest request = front;
+    queue_.pop_front();
     if (hit != cache_.end()) {
       ++metrics_.cacheHits;
     } else {

@@ -83,7 +83,8 @@ World::World(std::shared_ptr<const AnnotatedGrid> grid, std::vector<units::UnitT
       catalogue_(std::move(catalogue)),
       settings_(settings),
       rng_(settings.seed),
-      parkedAt_(grid_->map().cellCount(), 0) {
+      parkedAt_(grid_->map().cellCount(), 0),
+      claimedBy_(grid_->map().cellCount(), 0) {
   const std::vector<Capability> capabilities = capabilitiesOf(catalogue_);
   physics_ = std::make_unique<Physics>(grid_->map(), capabilities);
   paths_ =
@@ -144,7 +145,6 @@ Cell World::nearestStandable(const Unit& unit) const {
 
 void World::applyCommand(const MoveCommand& command) {
   const GridMap& map = grid_->map();
-  std::vector<std::uint8_t> taken(map.cellCount(), 0);  // goal footprints handed out here
   std::vector<Cell> candidates;
   int candidatesType = -1;
   std::size_t cursor = 0;
@@ -176,7 +176,7 @@ void World::applyCommand(const MoveCommand& command) {
       if (!strict) return true;
       bool free = true;
       forFootprint(c, type.size, [&](Cell f) {
-        free = free && taken[map.indexOf(f)] == 0 && parkedAt_[map.indexOf(f)] == 0;
+        free = free && claimedBy_[map.indexOf(f)] == 0 && parkedAt_[map.indexOf(f)] == 0;
       });
       return free;
     };
@@ -202,11 +202,21 @@ void World::applyCommand(const MoveCommand& command) {
       log(EventKind::PathFailed, unit, static_cast<int>(PathStatus::Unreachable));
       continue;
     }
-    forFootprint(*goal, type.size, [&](Cell c) { taken[map.indexOf(c)] = 1; });
     unit.goalCell = *goal;
+    claimGoal(unit, true);
     unit.state = UnitState::WaitingPath;
     requestPath(unit);
   }
+}
+
+void World::claimGoal(const Unit& unit, bool claim) {
+  const GridMap& map = grid_->map();
+  const int size = catalogue_[static_cast<std::size_t>(unit.type)].size;
+  forFootprint(unit.goalCell, size, [&](Cell c) {
+    std::uint32_t& owner = claimedBy_[map.indexOf(c)];
+    if (claim && owner == 0) owner = unit.id.index + 1;
+    if (!claim && owner == unit.id.index + 1) owner = 0;
+  });
 }
 
 void World::requestPath(Unit& unit) {
@@ -238,7 +248,13 @@ void World::steerAll() {
   for (Unit& unit : units_) {
     const units::UnitType& type = catalogue_[static_cast<std::size_t>(unit.type)];
     Vec2 desired;
-    if (unit.state == UnitState::Moving && unit.path) {
+    if (unit.state == UnitState::Parked) {
+      // Hold the goal cell: a unit shoved off it steers back.
+      const Cell goal[] = {unit.goalCell};
+      const units::SteeringResult r =
+          units::steer(goal, 0, type.size, unit.position, type.maxSpeed(), settings_.steering);
+      desired = r.desiredVelocity;
+    } else if (unit.state == UnitState::Moving && unit.path) {
       const Cell under{static_cast<int>(std::floor(unit.position.x)),
                        static_cast<int>(std::floor(unit.position.y))};
       double speed = type.speedOn(map.at(under));
@@ -275,8 +291,10 @@ bool World::reassignGoal(Unit& unit) {
       if (!grid_->canStand(agent, c) || components[map.indexOf(c)] != component) continue;
       bool free = true;
       forFootprint(c, type.size, [&](Cell f) {
-        const std::uint32_t owner = parkedAt_[map.indexOf(f)];
-        free = free && (owner == 0 || owner == unit.id.index + 1);
+        const std::uint32_t parked = parkedAt_[map.indexOf(f)];
+        const std::uint32_t claimed = claimedBy_[map.indexOf(f)];
+        free = free && (parked == 0 || parked == unit.id.index + 1) &&
+               (claimed == 0 || claimed == unit.id.index + 1);
       });
       const double d = (units::anchorToCentre(c, type.size) - unit.position).length();
       if (free && d < bestDistance) {
@@ -286,7 +304,9 @@ bool World::reassignGoal(Unit& unit) {
     }
   }
   if (!best || *best == unit.goalCell) return false;
+  claimGoal(unit, false);
   unit.goalCell = *best;
+  claimGoal(unit, true);
   return true;
 }
 

@@ -133,6 +133,7 @@ class World {
   void steerAll();
   void applyRules();
   bool reassignGoal(Unit& unit);
+  void claimGoal(const Unit& unit, bool claim);
   pathing::Cell nearestStandable(const Unit& unit) const;
   void log(EventKind kind, const Unit& unit, int detail = 0);
   std::uint64_t computeHash() const;
@@ -148,6 +149,9 @@ class World {
   std::vector<PathDelivery> deliveries_;  // scratch, reused every tick
   // Unit index + 1 of the parked unit covering each cell, 0 where none.
   std::vector<std::uint32_t> parkedAt_;
+  // Unit index + 1 of the unit whose goal footprint covers each cell, 0 where none: goal
+  // cells handed out by different orders do not overlap while the area has room.
+  std::vector<std::uint32_t> claimedBy_;
   std::vector<Event> events_;
   std::int64_t tick_ = 0;
   std::uint64_t stateHash_ = 0;

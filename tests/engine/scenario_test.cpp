@@ -1,0 +1,103 @@
+// The bundled scenarios: deterministic (same hash, same report, run after run; a golden hash for
+// the demo), and every expectation able to fail when the scenario is made harder.
+
+#include "engine/scenario.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include "engine/scenario_run.h"
+
+namespace warpath::engine {
+namespace {
+
+struct Bundled {
+  const char* name;
+  // Ticks to run for the determinism check (0: the whole scenario) and the factor applied to
+  // every time in the "can fail" check; the stress scenario only runs briefly in tests.
+  std::int64_t determinismTicks;
+  double timeFactor;
+};
+
+const Bundled kBundled[] = {
+    {"demo", 0, 0.5},        {"river_crossing", 0, 0.5}, {"forest", 0, 0.5},
+    {"narrow_pass", 0, 0.5}, {"swamp", 0, 0.5},          {"stress_2000", 120, 0.04},
+};
+
+Scenario loadBundled(const std::string& name) {
+  ScenarioResult<Scenario> r =
+      loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/" + name + ".yaml");
+  EXPECT_TRUE(r.ok()) << r.error.describe();
+  return std::move(*r.value);
+}
+
+Report run(const Scenario& s, std::int64_t ticks) {
+  ScenarioRun r(s);
+  while (!r.done() && (ticks == 0 || r.world().tick() < ticks))
+    r.step();
+  return r.report();
+}
+
+class BundledScenario : public ::testing::TestWithParam<Bundled> {};
+
+TEST_P(BundledScenario, RunsTheSameTwice) {
+  const Scenario s = loadBundled(GetParam().name);
+  const Report a = run(s, GetParam().determinismTicks);
+  const Report b = run(s, GetParam().determinismTicks);
+  EXPECT_EQ(a.stateHash, b.stateHash);
+  EXPECT_EQ(a, b);  // wall-clock measurements are not part of a report
+  EXPECT_GT(a.ticks, 0);
+}
+
+TEST_P(BundledScenario, EveryExpectationCanFail) {
+  Scenario s = loadBundled(GetParam().name);
+  const double k = GetParam().timeFactor;
+  // Less time: every time-bound expectation must fail.
+  s.duration *= k;
+  for (Expectation& e : s.expectations) {
+    e.by *= k;
+    if (e.kind == ExpectationKind::ArrivalTime) e.threshold *= k;
+  }
+  // An impossible stuck rule (a cell of progress every tick): every unit is flagged.
+  s.settings.stuck.windowSeconds = 1.0 / s.settings.tickRate;
+  s.settings.stuck.minProgress = 1.0;
+  s.settings.stuck.flagAfter = 1;
+  const Report r = run(s, 0);
+  ASSERT_EQ(r.expectations.size(), s.expectations.size());
+  for (const ExpectationResult& e : r.expectations)
+    EXPECT_FALSE(e.pass) << GetParam().name << ": " << e.text << " held (" << e.actual << ")";
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenarios, BundledScenario, ::testing::ValuesIn(kBundled),
+                         [](const auto& p) { return std::string(p.param.name); });
+
+TEST(BundledScenarios, TheRiverMakesTanksUseTheBridge) {
+  const Scenario s = loadBundled("river_crossing");
+  ScenarioRun r(s);
+  const int tank = 2;  // catalogue order: infantry, jeep, tank, amphibious
+  while (!r.done()) {
+    r.step();
+    for (const Unit& u : r.world().units()) {
+      // Inside the river's columns (28-35) a tank's centre is on the bridge (rows 8-12).
+      if (u.type == tank && u.position.x > 28.0 && u.position.x < 36.0) {
+        ASSERT_GT(u.position.y, 8.0);
+        ASSERT_LT(u.position.y, 13.0);
+      }
+    }
+  }
+}
+
+TEST(BundledScenarios, GoldenHashOfTheDemo) {
+  const Report r = run(loadBundled("demo"), 0);
+  char hash[32];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(r.stateHash));
+  // Changes only when the simulation's behaviour changes; update it deliberately then.
+  EXPECT_STREQ(hash, "6cb2534c4b8e1d97");
+  EXPECT_TRUE(r.passed());
+}
+
+}  // namespace
+}  // namespace warpath::engine

@@ -1,0 +1,281 @@
+// The world on small maps: every unit type reaches reachable goals, amphibious units swim where
+// tanks go around, tanks never squeeze through gaps narrower than themselves, no unit ever
+// overlaps terrain it may not enter, and the path service keeps its promises.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "engine/physics.h"
+#include "engine/scenario.h"
+#include "engine/scenario_run.h"
+#include "pathing/map_io.h"
+
+namespace warpath::engine {
+namespace {
+
+using pathing::Cell;
+using pathing::Terrain;
+
+const std::string kDir = std::string(WARPATH_SOURCE_DIR) + "/scenarios/";
+
+Scenario load(const std::string& text) {
+  ScenarioResult<Scenario> r = parseScenario(text, kDir + "test_input.yaml");
+  EXPECT_TRUE(r.ok()) << r.error.describe();
+  return std::move(*r.value);
+}
+
+// Largest depth by which a unit's body overlaps a cell it may not enter (or the outside).
+double overlapDepth(const World& world, const Unit& unit) {
+  const units::UnitType& type = world.catalogue()[static_cast<std::size_t>(unit.type)];
+  const pathing::GridMap& map = world.grid().map();
+  double depth = 0.0;
+  const int x0 = static_cast<int>(std::floor(unit.position.x - type.radius));
+  const int y0 = static_cast<int>(std::floor(unit.position.y - type.radius));
+  for (int y = y0; y <= static_cast<int>(unit.position.y + type.radius); ++y) {
+    for (int x = x0; x <= static_cast<int>(unit.position.x + type.radius); ++x) {
+      const Terrain t = map.at({x, y});
+      if (pathing::isTraversable(t) && type.capability.allows(t)) continue;
+      const double dx = std::max({x - unit.position.x, 0.0, unit.position.x - (x + 1)});
+      const double dy = std::max({y - unit.position.y, 0.0, unit.position.y - (y + 1)});
+      depth = std::max(depth, type.radius - std::sqrt(dx * dx + dy * dy));
+    }
+  }
+  return depth;
+}
+
+// Runs to the end, checking every tick that no body overlaps forbidden terrain by more than
+// Box2D's tolerance (linear slop).
+void runChecked(ScenarioRun& run) {
+  constexpr double kTolerance = 0.02;
+  while (!run.done()) {
+    run.step();
+    for (const Unit& unit : run.world().units()) {
+      ASSERT_LE(overlapDepth(run.world(), unit), kTolerance)
+          << "unit " << unit.id.index << " at " << unit.position.x << "," << unit.position.y
+          << " tick " << run.world().tick();
+    }
+  }
+}
+
+const std::string kHeader = "catalogue: ../assets/units.yaml\nteams: [blue]\n";
+
+TEST(World, EveryTypeReachesAReachableGoal) {
+  const Scenario s =
+      load(kHeader +
+           "map:\n  rows:\n"
+           "    - '........................'\n"
+           "    - '........................'\n"
+           "    - '......@@@...............'\n"
+           "    - '......@@@...............'\n"
+           "    - '........................'\n"
+           "    - '........................'\n"
+           "    - '........................'\n"
+           "    - '........................'\n"
+           "duration: 25\n"
+           "groups:\n"
+           "  - {type: infantry, team: blue, count: 2, spawn: {x: 0, y: 0, w: 2, h: 2},"
+           " goal: {x: 20, y: 0, w: 4, h: 3}}\n"
+           "  - {type: jeep, team: blue, count: 1, spawn: {x: 0, y: 4, w: 2, h: 2},"
+           " goal: {x: 20, y: 3, w: 4, h: 3}}\n"
+           "  - {type: tank, team: blue, count: 1, spawn: {x: 2, y: 4, w: 3, h: 3},"
+           " goal: {x: 19, y: 5, w: 5, h: 3}}\n"
+           "  - {type: amphibious, team: blue, count: 1, spawn: {x: 0, y: 6, w: 2, h: 2},"
+           " goal: {x: 14, y: 6, w: 3, h: 2}}\n");
+  ScenarioRun run(s);
+  runChecked(run);
+  for (const Unit& unit : run.world().units()) {
+    EXPECT_GE(unit.arrivalTick, 0) << "unit " << unit.id.index;
+    EXPECT_EQ(unit.state, UnitState::Parked) << "unit " << unit.id.index;
+    EXPECT_TRUE(unit.goalArea.contains(units::centreToAnchor(
+        unit.position, run.world().catalogue()[static_cast<std::size_t>(unit.type)].size)));
+  }
+}
+
+// A lake between spawn and goal with a ground strip around its south end.
+const std::string kLake =
+    kHeader +
+    "map:\n  rows:\n"
+    "    - '...........WWWWWW...........'\n"
+    "    - '...........WWWWWW...........'\n"
+    "    - '...........WWWWWW...........'\n"
+    "    - '...........WWWWWW...........'\n"
+    "    - '...........WWWWWW...........'\n"
+    "    - '...........WWWWWW...........'\n"
+    "    - '...........WWWWWW...........'\n"
+    "    - '...........WWWWWW...........'\n"
+    "    - '............................'\n"
+    "    - '............................'\n"
+    "    - '............................'\n"
+    "duration: 40\n"
+    "groups:\n"
+    "  - {type: amphibious, team: blue, count: 1, spawn: {x: 2, y: 1, w: 2, h: 2},"
+    " goal: {x: 23, y: 1, w: 2, h: 2}}\n"
+    "  - {type: tank, team: blue, count: 1, spawn: {x: 2, y: 3, w: 3, h: 3},"
+    " goal: {x: 23, y: 3, w: 3, h: 3}}\n";
+
+TEST(World, AmphibiousUnitsSwimWhereTanksGoAround) {
+  const Scenario s = load(kLake);
+  ScenarioRun run(s);
+  bool amphibiousSwam = false;
+  double tankLowest = 0.0;  // largest row reached by the tank's centre
+  while (!run.done()) {
+    run.step();
+    const Unit& amphibious = run.world().units()[0];
+    const Unit& tank = run.world().units()[1];
+    const auto under = [&](const Unit& u) {
+      return run.world().grid().map().at(
+          {static_cast<int>(std::floor(u.position.x)), static_cast<int>(std::floor(u.position.y))});
+    };
+    amphibiousSwam = amphibiousSwam || under(amphibious) == Terrain::Water;
+    ASSERT_NE(under(tank), Terrain::Water);
+    ASSERT_LE(overlapDepth(run.world(), tank), 0.02);
+    tankLowest = std::max(tankLowest, tank.position.y);
+  }
+  const Unit& amphibious = run.world().units()[0];
+  const Unit& tank = run.world().units()[1];
+  EXPECT_TRUE(amphibiousSwam);
+  EXPECT_GE(amphibious.arrivalTick, 0);
+  EXPECT_GE(tank.arrivalTick, 0);
+  EXPECT_GT(tankLowest, 8.0);  // went round the south end of the lake
+  EXPECT_LT(amphibious.arrivalTick, tank.arrivalTick);
+}
+
+TEST(World, TanksNeverPassGapsNarrowerThanThreeCells) {
+  // A wall with a 2-cell gap near the direct line and a 3-cell gap far south.
+  const Scenario s =
+      load(kHeader +
+           "map:\n  rows:\n"
+           "    - '..........@..........'\n"
+           "    - '..........@..........'\n"
+           "    - '..........@..........'\n"
+           "    - '.....................'\n"
+           "    - '.....................'\n"
+           "    - '..........@..........'\n"
+           "    - '..........@..........'\n"
+           "    - '..........@..........'\n"
+           "    - '..........@..........'\n"
+           "    - '..........@..........'\n"
+           "    - '..........@..........'\n"
+           "    - '.....................'\n"
+           "    - '.....................'\n"
+           "    - '.....................'\n"
+           "duration: 40\n"
+           "groups:\n"
+           "  - {type: tank, team: blue, count: 1, spawn: {x: 2, y: 2, w: 3, h: 3},"
+           " goal: {x: 15, y: 2, w: 3, h: 3}}\n"
+           "  - {type: infantry, team: blue, count: 1, spawn: {x: 0, y: 0, w: 1, h: 1},"
+           " goal: {x: 15, y: 0, w: 3, h: 3}}\n");
+  ScenarioRun run(s);
+  bool tankUsedSouthGap = false;
+  bool infantryUsedNorthGap = false;
+  while (!run.done()) {
+    run.step();
+    const Unit& tank = run.world().units()[0];
+    const Unit& infantry = run.world().units()[1];
+    if (std::abs(tank.position.x - 10.5) < 1.0) {
+      ASSERT_GT(tank.position.y, 11.0) << "the tank is in the wall's 2-cell gap";
+      tankUsedSouthGap = true;
+    }
+    if (std::abs(infantry.position.x - 10.5) < 0.5 && infantry.position.y < 5.0)
+      infantryUsedNorthGap = true;
+  }
+  EXPECT_TRUE(tankUsedSouthGap);
+  EXPECT_TRUE(infantryUsedNorthGap);
+  EXPECT_GE(run.world().units()[0].arrivalTick, 0);
+}
+
+TEST(Physics, ABodyCannotBePushedThroughAGapNarrowerThanIt) {
+  // Directly in Box2D: a tank-sized body driven at a 2-cell gap stays on its side.
+  pathing::GridMap map(12, 9);
+  for (int y = 0; y < 9; ++y) {
+    if (y != 4 && y != 5) map.set({6, y}, Terrain::Blocked);
+  }
+  const pathing::Capability ground = pathing::Capability::of({Terrain::Ground});
+  Physics physics(map, std::span<const pathing::Capability>(&ground, 1));
+  const std::uint32_t body = physics.addBody({3.0, 5.0}, 1.4, ground);
+  double furthest = 0.0;
+  for (int i = 0; i < 300; ++i) {
+    physics.setVelocity(body, {3.0, 0.0});
+    physics.step(1.0 / 30.0);
+    furthest = std::max(furthest, physics.position(body).x);
+  }
+  EXPECT_LT(furthest, 6.0);  // wedged in the gap's mouth, never through the wall's column
+  Physics other(map, std::span<const pathing::Capability>(&ground, 1));
+  const std::uint32_t small = other.addBody({3.0, 5.0}, 0.9, ground);
+  for (int i = 0; i < 300; ++i) {
+    other.setVelocity(small, {3.0, 0.0});
+    other.step(1.0 / 30.0);
+  }
+  EXPECT_GT(other.position(small).x, 8.0);  // a 2-cell unit fits
+}
+
+TEST(Physics, CollisionMasksFollowCapabilities) {
+  const auto tank = collisionMaskFor(pathing::Capability::of({Terrain::Ground}));
+  const auto amphibious =
+      collisionMaskFor(pathing::Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Water}));
+  EXPECT_NE(tank & terrainCategory(Terrain::Water), 0);
+  EXPECT_EQ(amphibious & terrainCategory(Terrain::Water), 0);
+  EXPECT_NE(amphibious & terrainCategory(Terrain::Trees), 0);
+  for (auto mask : {tank, amphibious}) {
+    EXPECT_NE(mask & kBlockedCategory, 0);
+    EXPECT_NE(mask & kUnitCategory, 0);
+    EXPECT_EQ(mask & terrainCategory(Terrain::Ground), 0);
+  }
+}
+
+TEST(PathService, BudgetSpreadsRequestsAndCacheAnswersRepeats) {
+  auto grid = std::make_shared<const pathing::AnnotatedGrid>(pathing::GridMap(64, 64));
+  PathServiceSettings settings;
+  settings.algorithm = pathing::Algorithm::AStar;
+  settings.expansionBudget = 1;  // one search a tick
+  const pathing::Agent agent{1, pathing::Capability::of({Terrain::Ground})};
+  PathService service(*grid, settings, {agent.capability}, 1);
+  service.request({{0, 0}, 1, agent, {0, 0}, {60, 60}});
+  service.request({{1, 0}, 1, agent, {0, 0}, {60, 60}});  // identical: coalesced
+  service.request({{2, 0}, 1, agent, {0, 1}, {60, 60}});
+  std::vector<PathDelivery> out;
+  service.serve(out);
+  ASSERT_EQ(out.size(), 2u);  // the search spends the budget; its duplicate rides along free
+  EXPECT_EQ(out[0].unit.index, 0u);
+  EXPECT_EQ(out[1].unit.index, 1u);
+  EXPECT_EQ(out[0].path, out[1].path);
+  EXPECT_EQ(service.metrics().cacheHits, 1u);
+  EXPECT_EQ(service.queued(), 1u);
+  out.clear();
+  service.serve(out);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].unit.index, 2u);
+  EXPECT_EQ(out[0].status, pathing::PathStatus::Found);
+  EXPECT_EQ(service.metrics().requests, 3u);
+  EXPECT_EQ(service.metrics().searches, 2u);
+}
+
+TEST(World, AnUnreachableGoalIsReportedOnceAndNotRetried) {
+  // Ordered straight into an enclosed pocket (the loader would refuse this as a goal).
+  pathing::GridMap map(16, 8);
+  for (int y = 0; y < 8; ++y)
+    map.set({10, y}, Terrain::Blocked);
+  auto grid = std::make_shared<const pathing::AnnotatedGrid>(std::move(map));
+  units::UnitType infantry;
+  infantry.name = "infantry";
+  infantry.capability = pathing::Capability::of({Terrain::Ground});
+  infantry.setSpeed(1.5);
+  World world(grid, {infantry}, {});
+  const UnitId id = world.spawn(0, 0, 0, {1, 1});
+  world.orderMove({id}, {12, 2, 2, 2});
+  for (int i = 0; i < 200; ++i)
+    world.step();
+  EXPECT_EQ(world.find(id)->state, UnitState::NoPath);
+  const auto failures =
+      std::count_if(world.events().begin(), world.events().end(),
+                    [](const Event& e) { return e.kind == EventKind::PathFailed; });
+  EXPECT_EQ(failures, 1);
+  EXPECT_LE(world.pathService().metrics().requests, 1u);
+  EXPECT_EQ(world.find({id.index, id.generation + 1}), nullptr);  // a stale handle
+}
+
+}  // namespace
+}  // namespace warpath::engine

@@ -1,0 +1,137 @@
+// Unit definitions, steering and the stuck rule: pure logic, no world.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "units/steering.h"
+#include "units/stuck.h"
+#include "units/unit_type.h"
+
+namespace warpath::units {
+namespace {
+
+using pathing::Capability;
+using pathing::Cell;
+using pathing::Terrain;
+
+UnitType tank() {
+  UnitType t;
+  t.name = "tank";
+  t.size = 3;
+  t.capability = Capability::of({Terrain::Ground});
+  t.setSpeed(2.0);
+  t.radius = 1.4;
+  return t;
+}
+
+TEST(UnitType, SpeedOnlyOnTerrainsOfTheCapability) {
+  UnitType t = tank();
+  EXPECT_EQ(t.speedOn(Terrain::Ground), 2.0);
+  EXPECT_EQ(t.speedOn(Terrain::Water), 0.0);
+  EXPECT_EQ(t.speedOn(Terrain::Blocked), 0.0);
+  EXPECT_EQ(t.maxSpeed(), 2.0);
+  EXPECT_EQ(problemWith(t), "");
+}
+
+TEST(UnitType, ProblemsAreNamed) {
+  UnitType t = tank();
+  t.radius = 1.6;  // wider than the 3-cell footprint
+  EXPECT_NE(problemWith(t).find("radius"), std::string::npos);
+  t = tank();
+  t.speed[static_cast<std::size_t>(Terrain::Ground)] = 0.0;
+  EXPECT_NE(problemWith(t).find("speed on ground"), std::string::npos);
+  t = tank();
+  t.capability = {};
+  EXPECT_NE(problemWith(t).find("capability"), std::string::npos);
+}
+
+TEST(Steering, AnchorAndCentreConvertBothWays) {
+  for (int size = 1; size <= 4; ++size) {
+    for (Cell c : {Cell{0, 0}, Cell{5, 7}, Cell{100, 3}}) {
+      const Vec2 centre = anchorToCentre(c, size);
+      EXPECT_EQ(centre.x, c.x + size / 2.0);
+      EXPECT_EQ(centreToAnchor(centre, size), c);
+      // Anywhere within half a cell of the centre rounds to the same anchor.
+      EXPECT_EQ(centreToAnchor(centre + Vec2{0.49, -0.49}, size), c);
+    }
+  }
+}
+
+TEST(Steering, HeadsForTheNextWaypointAtFullSpeed) {
+  const std::vector<Cell> path{{0, 0}, {1, 0}, {2, 0}, {3, 0}, {4, 0}};
+  const SteeringResult r = steer(path, 0, 1, {0.5, 0.5}, 2.0);
+  EXPECT_EQ(r.next, 1u);  // the first waypoint is where the unit stands
+  EXPECT_NEAR(r.desiredVelocity.x, 2.0, 1e-12);
+  EXPECT_NEAR(r.desiredVelocity.y, 0.0, 1e-12);
+  EXPECT_FALSE(r.reachedEnd);
+}
+
+TEST(Steering, SlowsDownOnArrivalAndStops) {
+  const std::vector<Cell> path{{0, 0}, {1, 0}, {2, 0}};
+  SteeringParams params;
+  const SteeringResult near = steer(path, 2, 1, {2.5 - 0.75, 0.5}, 2.0, params);
+  EXPECT_NEAR(near.desiredVelocity.x, 2.0 * 0.75 / params.slowdownDistance, 1e-12);
+  const SteeringResult at = steer(path, 2, 1, {2.5 - 0.1, 0.5}, 2.0, params);
+  EXPECT_TRUE(at.reachedEnd);
+  EXPECT_EQ(at.desiredVelocity, Vec2{});
+}
+
+TEST(Steering, SkipsWaypointsTheUnitWasPushedPast) {
+  const std::vector<Cell> path{{0, 0}, {1, 0}, {2, 0}, {3, 0}, {4, 0}, {5, 0}};
+  const SteeringResult r = steer(path, 1, 1, {3.6, 0.5}, 1.0);
+  EXPECT_EQ(r.next, 4u);
+  EXPECT_GT(r.desiredVelocity.x, 0.0);
+}
+
+TEST(Steering, LargeUnitsSteerTheirCentreToTheFootprintCentre) {
+  const std::vector<Cell> path{{10, 10}, {10, 11}};
+  const SteeringResult r = steer(path, 1, 3, anchorToCentre({10, 10}, 3), 1.0);
+  EXPECT_NEAR(r.desiredVelocity.x, 0.0, 1e-12);
+  EXPECT_NEAR(r.desiredVelocity.y, 1.0 / SteeringParams{}.slowdownDistance, 1e-12);
+}
+
+TEST(Steering, VelocityLimitedByTurnRateAndAcceleration) {
+  const double dt = 0.1;
+  // Reversing: the heading turns by at most turnRate·dt.
+  const Vec2 v = limitVelocity({1.0, 0.0}, {-1.0, 0.0}, 100.0, std::numbers::pi / 2, dt);
+  EXPECT_NEAR(std::atan2(v.y, v.x), std::numbers::pi / 2 * dt, 1e-9);
+  // From rest: speed grows by at most acceleration·dt, in the desired direction.
+  const Vec2 w = limitVelocity({}, {0.0, 5.0}, 2.0, 1.0, dt);
+  EXPECT_NEAR(w.y, 0.2, 1e-12);
+  EXPECT_NEAR(w.x, 0.0, 1e-12);
+  // Braking to a stop.
+  EXPECT_EQ(limitVelocity({0.1, 0.0}, {}, 2.0, 1.0, dt), Vec2{});
+  const Vec2 b = limitVelocity({1.0, 0.0}, {}, 2.0, 1.0, dt);
+  EXPECT_NEAR(b.x, 0.8, 1e-12);
+}
+
+TEST(Stuck, FiresAfterAWindowWithoutProgress) {
+  StuckRule rule;
+  rule.windowSeconds = 1.0;
+  rule.minProgress = 0.5;
+  ProgressMonitor m;
+  m.reset({0, 0}, 0);
+  for (int tick = 1; tick < 10; ++tick)
+    EXPECT_FALSE(m.update({0.01 * tick, 0}, tick, 10.0, rule));
+  EXPECT_TRUE(m.update({0.1, 0}, 10, 10.0, rule));
+  EXPECT_EQ(m.stuckWindows(), 1);
+  EXPECT_TRUE(m.update({0.1, 0}, 20, 10.0, rule));
+  EXPECT_EQ(m.stuckWindows(), 2);
+  // Progress clears the count.
+  EXPECT_FALSE(m.update({1.0, 0}, 21, 10.0, rule));
+  EXPECT_EQ(m.stuckWindows(), 0);
+}
+
+TEST(Stuck, MovingUnitsAreNeverStuck) {
+  StuckRule rule;
+  ProgressMonitor m;
+  m.reset({0, 0}, 0);
+  for (int tick = 1; tick < 1000; ++tick)
+    EXPECT_FALSE(m.update({0.05 * tick, 0}, tick, 30.0, rule));
+}
+
+}  // namespace
+}  // namespace warpath::units
