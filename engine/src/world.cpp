@@ -357,6 +357,7 @@ void World::applyRules() {
 
 void World::step() {
   Stopwatch watch;
+  const TickTiming before = timing_;
   for (const MoveCommand& command : pending_)
     applyCommand(command);
   pending_.clear();
@@ -383,6 +384,11 @@ void World::step() {
   stateHash_ = computeHash();
   timing_.bookkeepingMicros += watch.lap();
   ++timing_.ticks;
+  const double tickMicros = (timing_.pathingMicros - before.pathingMicros) +
+                            (timing_.steeringMicros - before.steeringMicros) +
+                            (timing_.physicsMicros - before.physicsMicros) +
+                            (timing_.bookkeepingMicros - before.bookkeepingMicros);
+  timing_.slowestTickMicros = std::max(timing_.slowestTickMicros, tickMicros);
 }
 
 TickTiming World::meanTiming() const {

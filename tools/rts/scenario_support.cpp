@@ -132,6 +132,7 @@ nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& 
                  {"steering_ms", t.steeringMicros / 1000.0},
                  {"physics_ms", t.physicsMicros / 1000.0},
                  {"bookkeeping_ms", t.bookkeepingMicros / 1000.0},
+                 {"slowest_tick_ms", t.slowestTickMicros / 1000.0},
                  {"static_boxes", run.world().physics().stats().staticBoxes}};
   return j;
 }

@@ -85,6 +85,7 @@ struct TickTiming {
   double steeringMicros = 0.0;
   double physicsMicros = 0.0;
   double bookkeepingMicros = 0.0;  // commands, rules, state hash
+  double slowestTickMicros = 0.0;  // the whole of the slowest tick (not a mean)
   std::int64_t ticks = 0;
 };
 

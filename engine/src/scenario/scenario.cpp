@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
+#include <numbers>
 #include <set>
 #include <sstream>
 
@@ -108,8 +109,6 @@ class Parser {
   fs::path file_;
 };
 
-constexpr double kPi = 3.14159265358979323846;
-
 Capability parseCapabilityNode(const Parser& p, const YAML::Node& node) {
   std::string joined;
   if (node.IsSequence()) {
@@ -148,7 +147,8 @@ void applyUnitFields(const Parser& p, const YAML::Node& node, units::UnitType& t
   if (node["acceleration"])
     type.acceleration = p.number(node["acceleration"], what + " acceleration", 0.0, 1000.0);
   if (node["turn_rate"])  // degrees per second in files, radians inside
-    type.turnRate = p.number(node["turn_rate"], what + " turn_rate", 0.0, 36000.0) * kPi / 180.0;
+    type.turnRate =
+        p.number(node["turn_rate"], what + " turn_rate", 0.0, 36000.0) * std::numbers::pi / 180.0;
   if (node["radius"]) type.radius = p.number(node["radius"], what + " radius", 0.0, 128.0);
   if (node["hp"]) type.hp = p.integer(node["hp"], what + " hp", 1, 1000000);
 }

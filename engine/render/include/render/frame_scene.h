@@ -1,0 +1,58 @@
+#pragma once
+// What one frame shows, as plain values: the world (or a replay) fills a FrameScene and the
+// renderer draws it. The renderer never sees the world itself, so it cannot change it.
+//
+// Positions are in cell units with (0, 0) the map's top-left corner: a size-s unit anchored
+// at cell (x, y) has its centre at (x + s/2, y + s/2).
+
+#include <cstdint>
+#include <vector>
+
+#include "pathing/grid_map.h"
+
+namespace warpath::render {
+
+struct Point {
+  float x = 0.0f;  // [Unit: cells]
+  float y = 0.0f;  // [Unit: cells]
+  constexpr bool operator==(const Point&) const = default;
+};
+
+enum class UnitState : std::uint8_t {
+  Alive,
+  Arrived,  // reached its goal; drawn like Alive
+  Wreck,    // dead: drawn as a wreck
+};
+
+struct UnitView {
+  Point centre;
+  int size = 1;          // [Unit: cells] [Limit: >= 1] side of the square footprint
+  int team = 0;          // [Limit: >= 0] colour kTeams[team % 8]
+  int type = 0;          // [Limit: >= 0] shape: circle, square, triangle, diamond, hexagon, ...
+  float facing = 0.0f;   // [Unit: radians] 0 = +x (east), pi/2 = +y (south, down the screen)
+  float hp = 1.0f;       // [Limit: 0..1] fraction of full health
+  UnitState state = UnitState::Alive;
+  bool stuck = false;    // drawn by the stuck overlay
+  std::vector<Point> path;  // remaining waypoints (centres), drawn by the path overlays
+};
+
+struct ArrivalZone {
+  pathing::CellRect area;
+  int team = 0;
+};
+
+struct TeamCounts {
+  int alive = 0;
+  int arrived = 0;
+  int dead = 0;
+};
+
+struct FrameScene {
+  std::int64_t tick = 0;
+  double seconds = 0.0;          // [Unit: s] simulated time
+  std::vector<UnitView> units;   // drawn in order: later units on top
+  std::vector<TeamCounts> teams;  // HUD line per team, indexed by team
+  std::vector<ArrivalZone> arrivalZones;
+};
+
+}  // namespace warpath::render
