@@ -28,10 +28,9 @@ Rgba teamColour(int team) {
 namespace {
 
 std::vector<Rgba> makeGifPalette() {
-  std::vector<Rgba> colours{kGround, kSwamp,     kTrees,   kWater,     kBlocked,
-                            kOtherTerrain, kBackground, kBlack, kWhite, kHpGood,
-                            kHpLost, kWreck,     kWreckMark, kStuck, kGraphNode,
-                            kInterEdge, kIntraEdge};
+  std::vector<Rgba> colours{kGround,     kSwamp, kTrees,     kWater,     kBlocked,  kOtherTerrain,
+                            kBackground, kBlack, kWhite,     kHpGood,    kHpLost,   kWreck,
+                            kWreckMark,  kStuck, kGraphNode, kInterEdge, kIntraEdge};
   colours.insert(colours.end(), kTeams.begin(), kTeams.end());
   colours.insert(colours.end(), kHeat.begin(), kHeat.end());
   // The cube covers whatever blending makes (translucent overlays over terrain).

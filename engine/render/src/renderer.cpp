@@ -1,7 +1,7 @@
 #include "render/renderer.h"
 
-// Mesa's headers declare prototypes this project's warning set dislikes; they are system
-// headers (see CMakeLists.txt), so include them before anything that could be confused.
+// libOSMesa exports the GL 1.2+ entry points (glBlendFuncSeparate) directly.
+#define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
 #include <GL/osmesa.h>
 
@@ -25,7 +25,9 @@ static_assert(sizeof(Rgba) == 4, "Rgba is uploaded to GL as 4 unsigned bytes");
 
 constexpr int kMaxResolution = 8192;
 
-Rgba withAlpha(Rgba c, std::uint8_t a) { return {c.r, c.g, c.b, a}; }
+Rgba withAlpha(Rgba c, std::uint8_t a) {
+  return {c.r, c.g, c.b, a};
+}
 
 // Vertices with colours, drawn with one glDrawArrays call; order is kept, so later
 // primitives cover earlier ones.
@@ -139,15 +141,14 @@ struct Renderer::Impl {
   GLuint clearanceTexture = 0;
   Batch graphLines;  // cluster borders and edges, built by setAbstractGraph
   Batch graphNodes;
-  Batch lines;  // per frame
-  Batch tris;   // per frame
+  Batch tris;                                                    // per frame
   std::array<std::vector<Point>, kShapes.size()> shapeVertices;  // unit radius
 
   Impl() {
     for (std::size_t s = 0; s < kShapes.size(); ++s) {
       for (int k = 0; k < kShapes[s].sides; ++k) {
-        const float a = kShapes[s].rotation + 2.0f * kPi * static_cast<float>(k) /
-                                                  static_cast<float>(kShapes[s].sides);
+        const float a = kShapes[s].rotation +
+                        2.0f * kPi * static_cast<float>(k) / static_cast<float>(kShapes[s].sides);
         shapeVertices[s].push_back({std::cos(a), std::sin(a)});
       }
     }
@@ -165,8 +166,8 @@ struct Renderer::Impl {
     if (OSMesaGetCurrentContext() == context) return Status::success();
     if (!OSMesaMakeCurrent(context, image.pixels.data(), GL_UNSIGNED_BYTE, image.width,
                            image.height)) {
-      return Status::failure("OSMesaMakeCurrent failed for a " + std::to_string(image.width) +
-                             "x" + std::to_string(image.height) + " RGBA buffer");
+      return Status::failure("OSMesaMakeCurrent failed for a " + std::to_string(image.width) + "x" +
+                             std::to_string(image.height) + " RGBA buffer");
     }
     // Row 0 of the buffer is the top of the picture, as in Image.
     OSMesaPixelStore(OSMESA_Y_UP, 0);
@@ -269,8 +270,7 @@ struct Renderer::Impl {
       const float y1 = u.centre.y - r - pixel;
       const float x0 = u.centre.x - halfW;
       tris.rect(x0, y1 - h, u.centre.x + halfW, y1, palette::kHpLost);
-      tris.rect(x0, y1 - h, x0 + 2.0f * halfW * std::clamp(u.hp, 0.0f, 1.0f), y1,
-                palette::kHpGood);
+      tris.rect(x0, y1 - h, x0 + 2.0f * halfW * std::clamp(u.hp, 0.0f, 1.0f), y1, palette::kHpGood);
     }
     if (def.overlays.stuck) {
       for (const UnitView& u : scene.units) {
@@ -352,8 +352,8 @@ struct Renderer::Impl {
     std::size_t longest = 0;
     for (const std::string& l : lines)
       longest = std::max(longest, l.size());
-    const float width = swatch + s * 2.0f +
-                        static_cast<float>(longest * kGlyphAdvance) * s + 2.0f * margin;
+    const float width =
+        swatch + s * 2.0f + static_cast<float>(longest * kGlyphAdvance) * s + 2.0f * margin;
     const float height = lineHeight * static_cast<float>(lines.size()) + 2.0f * margin - 3.0f * s;
     tris.rect(0, 0, width, height, withAlpha(palette::kBlack, 170));
     for (std::size_t i = 0; i < lines.size(); ++i) {
@@ -484,10 +484,9 @@ Result<Renderer> Renderer::create(const pathing::GridMap& map, const RenderDef& 
   GLint maxTexture = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
   if (map.width() > maxTexture || map.height() > maxTexture) {
-    return Status::failure("the " + std::to_string(map.width()) + "x" +
-                           std::to_string(map.height()) +
-                           " map exceeds the largest texture OSMesa offers (" +
-                           std::to_string(maxTexture) + ")");
+    return Status::failure(
+        "the " + std::to_string(map.width()) + "x" + std::to_string(map.height()) +
+        " map exceeds the largest texture OSMesa offers (" + std::to_string(maxTexture) + ")");
   }
   std::vector<Rgba> texels(map.cellCount());
   for (std::size_t i = 0; i < texels.size(); ++i)
@@ -500,12 +499,24 @@ Result<Renderer> Renderer::create(const pathing::GridMap& map, const RenderDef& 
   return Renderer(std::move(impl));
 }
 
-int Renderer::width() const { return impl_->image.width; }
-int Renderer::height() const { return impl_->image.height; }
-const Overlays& Renderer::overlays() const { return impl_->def.overlays; }
-void Renderer::setOverlays(const Overlays& overlays) { impl_->def.overlays = overlays; }
-const Image& Renderer::image() const { return impl_->image; }
-Status Renderer::render(const FrameScene& scene) { return impl_->render(scene); }
+int Renderer::width() const {
+  return impl_->image.width;
+}
+int Renderer::height() const {
+  return impl_->image.height;
+}
+const Overlays& Renderer::overlays() const {
+  return impl_->def.overlays;
+}
+void Renderer::setOverlays(const Overlays& overlays) {
+  impl_->def.overlays = overlays;
+}
+const Image& Renderer::image() const {
+  return impl_->image;
+}
+Status Renderer::render(const FrameScene& scene) {
+  return impl_->render(scene);
+}
 
 Status Renderer::setCamera(std::optional<pathing::CellRect> camera) {
   if (camera) {
@@ -539,21 +550,21 @@ Status Renderer::setAbstractGraph(const pathing::ClusterAbstraction& abstraction
                                   std::optional<pathing::Agent> agent) {
   const pathing::GridMap& map = abstraction.grid().map();
   if (map.width() != impl_->mapWidth || map.height() != impl_->mapHeight) {
-    return Status::failure("the abstraction was built on a " + std::to_string(map.width()) +
-                           "x" + std::to_string(map.height()) + " map, the renderer's is " +
+    return Status::failure("the abstraction was built on a " + std::to_string(map.width()) + "x" +
+                           std::to_string(map.height()) + " map, the renderer's is " +
                            std::to_string(impl_->mapWidth) + "x" +
                            std::to_string(impl_->mapHeight));
   }
-  Batch& lines = impl_->graphLines;
+  Batch& edges = impl_->graphLines;
   Batch& nodes = impl_->graphNodes;
-  lines.clear();
+  edges.clear();
   nodes.clear();
   for (int c = 0; c < abstraction.clusterCount(); ++c) {
     const CellRect b = abstraction.clusterBounds(c);
     const float x0 = static_cast<float>(b.x), y0 = static_cast<float>(b.y);
     const float x1 = x0 + static_cast<float>(b.width), y1 = y0 + static_cast<float>(b.height);
-    lines.line({x0, y0}, {x1, y0}, palette::kClusterBorder);
-    lines.line({x0, y0}, {x0, y1}, palette::kClusterBorder);
+    edges.line({x0, y0}, {x1, y0}, palette::kClusterBorder);
+    edges.line({x0, y0}, {x0, y1}, palette::kClusterBorder);
   }
   const auto centre = [&](std::uint32_t node) {
     const pathing::Cell c = abstraction.nodeCell(node);
@@ -562,8 +573,7 @@ Status Renderer::setAbstractGraph(const pathing::ClusterAbstraction& abstraction
   for (std::uint32_t n = 0; n < abstraction.nodeCount(); ++n) {
     for (const pathing::AbstractEdge& e : abstraction.edgesOf(n)) {
       if (e.target < n || (agent && !e.usableBy(*agent))) continue;  // each pair once
-      lines.line(centre(n), centre(e.target),
-                 e.intra ? palette::kIntraEdge : palette::kInterEdge);
+      edges.line(centre(n), centre(e.target), e.intra ? palette::kIntraEdge : palette::kInterEdge);
     }
   }
   for (std::uint32_t n = 0; n < abstraction.nodeCount(); ++n) {

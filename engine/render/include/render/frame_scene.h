@@ -25,19 +25,19 @@ enum class UnitState : std::uint8_t {
 };
 
 struct UnitView {
-  Point centre;
-  int size = 1;          // [Unit: cells] [Limit: >= 1] side of the square footprint
-  int team = 0;          // [Limit: >= 0] colour kTeams[team % 8]
-  int type = 0;          // [Limit: >= 0] shape: circle, square, triangle, diamond, hexagon, ...
-  float facing = 0.0f;   // [Unit: radians] 0 = +x (east), pi/2 = +y (south, down the screen)
-  float hp = 1.0f;       // [Limit: 0..1] fraction of full health
+  Point centre{};
+  int size = 1;         // [Unit: cells] [Limit: >= 1] side of the square footprint
+  int team = 0;         // [Limit: >= 0] colour kTeams[team % 8]
+  int type = 0;         // [Limit: >= 0] shape: circle, square, triangle, diamond, hexagon, ...
+  float facing = 0.0f;  // [Unit: radians] 0 = +x (east), pi/2 = +y (south, down the screen)
+  float hp = 1.0f;      // [Limit: 0..1] fraction of full health
   UnitState state = UnitState::Alive;
-  bool stuck = false;    // drawn by the stuck overlay
-  std::vector<Point> path;  // remaining waypoints (centres), drawn by the path overlays
+  bool stuck = false;         // drawn by the stuck overlay
+  std::vector<Point> path{};  // remaining waypoints (centres), drawn by the path overlays
 };
 
 struct ArrivalZone {
-  pathing::CellRect area;
+  pathing::CellRect area{};
   int team = 0;
 };
 
@@ -49,10 +49,10 @@ struct TeamCounts {
 
 struct FrameScene {
   std::int64_t tick = 0;
-  double seconds = 0.0;          // [Unit: s] simulated time
-  std::vector<UnitView> units;   // drawn in order: later units on top
-  std::vector<TeamCounts> teams;  // HUD line per team, indexed by team
-  std::vector<ArrivalZone> arrivalZones;
+  double seconds = 0.0;             // [Unit: s] simulated time
+  std::vector<UnitView> units{};    // drawn in order: later units on top
+  std::vector<TeamCounts> teams{};  // HUD line per team, indexed by team
+  std::vector<ArrivalZone> arrivalZones{};
 };
 
 }  // namespace warpath::render

@@ -16,8 +16,8 @@ struct Rgba {
 };
 
 struct Image {
-  int width = 0;   // [Unit: pixels]
-  int height = 0;  // [Unit: pixels]
+  int width = 0;                     // [Unit: pixels]
+  int height = 0;                    // [Unit: pixels]
   std::vector<std::uint8_t> pixels;  // width * height * 4 bytes, RGBA, top row first
 
   Image() = default;

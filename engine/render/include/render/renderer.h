@@ -42,8 +42,8 @@ struct RenderDef {
   int height = 512;  // [Unit: pixels] [Limit: 1..8192]
   // The part of the map in view; the whole map when empty. The view keeps square cells,
   // centred, with the background colour around it when the aspect ratios differ.
-  std::optional<pathing::CellRect> camera;
-  Overlays overlays;
+  std::optional<pathing::CellRect> camera{};
+  Overlays overlays{};
 };
 
 class Renderer {

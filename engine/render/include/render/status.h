@@ -31,7 +31,7 @@ class Status {
 template <class T>
 class Result {
  public:
-  Result(T value) : state_(std::move(value)) {}  // NOLINT(google-explicit-constructor)
+  Result(T value) : state_(std::move(value)) {}          // NOLINT(google-explicit-constructor)
   Result(Status failure) : state_(std::move(failure)) {  // NOLINT(google-explicit-constructor)
     if (std::get<Status>(state_).ok()) state_ = Status::failure("no value");
   }
