@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <chrono>
 
 #include "pathing/moves.h"
 
@@ -25,15 +24,6 @@ std::string_view toString(PathStatus status) {
   return "unknown";
 }
 
-namespace {
-
-double elapsedMicroseconds(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - since)
-      .count();
-}
-
-}  // namespace
-
 AnnotatedAStar::AnnotatedAStar(const AnnotatedGrid& grid) : grid_(grid) {}
 
 void AnnotatedAStar::beginQuery() {
@@ -51,22 +41,18 @@ void AnnotatedAStar::beginQuery() {
 
 PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                                     const SearchLimits& limits) {
-  const auto began = std::chrono::steady_clock::now();
+  const QueryClock clock;
   PathResult result;
   if (path) path->clear();
   const auto finish = [&](PathStatus status) {
     result.status = status;
-    result.metrics.microseconds = elapsedMicroseconds(began);
+    result.metrics.microseconds = clock.elapsedMicroseconds();
     return result;
   };
 
-  if (!grid_.canStand(agent, start)) return finish(PathStatus::InvalidStart);
-  if (!grid_.canStand(agent, goal)) return finish(PathStatus::InvalidGoal);
+  if (const auto answer = screenEndpoints(grid_, agent, start, goal)) return finish(*answer);
   const GridMap& map = grid_.map();
   const AgentLayer& layer = grid_.layer(agent);
-  if (layer.components()[map.indexOf(start)] != layer.components()[map.indexOf(goal)]) {
-    return finish(PathStatus::Unreachable);
-  }
   if (limits.region && (!limits.region->contains(start) || !limits.region->contains(goal))) {
     return finish(PathStatus::Unreachable);
   }

@@ -88,6 +88,18 @@ std::size_t AnnotatedGrid::cacheBytes() const {
   return bytes;
 }
 
+std::optional<PathStatus> screenEndpoints(const AnnotatedGrid& grid, Agent agent, Cell start,
+                                          Cell goal) {
+  if (!grid.canStand(agent, start)) return PathStatus::InvalidStart;
+  if (!grid.canStand(agent, goal)) return PathStatus::InvalidGoal;
+  const AgentLayer& layer = grid.layer(agent);
+  const GridMap& map = grid.map();
+  if (layer.components()[map.indexOf(start)] != layer.components()[map.indexOf(goal)]) {
+    return PathStatus::Unreachable;
+  }
+  return std::nullopt;
+}
+
 std::string findIllegalStep(const AnnotatedGrid& grid, Agent agent, std::span<const Cell> path) {
   if (path.empty()) return "path is empty";
   std::ostringstream problem;

@@ -1,7 +1,6 @@
 #include "pathing/haa_star.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "cluster_dijkstra.h"
@@ -10,11 +9,6 @@
 
 namespace warpath::pathing {
 namespace {
-
-double elapsedMicroseconds(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - since)
-      .count();
-}
 
 // Appends the cells reached by walking `steps` from `from`.
 void appendWalk(Cell from, std::span<const std::uint8_t> steps, std::vector<Cell>* out) {
@@ -150,17 +144,16 @@ class StraightWalker {
 
 PathResult HierarchicalAStar::findPath(Agent agent, Cell start, Cell goal,
                                        std::vector<Cell>* path) {
-  const auto began = std::chrono::steady_clock::now();
+  const QueryClock clock;
   PathResult result;
   if (path) path->clear();
   const auto finish = [&](PathStatus status) {
     result.status = status;
-    result.metrics.microseconds = elapsedMicroseconds(began);
+    result.metrics.microseconds = clock.elapsedMicroseconds();
     return result;
   };
   const AnnotatedGrid& grid = abstraction_.grid();
-  if (!grid.canStand(agent, start)) return finish(PathStatus::InvalidStart);
-  if (!grid.canStand(agent, goal)) return finish(PathStatus::InvalidGoal);
+  if (const auto answer = screenEndpoints(grid, agent, start, goal)) return finish(*answer);
   if (!abstraction_.supports(agent)) {
     result = gridSearch_.findPath(agent, start, goal, path);
     result.metrics.gridExpanded = result.metrics.expanded;
@@ -169,9 +162,6 @@ PathResult HierarchicalAStar::findPath(Agent agent, Cell start, Cell goal,
   }
   const GridMap& map = grid.map();
   const AgentLayer& layer = grid.layer(agent);
-  if (layer.components()[map.indexOf(start)] != layer.components()[map.indexOf(goal)]) {
-    return finish(PathStatus::Unreachable);
-  }
   if (start == goal) {
     if (path) path->push_back(start);
     return finish(PathStatus::Found);

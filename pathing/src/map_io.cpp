@@ -34,24 +34,6 @@ constexpr std::array<std::optional<Terrain>, 256> makeCharTable() {
 }
 constexpr std::array<std::optional<Terrain>, 256> kCharTerrain = makeCharTable();
 
-// The canonical character; '?' for a terrain the format cannot express, so that reading
-// the file back fails loudly instead of turning it into something else.
-char terrainChar(Terrain t) {
-  switch (t) {
-    case Terrain::Ground:
-      return '.';
-    case Terrain::Swamp:
-      return 'S';
-    case Terrain::Trees:
-      return 'T';
-    case Terrain::Water:
-      return 'W';
-    case Terrain::Blocked:
-      return '@';
-  }
-  return '?';
-}
-
 // Splits text into lines without copying; strips the '\r' of CRLF files. A final line
 // without '\n' still counts; a final '\n' does not start another line.
 class LineReader {
@@ -225,6 +207,24 @@ class ErrorMaker {
 
 }  // namespace
 
+// The canonical character; '?' for a terrain the format cannot express, so that reading
+// the file back fails loudly instead of turning it into something else.
+char mapChar(Terrain t) {
+  switch (t) {
+    case Terrain::Ground:
+      return '.';
+    case Terrain::Swamp:
+      return 'S';
+    case Terrain::Trees:
+      return 'T';
+    case Terrain::Water:
+      return 'W';
+    case Terrain::Blocked:
+      return '@';
+  }
+  return '?';
+}
+
 Loaded<GridMap> parseMap(std::istream& in, std::string_view sourceName) {
   const ErrorMaker error(sourceName);
   std::string text;
@@ -340,7 +340,7 @@ void writeMap(const GridMap& map, std::ostream& out) {
   std::string row(static_cast<std::size_t>(map.width()) + 1, '\n');
   for (int y = 0; y < map.height(); ++y) {
     for (int x = 0; x < map.width(); ++x) {
-      row[static_cast<std::size_t>(x)] = terrainChar(map.at({x, y}));
+      row[static_cast<std::size_t>(x)] = mapChar(map.at({x, y}));
     }
     out.write(row.data(), static_cast<std::streamsize>(row.size()));
   }

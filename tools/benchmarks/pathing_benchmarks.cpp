@@ -25,6 +25,23 @@ GridMap benchmarkMap(int side) {
   return generateRandomMap(spec);
 }
 
+// 64 fixed queries between cells the agent can stand on, at least `minDistance` apart
+// (Manhattan).
+std::vector<std::pair<Cell, Cell>> standableQueries(const AnnotatedGrid& grid, Agent agent,
+                                                    int minDistance) {
+  std::vector<std::pair<Cell, Cell>> queries;
+  SplitMix64 rng(7);
+  const int w = grid.map().width();
+  const int h = grid.map().height();
+  while (queries.size() < 64) {
+    const Cell s{rng.between(0, w - 1), rng.between(0, h - 1)};
+    const Cell g{rng.between(0, w - 1), rng.between(0, h - 1)};
+    if (std::abs(s.x - g.x) + std::abs(s.y - g.y) < minDistance) continue;
+    if (grid.canStand(agent, s) && grid.canStand(agent, g)) queries.push_back({s, g});
+  }
+  return queries;
+}
+
 const Capability kInfantry = Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Trees});
 
 void BM_Clearance(benchmark::State& state) {
@@ -51,13 +68,7 @@ void BM_AnnotatedAStar(benchmark::State& state) {
   const int size = static_cast<int>(state.range(0));
   const AnnotatedGrid grid(benchmarkMap(512));
   const Agent agent{size, kInfantry};
-  std::vector<std::pair<Cell, Cell>> queries;
-  SplitMix64 rng(7);
-  while (queries.size() < 64) {
-    const Cell s{rng.between(0, 511), rng.between(0, 511)};
-    const Cell g{rng.between(0, 511), rng.between(0, 511)};
-    if (grid.canStand(agent, s) && grid.canStand(agent, g)) queries.push_back({s, g});
-  }
+  const std::vector<std::pair<Cell, Cell>> queries = standableQueries(grid, agent, 0);
   AnnotatedAStar search(grid);
   std::vector<Cell> path;
   std::size_t next = 0;
@@ -104,14 +115,7 @@ void BM_HierarchicalAStar(benchmark::State& state) {
   const ClusterAbstraction graph =
       ClusterAbstraction::build(grid, catalogueSpec(16, AbstractionQuality::High));
   const Agent agent{size, kInfantry};
-  std::vector<std::pair<Cell, Cell>> queries;
-  SplitMix64 rng(7);
-  while (queries.size() < 64) {
-    const Cell s{rng.between(0, 511), rng.between(0, 511)};
-    const Cell g{rng.between(0, 511), rng.between(0, 511)};
-    if (std::abs(s.x - g.x) + std::abs(s.y - g.y) < 256) continue;
-    if (grid.canStand(agent, s) && grid.canStand(agent, g)) queries.push_back({s, g});
-  }
+  const std::vector<std::pair<Cell, Cell>> queries = standableQueries(grid, agent, 256);
   HierarchicalAStar search(graph);
   std::vector<Cell> path;
   std::size_t next = 0;

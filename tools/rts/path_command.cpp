@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pathing/annotated_grid.h"
+#include "pathing/map_io.h"
 #include "pathing/terrain.h"
 #include "rts/cli_support.h"
 #include "rts/commands.h"
@@ -29,27 +30,12 @@ struct PathOptions {
   bool draw = false;
 };
 
-char terrainGlyph(Terrain t) {
-  switch (t) {
-    case Terrain::Ground:
-      return '.';
-    case Terrain::Swamp:
-      return 'S';
-    case Terrain::Trees:
-      return 'T';
-    case Terrain::Water:
-      return 'W';
-    default:
-      return '@';
-  }
-}
-
 // The map as text with the agent's footprint along the path drawn as '*', start 's', goal 'g'.
 std::string drawPath(const GridMap& map, Agent agent, const std::vector<Cell>& path) {
   std::vector<std::string> rows(static_cast<std::size_t>(map.height()));
   for (int y = 0; y < map.height(); ++y) {
     for (int x = 0; x < map.width(); ++x)
-      rows[static_cast<std::size_t>(y)] += terrainGlyph(map.at({x, y}));
+      rows[static_cast<std::size_t>(y)] += mapChar(map.at({x, y}));
   }
   const auto stamp = [&](Cell anchor, char glyph) {
     for (int dy = 0; dy < agent.size; ++dy) {

@@ -14,6 +14,7 @@
 
 #include "pathing/clearance.h"
 #include "pathing/grid_map.h"
+#include "pathing/search.h"
 
 namespace warpath::pathing {
 
@@ -68,6 +69,12 @@ class AnnotatedGrid {
   mutable std::map<Capability, std::unique_ptr<const ClearanceField>> clearances_;
   mutable std::map<Agent, std::unique_ptr<const AgentLayer>> layers_;
 };
+
+// What a query can be answered without searching: InvalidStart / InvalidGoal when the agent
+// cannot stand at an end, Unreachable when the ends lie in different connected components for
+// the agent; nullopt when a search is needed.
+std::optional<PathStatus> screenEndpoints(const AnnotatedGrid& grid, Agent agent, Cell start,
+                                          Cell goal);
 
 // Checks that `path` is a sequence of legal single moves for the agent (start and goal
 // included). Returns an empty string when legal, else what is wrong and at which step.

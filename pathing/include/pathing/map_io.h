@@ -22,6 +22,10 @@ namespace warpath::pathing {
 Loaded<GridMap> parseMap(std::istream& in, std::string_view sourceName);
 Loaded<GridMap> loadMap(const std::filesystem::path& file);
 
+// The canonical character of a terrain ('.', 'S', 'T', 'W', '@'); '?' for one the format
+// cannot express.
+char mapChar(Terrain t);
+
 // Writes the canonical form ('.', 'S', 'T', 'W', '@'); parseMap reads it back identically.
 void writeMap(const GridMap& map, std::ostream& out);
 // Returns false (and sets `error`) when the file cannot be written.

@@ -1,6 +1,7 @@
 #pragma once
 // What every path query returns: a status and the effort it took.
 
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -48,6 +49,18 @@ struct PathResult {
   SearchMetrics metrics;
 
   bool found() const { return status == PathStatus::Found; }
+};
+
+// Wall time since construction, for SearchMetrics::microseconds (a measurement only).
+class QueryClock {
+ public:
+  double elapsedMicroseconds() const {
+    return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - began_)
+        .count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point began_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace warpath::pathing
