@@ -14,6 +14,7 @@
 #include "rts/cli_support.h"
 #include "rts/commands.h"
 #include "rts/planner_choice.h"
+#include "rts/render_support.h"
 
 namespace warpath::tools {
 namespace {
@@ -28,6 +29,8 @@ struct PathOptions {
   PlannerChoice planner;
   bool json = false;
   bool draw = false;
+  std::string png;  // empty: no picture
+  bool pngGraph = false;
 };
 
 // The map as text with the agent's footprint along the path drawn as '*', start 's', goal 'g'.
@@ -85,6 +88,10 @@ int runPath(const PathOptions& options) {
   std::vector<Cell> path;
   const PathResult result = planner.findPath(agent, from, to, &path);
   const SearchMetrics& m = result.metrics;
+  if (!options.png.empty()) {
+    writePathPng(options.png, map, agent, path,
+                 options.pngGraph ? prepared.abstractionOrNull() : nullptr);
+  }
 
   if (options.json) {
     nlohmann::json out;
@@ -165,6 +172,11 @@ void registerPathCommand(CLI::App& app, CommandRunner& run) {
   addPlannerOptions(*cmd, options->planner);
   cmd->add_flag("--json", options->json, "print one JSON object instead of text");
   cmd->add_flag("--draw", options->draw, "also print the map with the path drawn on it");
+  cmd->add_option("--png", options->png,
+                  "also write a PNG of the map with the agent's footprint along the path");
+  cmd->add_flag("--png-graph", options->pngGraph,
+                "draw the HAA* graph (edges the agent may use) on the --png picture")
+      ->needs("--png");
 }
 
 }  // namespace warpath::tools

@@ -1,0 +1,60 @@
+#include "rts/render_support.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/png_io.h"
+#include "render/renderer.h"
+#include "rts/cli_support.h"
+
+namespace warpath::tools {
+
+namespace {
+// Pixels a cell: as many as fit in ~1024 pixels, between 1 and 16.
+constexpr int kTargetPixels = 1024;
+}  // namespace
+
+void writePathPng(const std::string& file, const pathing::GridMap& map, pathing::Agent agent,
+                  const std::vector<pathing::Cell>& path,
+                  const pathing::ClusterAbstraction* graph) {
+  const int scale = std::clamp(kTargetPixels / std::max({map.width(), map.height(), 1}), 1, 16);
+  render::RenderDef def{.width = std::max(1, map.width() * scale),
+                        .height = std::max(1, map.height() * scale)};
+  def.overlays = {.paths = true,
+                  .footprints = true,
+                  .abstractGraph = graph != nullptr,
+                  .stuck = false,
+                  .arrivalZones = false,
+                  .hud = false};
+  auto renderer = render::Renderer::create(map, def);
+  if (!renderer) throw BadInput{"--png " + file + ": " + renderer.status().message()};
+  if (graph != nullptr) {
+    if (render::Status s = renderer.value().setAbstractGraph(*graph, agent); !s) {
+      throw BadInput{"--png " + file + ": " + s.message()};
+    }
+  }
+
+  // The agent at the start, facing its first move, with the rest of the path ahead of it.
+  const float half = static_cast<float>(agent.size) / 2.0f;
+  const auto centreOf = [&](pathing::Cell anchor) {  // anchor + size/2 = centre
+    return render::Point{static_cast<float>(anchor.x) + half, static_cast<float>(anchor.y) + half};
+  };
+  render::UnitView unit{.size = agent.size, .type = 1};
+  if (!path.empty()) unit.centre = centreOf(path.front());
+  if (path.size() >= 2) {
+    unit.facing = static_cast<float>(std::atan2(static_cast<double>(path[1].y - path[0].y),
+                                                static_cast<double>(path[1].x - path[0].x)));
+  }
+  for (std::size_t i = 1; i < path.size(); ++i)
+    unit.path.push_back(centreOf(path[i]));
+  render::FrameScene scene;
+  if (!path.empty()) scene.units.push_back(std::move(unit));
+  if (render::Status s = renderer.value().render(scene); !s) {
+    throw BadInput{"--png " + file + ": " + s.message()};
+  }
+  if (render::Status s = render::writePng(file, renderer.value().image()); !s) {
+    throw BadInput{"--png: " + s.message()};
+  }
+}
+
+}  // namespace warpath::tools
