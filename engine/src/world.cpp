@@ -195,6 +195,7 @@ void World::applyCommand(const MoveCommand& command) {
     unit.goalArea = command.area;
     unit.orderTick = tick_;
     unit.arrivalTick = -1;
+    unit.progress.reset(unit.position, tick_);
     unit.path.reset();
     log(EventKind::Ordered, unit);
     if (!goal) {
@@ -233,7 +234,7 @@ void World::deliver(const PathDelivery& delivery) {
     unit.path = delivery.path;
     unit.next = 0;
     unit.state = UnitState::Moving;
-    unit.progress.reset(unit.position, tick_);
+    unit.progress.restartWindow(unit.position, tick_);
     log(EventKind::PathFound, unit);
   } else {
     unit.path.reset();

@@ -277,5 +277,34 @@ TEST(World, AnUnreachableGoalIsReportedOnceAndNotRetried) {
   EXPECT_EQ(world.find({id.index, id.generation + 1}), nullptr);  // a stale handle
 }
 
+TEST(World, AUnitThatCannotReachItsCellIsRepathedThenFlaggedStuck) {
+  // Two units sent to a one-cell area: the first parks there and holds it, the second pushes
+  // without progress.
+  auto grid = std::make_shared<const pathing::AnnotatedGrid>(pathing::GridMap(12, 6));
+  units::UnitType infantry;
+  infantry.name = "infantry";
+  infantry.capability = pathing::Capability::of({Terrain::Ground});
+  infantry.setSpeed(1.5);
+  WorldSettings settings;
+  settings.stuck.windowSeconds = 1.0;
+  settings.stuck.flagAfter = 2;
+  World world(grid, {infantry}, settings);
+  const UnitId first = world.spawn(0, 0, 0, {6, 2});
+  const UnitId second = world.spawn(0, 0, 0, {1, 2});
+  world.orderMove({first, second}, {9, 2, 1, 1});
+  for (int i = 0; i < 30 * 12; ++i)
+    world.step();
+  EXPECT_EQ(world.find(first)->state, UnitState::Parked);
+  EXPECT_FALSE(world.find(first)->everStuck);
+  EXPECT_TRUE(world.find(second)->everStuck);
+  EXPECT_GE(world.find(second)->repaths, 2);
+  const auto flagged = std::count_if(
+      world.events().begin(), world.events().end(),
+      [&](const Event& e) { return e.kind == EventKind::StuckFlagged && e.unit == second; });
+  EXPECT_GE(flagged, 1);
+  // The parked unit was shoved but holds its cell.
+  EXPECT_LT((world.find(first)->position - units::anchorToCentre({9, 2}, 1)).length(), 0.6);
+}
+
 }  // namespace
 }  // namespace warpath::engine

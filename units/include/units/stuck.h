@@ -18,11 +18,16 @@ struct StuckRule {
 // Tracks one unit's progress; plain data so that it can be hashed and copied with the unit.
 class ProgressMonitor {
  public:
-  // Starts a new window at `position` (on a new order or path).
+  // Starts afresh at `position` (a new order).
   void reset(Vec2 position, std::int64_t tick) {
+    restartWindow(position, tick);
+    stuckWindows_ = 0;
+  }
+  // Starts a new window at `position` but keeps the count of stuck windows in a row (a new
+  // path for the same order: a repath that does not help still ends in a flag).
+  void restartWindow(Vec2 position, std::int64_t tick) {
     origin_ = position;
     originTick_ = tick;
-    stuckWindows_ = 0;
   }
   // Call once a tick while the unit is moving somewhere. True when this tick closes a window
   // without progress; stuckWindows() then tells how many such windows came in a row.
