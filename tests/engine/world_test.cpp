@@ -277,6 +277,16 @@ TEST(World, AnUnreachableGoalIsReportedOnceAndNotRetried) {
   EXPECT_EQ(world.find({id.index, id.generation + 1}), nullptr);  // a stale handle
 }
 
+TEST(World, NoUnitOfABundledScenarioEverOverlapsForbiddenTerrain) {
+  for (const char* name : {"demo", "river_crossing", "forest", "narrow_pass", "swamp"}) {
+    SCOPED_TRACE(name);
+    ScenarioResult<Scenario> s = loadScenario(kDir + name + ".yaml");
+    ASSERT_TRUE(s.ok()) << s.error.describe();
+    ScenarioRun run(*s.value);
+    runChecked(run);
+  }
+}
+
 TEST(World, AUnitThatCannotReachItsCellIsRepathedThenFlaggedStuck) {
   // Two units sent to a one-cell area: the first parks there and holds it, the second pushes
   // without progress.
