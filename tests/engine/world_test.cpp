@@ -277,6 +277,26 @@ TEST(World, AnUnreachableGoalIsReportedOnceAndNotRetried) {
   EXPECT_EQ(world.find({id.index, id.generation + 1}), nullptr);  // a stale handle
 }
 
+TEST(World, UnitsMeetingHeadOnInACorridorPushPast) {
+  const Scenario s = load(
+      "catalogue: ../assets/units.yaml\nteams: [blue, red]\nduration: 40\n"
+      "map:\n  rows:\n"
+      "    - '@@@@@@@@@@@@@@@@@@@@@@@@@@@@@@'\n"
+      "    - '..............................'\n"
+      "    - '..............................'\n"
+      "    - '..............................'\n"
+      "    - '@@@@@@@@@@@@@@@@@@@@@@@@@@@@@@'\n"
+      "groups:\n"
+      "  - {type: infantry, team: blue, count: 6, spawn: {x: 0, y: 1, w: 2, h: 3},"
+      " goal: {x: 27, y: 1, w: 3, h: 3}}\n"
+      "  - {type: infantry, team: red, count: 6, spawn: {x: 28, y: 1, w: 2, h: 3},"
+      " goal: {x: 0, y: 1, w: 3, h: 3}}\n");
+  ScenarioRun run(s);
+  runChecked(run);
+  for (const Unit& unit : run.world().units())
+    EXPECT_GE(unit.arrivalTick, 0) << "unit " << unit.id.index;
+}
+
 TEST(World, NoUnitOfABundledScenarioEverOverlapsForbiddenTerrain) {
   for (const char* name : {"demo", "river_crossing", "forest", "narrow_pass", "swamp"}) {
     SCOPED_TRACE(name);
