@@ -7,9 +7,13 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "engine/scenario_run.h"
+#include "pathing/map_io.h"
 
 namespace warpath::engine {
 namespace {
@@ -88,6 +92,29 @@ TEST(BundledScenarios, TheRiverMakesTanksUseTheBridge) {
       }
     }
   }
+}
+
+TEST(BundledScenarios, WithoutTheBridgeTheRiverRefusesTanks) {
+  // Flood the bridge (rows 8-12 of the river's columns 28-35) and load the same scenario.
+  const std::string dir = std::string(WARPATH_SOURCE_DIR) + "/scenarios/";
+  pathing::Loaded<pathing::GridMap> map =
+      pathing::loadMap(std::string(WARPATH_SOURCE_DIR) + "/assets/maps/river.map");
+  ASSERT_TRUE(map.ok());
+  for (int y = 8; y <= 12; ++y) {
+    for (int x = 28; x <= 35; ++x)
+      map.value().set({x, y}, pathing::Terrain::Water);
+  }
+  const auto flooded = std::filesystem::temp_directory_path() / "warpath_river_no_bridge.map";
+  std::string error;
+  ASSERT_TRUE(pathing::saveMap(map.value(), flooded, &error)) << error;
+  std::ifstream in(dir + "river_crossing.yaml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string original = "../assets/maps/river.map";
+  text.replace(text.find(original), original.size(), flooded.string());
+  const ScenarioResult<Scenario> r = parseScenario(text, dir + "river_crossing.yaml");
+  std::filesystem::remove(flooded);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error.message.find("unreachable for tank"), std::string::npos) << r.error.message;
 }
 
 TEST(BundledScenarios, GoldenHashOfTheDemo) {
