@@ -376,12 +376,13 @@ struct Renderer::Impl {
     glLoadIdentity();
     glEnableClientState(GL_VERTEX_ARRAY);
     glEnableClientState(GL_COLOR_ARRAY);
-    glEnable(GL_BLEND);
     // Keep destination alpha at 1 so the image stays opaque under translucent overlays.
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
 
     const float ppc = enterMapSpace();
+    glDisable(GL_BLEND);  // opaque, and the largest area drawn: no need to read the target
     drawTexture(terrainTexture);
+    glEnable(GL_BLEND);
     if (def.overlays.clearance && clearanceTexture != 0) drawTexture(clearanceTexture);
     if (def.overlays.abstractGraph) {
       graphLines.draw(GL_LINES);
