@@ -97,8 +97,8 @@ class OpenList {
   // Moves the lowest non-empty bucket's entries down, keyed on its minimum. Every entry of
   // bucket b shares the bits above b - 1 with the minimum, so each lands in a lower bucket.
   void refill() {
-    const std::size_t b = occupied_ != 0 ? static_cast<std::size_t>(std::countr_zero(occupied_))
-                                         : kBucketCount - 1;
+    const std::size_t b =
+        occupied_ != 0 ? static_cast<std::size_t>(std::countr_zero(occupied_)) : kBucketCount - 1;
     std::vector<Entry>& source = buckets_[b];
     std::uint64_t smallest = source.front().key;
     for (const Entry& e : source)
