@@ -1,5 +1,6 @@
-// `rts path --png`: the picture of a planned path, end to end through the CLI.
+// Pictures through the CLI, end to end: `rts path --png` and `rts run --frames/--gif`.
 
+#include <gif_lib.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -18,16 +19,20 @@ namespace {
 namespace fs = std::filesystem;
 
 // Exit status of `rts args`, stderr into `err`.
-int rtsPath(const std::string& args, std::string* err) {
-  const fs::path errFile = fs::path(::testing::TempDir()) / "rts_path_png_err";
-  const std::string command = std::string("'") + RTS_BINARY + "' path '" + WARPATH_SOURCE_DIR +
-                              "/assets/maps/crossing.map' " + args + " >/dev/null 2>'" +
-                              errFile.string() + "'";
+int rts(const std::string& args, std::string* err) {
+  const fs::path errFile = fs::path(::testing::TempDir()) / "rts_render_cli_err";
+  const std::string command =
+      std::string("'") + RTS_BINARY + "' " + args + " >/dev/null 2>'" + errFile.string() + "'";
   const int status = std::system(command.c_str());
   std::ostringstream text;
   text << std::ifstream(errFile).rdbuf();
   *err = text.str();
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+int rtsPath(const std::string& args, std::string* err) {
+  return rts(std::string("path '") + WARPATH_SOURCE_DIR + "/assets/maps/crossing.map' " + args,
+             err);
 }
 
 TEST(PathPng, DrawsTheMapTheAgentAndItsFootprints) {
@@ -58,6 +63,42 @@ TEST(PathPng, ReportsAnUnwritableFile) {
                     &err),
             2);
   EXPECT_NE(err.find("/nonexistent-dir/path.png"), std::string::npos) << err;
+}
+
+TEST(RunFrames, WritesPngFramesEveryNTicksAndAGif) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "rts_run_frames";
+  fs::remove_all(dir);
+  std::string err;
+  ASSERT_EQ(rts(std::string("run '") + WARPATH_SOURCE_DIR +
+                    "/scenarios/demo.yaml' --until 60 --quiet --frames '" +
+                    (dir / "frames").string() + "' --frame-every 30 --frame-size 192 --gif '" +
+                    (dir / "run.gif").string() + "' --overlay paths",
+                &err),
+            1)  // stopped before the expectations' deadlines: they fail
+      << err;
+  for (const char* name : {"frame_000000.png", "frame_000030.png", "frame_000060.png"}) {
+    auto frame = readPng(dir / "frames" / name);
+    ASSERT_TRUE(frame.ok()) << frame.status().message();
+    EXPECT_EQ(frame.value().width, 192);  // the 96x64 demo map
+    EXPECT_EQ(frame.value().height, 128);
+  }
+  EXPECT_FALSE(fs::exists(dir / "frames" / "frame_000001.png"));
+  int error = 0;
+  GifFileType* gif = DGifOpenFileName((dir / "run.gif").string().c_str(), &error);
+  ASSERT_NE(gif, nullptr) << GifErrorString(error);
+  ASSERT_EQ(DGifSlurp(gif), GIF_OK);
+  EXPECT_EQ(gif->ImageCount, 3);
+  DGifCloseFile(gif, &error);
+}
+
+TEST(RunFrames, RejectsAnUnknownOverlay) {
+  std::string err;
+  EXPECT_EQ(
+      rts(std::string("run '") + WARPATH_SOURCE_DIR +
+              "/scenarios/demo.yaml' --until 1 --quiet --gif /nonexistent-dir/x.gif --overlay heat",
+          &err),
+      2);
+  EXPECT_NE(err.find("'heat'"), std::string::npos) << err;
 }
 
 }  // namespace

@@ -230,6 +230,9 @@ TEST(Overlays, ParseNames) {
   EXPECT_TRUE(o.value().paths);
   EXPECT_TRUE(o.value().abstractGraph);
   EXPECT_FALSE(o.value().clearance);
+  auto none = parseOverlays("none", Overlays{.paths = true});
+  ASSERT_TRUE(none.ok());
+  EXPECT_EQ(none.value(), (Overlays{.stuck = false, .arrivalZones = false, .hud = false}));
   auto bad = parseOverlays("paths,heat");
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.status().message().find("'heat'"), std::string::npos);

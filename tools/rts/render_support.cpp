@@ -5,6 +5,7 @@
 
 #include "render/png_io.h"
 #include "render/renderer.h"
+#include "render/world_scene.h"
 #include "rts/cli_support.h"
 
 namespace warpath::tools {
@@ -55,6 +56,51 @@ void writePathPng(const std::string& file, const pathing::GridMap& map, pathing:
   if (render::Status s = render::writePng(file, renderer.value().image()); !s) {
     throw BadInput{"--png: " + s.message()};
   }
+}
+
+FrameRecorder::FrameRecorder(const FrameOptions& options, const pathing::GridMap& map,
+                             double tickRate, int teamCount)
+    : teamCount_(teamCount) {
+  if (options.every < 1) throw BadInput{"--frame-every must be at least 1"};
+  if (options.size < 16 || options.size > 8192) throw BadInput{"--frame-size must be 16..8192"};
+  // The map's aspect ratio, its longer side `size` pixels.
+  const int longest = std::max({map.width(), map.height(), 1});
+  render::RenderDef def{
+      .width = std::max(1, static_cast<int>(std::lround(static_cast<double>(options.size) *
+                                                        map.width() / longest))),
+      .height = std::max(1, static_cast<int>(std::lround(static_cast<double>(options.size) *
+                                                         map.height() / longest)))};
+  auto overlays = render::parseOverlays(options.overlays);
+  if (!overlays) throw BadInput{"--overlay: " + overlays.status().message()};
+  def.overlays = overlays.value();
+  auto renderer = render::Renderer::create(map, def);
+  if (!renderer) throw BadInput{"frames: " + renderer.status().message()};
+  renderer_.emplace(std::move(renderer).value());
+
+  const double frameSeconds = options.every / tickRate;
+  auto sink = render::FrameSink::open(
+      {.framesDir = options.framesDir,
+       .gifFile = options.gif,
+       .every = options.every,
+       .gifDelayCentiseconds = std::max(2, static_cast<int>(std::lround(frameSeconds * 100.0)))},
+      def.width, def.height);
+  if (!sink) throw BadInput{"frames: " + sink.status().message()};
+  sink_.emplace(std::move(sink).value());
+}
+
+void FrameRecorder::onTick(const engine::World& world) {
+  if (!sink_->wants(world.tick())) return;
+  if (render::Status s = renderer_->render(render::sceneOf(world, teamCount_)); !s) {
+    throw BadInput{"frames: " + s.message()};
+  }
+  if (render::Status s = sink_->submit(world.tick(), renderer_->image()); !s) {
+    throw BadInput{"frames: " + s.message()};
+  }
+}
+
+int FrameRecorder::finish() {
+  if (render::Status s = sink_->finish(); !s) throw BadInput{"frames: " + s.message()};
+  return sink_->framesWritten();
 }
 
 }  // namespace warpath::tools

@@ -1,11 +1,16 @@
 #pragma once
 // Pictures for the CLI's subcommands, drawn by rts_render.
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "engine/world.h"
 #include "pathing/annotated_grid.h"
 #include "pathing/cluster_abstraction.h"
+#include "render/frame_sink.h"
+#include "render/renderer.h"
 
 namespace warpath::tools {
 
@@ -14,5 +19,31 @@ namespace warpath::tools {
 // agent) when `graph` is non-null. Throws BadInput naming the problem when it cannot.
 void writePathPng(const std::string& file, const pathing::GridMap& map, pathing::Agent agent,
                   const std::vector<pathing::Cell>& path, const pathing::ClusterAbstraction* graph);
+
+struct FrameOptions {
+  std::string framesDir;  // PNG frames (frame_000123.png); empty: none
+  std::string gif;        // animated GIF; empty: none
+  int every = 1;          // [Unit: ticks] [Limit: >= 1]
+  int size = 512;         // [Unit: pixels] [Limit: 16..8192] the frame's longer side
+  std::string overlays;   // overlay names to switch on (render::parseOverlays)
+  bool wanted() const { return !framesDir.empty() || !gif.empty(); }
+};
+
+// Frames of a running world: renders the world every `every` ticks and hands the frame to a
+// FrameSink that encodes on a second thread. Throws BadInput naming what cannot be created or
+// written.
+class FrameRecorder {
+ public:
+  FrameRecorder(const FrameOptions& options, const pathing::GridMap& map, double tickRate,
+                int teamCount);
+  void onTick(const engine::World& world);
+  // Waits for the encoder; returns the frames written.
+  int finish();
+
+ private:
+  std::optional<render::Renderer> renderer_;
+  std::optional<render::FrameSink> sink_;
+  int teamCount_ = 0;
+};
 
 }  // namespace warpath::tools

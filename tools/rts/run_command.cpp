@@ -10,6 +10,7 @@
 
 #include "rts/cli_support.h"
 #include "rts/commands.h"
+#include "rts/render_support.h"
 #include "rts/scenario_support.h"
 
 namespace warpath::tools {
@@ -21,6 +22,7 @@ struct RunOptions {
   std::string report;
   std::optional<std::int64_t> until;
   bool quiet = false;
+  FrameOptions frames;
 };
 
 int arrivedCount(const engine::World& world) {
@@ -82,8 +84,26 @@ int runRun(const RunOptions& options) {
   RunLimits limits;
   limits.untilTick = options.until;
   if (!options.quiet) limits.onTick = [&](const engine::ScenarioRun& r) { progress.update(r); };
+  std::optional<FrameRecorder> frames;
+  if (options.frames.wanted()) {
+    frames.emplace(options.frames, run.world().grid().map(), run.world().tickRate(),
+                   static_cast<int>(scenario.teams.size()));
+    frames->onTick(run.world());  // the start
+    limits.onTick = [&frames, display = limits.onTick](const engine::ScenarioRun& r) {
+      if (display) display(r);
+      frames->onTick(r.world());
+    };
+  }
   const RunOutcome outcome = runToEnd(run, limits);
   progress.finish();
+  if (frames) {
+    const int written = frames->finish();
+    if (!options.quiet) {
+      fmt::print("frames: {} written{}{}\n", written,
+                 options.frames.framesDir.empty() ? "" : " to " + options.frames.framesDir,
+                 options.frames.gif.empty() ? "" : ", GIF " + options.frames.gif);
+    }
+  }
 
   const engine::Report& report = outcome.report;
   if (!options.quiet) {
@@ -122,6 +142,16 @@ void registerRunCommand(CLI::App& app, CommandRunner& run) {
   cmd->add_option("--report", options->report, "Write the report (JSON) to this file");
   cmd->add_option("--until", options->until, "Stop after this tick")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quiet", options->quiet, "Print nothing but errors");
+  cmd->add_option("--frames", options->frames.framesDir,
+                  "Write a PNG frame (frame_000123.png, by tick) into this folder");
+  cmd->add_option("--frame-every", options->frames.every, "A frame every N ticks (default 1)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--gif", options->frames.gif, "Write the frames as an animated GIF");
+  cmd->add_option("--frame-size", options->frames.size,
+                  "Pixels along the frame's longer side (default 512)")
+      ->check(CLI::Range(16, 8192));
+  cmd->add_option("--overlay", options->frames.overlays,
+                  "Overlays to switch on in frames: paths, footprints, stuck, zones, hud, or none");
 }
 
 }  // namespace warpath::tools

@@ -1,10 +1,14 @@
 #include "render/gif_writer.h"
 
+#include <fcntl.h>
 #include <gif_lib.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -78,9 +82,16 @@ Result<GifWriter> GifWriter::open(const std::filesystem::path& file, int width, 
   impl->height = height;
   impl->delay = std::clamp(delayCentiseconds, 0, 65535);
   impl->row.resize(static_cast<std::size_t>(width));
+  // Opened here rather than by EGifOpenFileName, which creates files readable by the owner
+  // only; giflib owns (and closes) the descriptor from then on.
+  const int fd = ::open(impl->name.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
+  if (fd < 0) {
+    return Status::failure(impl->name + ": cannot create (" + std::strerror(errno) + ")");
+  }
   int error = 0;
-  impl->gif = EGifOpenFileName(impl->name.c_str(), false, &error);
+  impl->gif = EGifOpenFileHandle(fd, &error);
   if (impl->gif == nullptr) {
+    ::close(fd);
     return Status::failure(impl->name + ": cannot create (" + GifErrorString(error) + ")");
   }
   EGifSetGifVersion(impl->gif, true);  // GIF89a: delays and looping

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bitmap_font.h"
@@ -409,27 +410,28 @@ struct Renderer::Impl {
 };
 
 Result<Overlays> parseOverlays(std::string_view names, Overlays base) {
+  static constexpr std::pair<std::string_view, bool Overlays::*> kSwitches[] = {
+      {"paths", &Overlays::paths},
+      {"footprints", &Overlays::footprints},
+      {"clearance", &Overlays::clearance},
+      {"graph", &Overlays::abstractGraph},
+      {"stuck", &Overlays::stuck},
+      {"zones", &Overlays::arrivalZones},
+      {"hud", &Overlays::hud}};
   Overlays o = base;
   std::size_t start = 0;
   while (start <= names.size()) {
     const std::size_t comma = std::min(names.find(',', start), names.size());
     const std::string_view name = names.substr(start, comma - start);
-    if (name == "paths") {
-      o.paths = true;
-    } else if (name == "footprints") {
-      o.footprints = true;
-    } else if (name == "clearance") {
-      o.clearance = true;
-    } else if (name == "graph") {
-      o.abstractGraph = true;
-    } else if (name == "stuck") {
-      o.stuck = true;
-    } else if (name == "zones") {
-      o.arrivalZones = true;
-    } else if (name == "hud") {
-      o.hud = true;
+    const auto* match = std::find_if(std::begin(kSwitches), std::end(kSwitches),
+                                     [&](const auto& entry) { return entry.first == name; });
+    if (name.empty()) {
+      // "" or a stray comma: nothing to switch
     } else if (name == "none") {
-      o = Overlays{.stuck = false, .arrivalZones = false, .hud = false};
+      for (const auto& entry : kSwitches)
+        o.*entry.second = false;
+    } else if (match != std::end(kSwitches)) {
+      o.*match->second = true;
     } else {
       return Status::failure("unknown overlay '" + std::string(name) +
                              "' (expected paths, footprints, clearance, graph, stuck, zones, "

@@ -34,7 +34,7 @@ struct Overlays {
 };
 
 // Parses a comma-separated list of overlay names to switch on (paths, footprints, clearance,
-// graph, stuck, zones, hud) over `base`; "none" switches every overlay off.
+// graph, stuck, zones, hud) over `base`; "none" switches every overlay off; "" changes nothing.
 Result<Overlays> parseOverlays(std::string_view names, Overlays base = {});
 
 struct RenderDef {
