@@ -121,8 +121,9 @@ TEST(BundledScenarios, GoldenHashOfTheDemo) {
   const Report r = run(loadBundled("demo"), 0);
   char hash[32];
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(r.stateHash));
-  // Changes only when the simulation's behaviour changes; update it deliberately then.
-  EXPECT_STREQ(hash, "9812adf6b89aaa48");
+  // Changes when the simulation behaves differently, including when the planner returns other
+  // (equally valid) paths; update it deliberately then.
+  EXPECT_STREQ(hash, "6cb2534c4b8e1d97");
   EXPECT_TRUE(r.passed());
 }
 
