@@ -347,6 +347,21 @@ TEST(FrameSink, BackgroundEncodingWritesTheSameBytesAsSerial) {
   EXPECT_EQ(fileBytes(serial / "run.gif"), fileBytes(background / "run.gif"));
 }
 
+TEST(FrameSink, ReportsAFrameItCannotWrite) {
+  for (const bool background : {false, true}) {
+    const fs::path dir = scratchDir(background ? "sink_gone_bg" : "sink_gone") / "frames";
+    auto sink = FrameSink::open({.framesDir = dir, .background = background}, 8, 8);
+    ASSERT_TRUE(sink.ok()) << sink.status().message();
+    fs::remove_all(dir);  // the folder vanishes under the running sink
+    static_cast<void>(sink.value().submit(0, Image(8, 8)));
+    const Status finished = sink.value().finish();
+    ASSERT_FALSE(finished.ok()) << (background ? "background" : "serial");
+    EXPECT_NE(finished.message().find("frame_000000.png"), std::string::npos) << finished.message();
+    EXPECT_EQ(sink.value().framesWritten(), 0);
+    EXPECT_FALSE(sink.value().submit(1, Image(8, 8)).ok());
+  }
+}
+
 TEST(FrameSink, ReportsAFolderItCannotCreate) {
   const fs::path file = scratchDir("sink_blocked") / "file";
   std::ofstream(file) << "a file where the folder should go";
