@@ -96,6 +96,18 @@ TEST_F(RunCli, UntilStopsEarlyWithAPartialReport) {
   EXPECT_EQ(j["complete"], false);
 }
 
+TEST_F(RunCli, ReportFolderIsCreatedOrRefusedBeforeTheRun) {
+  const std::string file = write("ok.yaml", "  - max_stuck: 0\n");
+  const fs::path nested = dir_ / "out" / "demo" / "report.json";
+  EXPECT_EQ(rts("run " + file + " --quiet --report " + nested.string()).status, 0);
+  EXPECT_TRUE(fs::exists(nested));
+  // A folder that cannot be made (a file stands in the way) is bad input, found up front.
+  std::ofstream(dir_ / "plain") << "x";
+  const Result r = rts("run " + file + " --report " + (dir_ / "plain" / "r.json").string());
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_EQ(r.out.find("tick"), std::string::npos) << "the run started: " << r.out;
+}
+
 TEST_F(RunCli, BadInputExitsTwoNamingFileLineColumn) {
   const std::string file =
       write("bad.yaml", "  - arrival_rate: {team: green, type: infantry, at_least: 1, by: 1}\n");

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <string>
@@ -73,8 +74,22 @@ class Progress {
   bool drawn_ = false;
 };
 
+// Creates the report's folder before the run, so that a bad path fails at once (exit 2)
+// instead of after a long simulation.
+void prepareReportPath(const std::string& report) {
+  if (report.empty()) return;
+  const std::filesystem::path parent = std::filesystem::path(report).parent_path();
+  std::error_code error;
+  if (!parent.empty()) std::filesystem::create_directories(parent, error);
+  if (error) {
+    throw BadInput{"--report: cannot create the folder '" + parent.string() +
+                   "': " + error.message()};
+  }
+}
+
 int runRun(const RunOptions& options) {
   const engine::Scenario scenario = loadScenarioOrThrow(options.scenario);
+  prepareReportPath(options.report);
   engine::ScenarioRun run(scenario, options.seed);
   installInterruptHandlers();
 
