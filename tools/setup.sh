@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config clang-format
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libgif-dev
-  libbox2d-dev libsdl2-dev libosmesa6-dev libyaml-cpp-dev
+  libbox2d-dev libsdl2-dev libosmesa6-dev libyaml-cpp-dev zlib1g-dev
 )
 
 missing=()

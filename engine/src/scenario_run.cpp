@@ -37,6 +37,21 @@ ScenarioRun::ScenarioRun(const Scenario& scenario, std::optional<std::uint64_t> 
   }
 }
 
+ScenarioRun::ScenarioRun(const Scenario& scenario, std::optional<std::uint64_t> seed,
+                         std::vector<IssuedOrder> script)
+    : scenario_(scenario),
+      world_(scenario.grid, scenario.catalogue, settingsFor(scenario, seed)),
+      members_(scenario.groups.size()),
+      script_(std::move(script)) {
+  // Spawning draws nothing from the RNG and orders wait in the world until its next step, so
+  // giving the tick-0 orders in step() rather than between spawns changes nothing.
+  for (std::size_t g = 0; g < scenario.groups.size(); ++g) {
+    for (pathing::Cell anchor : scenario.groups[g].anchors)
+      members_[g].push_back(world_.spawn(scenario.groups[g].type, scenario.groups[g].team,
+                                         static_cast<int>(g), anchor));
+  }
+}
+
 void ScenarioRun::issue(const std::vector<int>& groups, const pathing::CellRect& area) {
   std::vector<UnitId> ids;
   for (int g : groups) {
@@ -44,10 +59,22 @@ void ScenarioRun::issue(const std::vector<int>& groups, const pathing::CellRect&
     ids.insert(ids.end(), m.begin(), m.end());
   }
   std::sort(ids.begin(), ids.end(), [](UnitId a, UnitId b) { return a.index < b.index; });
-  world_.orderMove(std::move(ids), area);
+  give(std::move(ids), area);
+}
+
+void ScenarioRun::give(std::vector<UnitId> units, const pathing::CellRect& area) {
+  issued_.push_back({world_.tick(), units, area});
+  world_.orderMove(std::move(units), area);
 }
 
 void ScenarioRun::step() {
+  if (script_) {
+    for (; scriptNext_ < script_->size() && (*script_)[scriptNext_].tick <= world_.tick();
+         ++scriptNext_)
+      give((*script_)[scriptNext_].units, (*script_)[scriptNext_].area);
+    world_.step();
+    return;
+  }
   for (std::size_t i = 0; i < scenario_.orders.size(); ++i) {
     if (fired_[i]) continue;
     const OrderSpec& order = scenario_.orders[i];

@@ -1,7 +1,6 @@
 // `rts run` and `rts test` end to end: exit codes, error messages, the report.
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -9,25 +8,14 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "support/rts_process.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status = -1;
-  std::string out;  // stdout and stderr
-};
-
-Result rts(const std::string& args) {
-  Result r;
-  FILE* pipe = popen((std::string(RTS_BINARY) + " " + args + " 2>&1").c_str(), "r");
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr)
-    r.out += buffer;
-  const int raw = pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
+using Result = warpath::testing::RtsResult;
+using warpath::testing::rts;
 
 class RunCli : public ::testing::Test {
  protected:

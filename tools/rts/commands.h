@@ -32,5 +32,6 @@ void registerBenchRandomCommand(CLI::App& bench, CommandRunner& run);
 void registerBenchPaperCommand(CLI::App& bench, CommandRunner& run);
 void registerRunCommand(CLI::App& app, CommandRunner& run);
 void registerTestCommand(CLI::App& app, CommandRunner& run);
+void registerReplayCommand(CLI::App& app, CommandRunner& run);
 
 }  // namespace warpath::tools

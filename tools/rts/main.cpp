@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   registerBenchCommand(app, run);
   registerRunCommand(app, run);
   registerTestCommand(app, run);
+  registerReplayCommand(app, run);
 
   try {
     app.parse(argc, argv);

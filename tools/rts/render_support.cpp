@@ -58,6 +58,18 @@ void writePathPng(const std::string& file, const pathing::GridMap& map, pathing:
   }
 }
 
+void addFrameOptions(CLI::App& cmd, FrameOptions& options, const std::string& everyFlag) {
+  cmd.add_option("--frames", options.framesDir,
+                 "Write a PNG frame (frame_000123.png, by tick) into this folder");
+  cmd.add_option(everyFlag, options.every, "A frame every N ticks (default 1)")
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--gif", options.gif, "Write the frames as an animated GIF");
+  cmd.add_option("--frame-size", options.size, "Pixels along the frame's longer side (default 512)")
+      ->check(CLI::Range(16, 8192));
+  cmd.add_option("--overlay", options.overlays,
+                 "Overlays to switch on in frames: paths, footprints, stuck, zones, hud, or none");
+}
+
 FrameRecorder::FrameRecorder(const FrameOptions& options, const pathing::GridMap& map,
                              double tickRate, int teamCount)
     : teamCount_(teamCount) {

@@ -1,6 +1,7 @@
 #pragma once
 // Pictures for the CLI's subcommands, drawn by rts_render.
 
+#include <CLI/App.hpp>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -28,6 +29,9 @@ struct FrameOptions {
   std::string overlays;   // overlay names to switch on (render::parseOverlays)
   bool wanted() const { return !framesDir.empty() || !gif.empty(); }
 };
+
+// --frames, `everyFlag` (a frame every N ticks), --gif, --frame-size and --overlay on `cmd`.
+void addFrameOptions(CLI::App& cmd, FrameOptions& options, const std::string& everyFlag);
 
 // Frames of a running world: renders the world every `every` ticks and hands the frame to a
 // FrameSink that encodes on a second thread. Throws BadInput naming what cannot be created or

@@ -24,6 +24,8 @@ struct RunOptions {
   std::optional<std::int64_t> until;
   bool quiet = false;
   FrameOptions frames;
+  std::string replay;
+  std::int64_t replayEvery = 1;
 };
 
 int arrivedCount(const engine::World& world) {
@@ -74,24 +76,43 @@ class Progress {
   bool drawn_ = false;
 };
 
-// Creates the report's folder before the run, so that a bad path fails at once (exit 2)
+// Creates an output file's folder before the run, so that a bad path fails at once (exit 2)
 // instead of after a long simulation.
-void prepareReportPath(const std::string& report) {
-  if (report.empty()) return;
-  const std::filesystem::path parent = std::filesystem::path(report).parent_path();
+void prepareOutputPath(const std::string& file, const std::string& option) {
+  if (file.empty()) return;
+  const std::filesystem::path parent = std::filesystem::path(file).parent_path();
   std::error_code error;
   if (!parent.empty()) std::filesystem::create_directories(parent, error);
   if (error) {
-    throw BadInput{"--report: cannot create the folder '" + parent.string() +
+    throw BadInput{option + ": cannot create the folder '" + parent.string() +
                    "': " + error.message()};
   }
 }
 
+engine::ReplayEnd endOf(const RunOutcome& outcome) {
+  if (outcome.interrupted) return engine::ReplayEnd::Interrupted;
+  return outcome.report.complete ? engine::ReplayEnd::Complete : engine::ReplayEnd::Stopped;
+}
+
 int runRun(const RunOptions& options) {
-  const engine::Scenario scenario = loadScenarioOrThrow(options.scenario);
-  prepareReportPath(options.report);
+  engine::ReplaySource source;
+  const engine::Scenario scenario =
+      loadScenarioOrThrow(options.scenario, options.replay.empty() ? nullptr : &source);
+  prepareOutputPath(options.report, "--report");
+  prepareOutputPath(options.replay, "--replay");
   engine::ScenarioRun run(scenario, options.seed);
   installInterruptHandlers();
+
+  std::optional<engine::ReplayWriter> replay;
+  if (!options.replay.empty()) {
+    source.seed = options.seed.value_or(scenario.settings.seed);
+    source.hashEvery = options.replayEvery;
+    engine::ScenarioResult<engine::ReplayWriter> opened =
+        engine::ReplayWriter::open(options.replay, source);
+    if (!opened.ok()) throw BadInput{opened.error.describe()};
+    replay.emplace(std::move(*opened.value));
+    if (auto e = replay->record(run)) throw BadInput{e->describe()};  // the tick-0 orders
+  }
 
   const std::int64_t total =
       options.until ? std::min(*options.until, scenario.durationTicks()) : scenario.durationTicks();
@@ -109,8 +130,18 @@ int runRun(const RunOptions& options) {
       frames->onTick(r.world());
     };
   }
+  if (replay) {
+    limits.onTick = [&replay, before = limits.onTick](const engine::ScenarioRun& r) {
+      if (before) before(r);
+      if (auto e = replay->record(r)) throw BadInput{e->describe()};
+    };
+  }
   const RunOutcome outcome = runToEnd(run, limits);
   progress.finish();
+  if (replay) {
+    if (auto e = replay->finish(run, endOf(outcome))) throw BadInput{e->describe()};
+    if (!options.quiet) fmt::print("replay: {}\n", options.replay);
+  }
   if (frames) {
     const int written = frames->finish();
     if (!options.quiet) {
@@ -157,16 +188,12 @@ void registerRunCommand(CLI::App& app, CommandRunner& run) {
   cmd->add_option("--report", options->report, "Write the report (JSON) to this file");
   cmd->add_option("--until", options->until, "Stop after this tick")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quiet", options->quiet, "Print nothing but errors");
-  cmd->add_option("--frames", options->frames.framesDir,
-                  "Write a PNG frame (frame_000123.png, by tick) into this folder");
-  cmd->add_option("--frame-every", options->frames.every, "A frame every N ticks (default 1)")
+  addFrameOptions(*cmd, options->frames, "--frame-every");
+  cmd->add_option("--replay", options->replay,
+                  "Write a self-contained replay (scenario, files, seed, orders, state hashes)");
+  cmd->add_option("--replay-every", options->replayEvery,
+                  "Record the state hash every N ticks (default 1)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--gif", options->frames.gif, "Write the frames as an animated GIF");
-  cmd->add_option("--frame-size", options->frames.size,
-                  "Pixels along the frame's longer side (default 512)")
-      ->check(CLI::Range(16, 8192));
-  cmd->add_option("--overlay", options->frames.overlays,
-                  "Overlays to switch on in frames: paths, footprints, stuck, zones, hud, or none");
 }
 
 }  // namespace warpath::tools

@@ -31,8 +31,9 @@ nlohmann::json secondsOrNull(double v) {
 
 }  // namespace
 
-engine::Scenario loadScenarioOrThrow(const std::string& file) {
-  engine::ScenarioResult<engine::Scenario> loaded = engine::loadScenario(file);
+engine::Scenario loadScenarioOrThrow(const std::string& file, engine::ReplaySource* source) {
+  engine::ScenarioResult<engine::Scenario> loaded =
+      source ? engine::loadRecordedScenario(file, *source) : engine::loadScenario(file);
   if (!loaded.ok()) throw BadInput{loaded.error.describe()};
   return std::move(*loaded.value);
 }

@@ -7,13 +7,16 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "engine/replay.h"
 #include "engine/scenario.h"
 #include "engine/scenario_run.h"
 
 namespace warpath::tools {
 
-// Loads a scenario or throws BadInput with file, line, column and problem.
-engine::Scenario loadScenarioOrThrow(const std::string& file);
+// Loads a scenario or throws BadInput with file, line, column and problem. With `source`, keeps
+// the scenario's text and every file it read there (for a replay).
+engine::Scenario loadScenarioOrThrow(const std::string& file,
+                                     engine::ReplaySource* source = nullptr);
 
 // Installs SIGINT/SIGTERM handlers that ask runs to stop between ticks.
 void installInterruptHandlers();

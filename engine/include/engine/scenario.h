@@ -3,6 +3,7 @@
 // everything a run needs up front: errors name the file, line and column and the problem.
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -80,8 +81,18 @@ struct ScenarioResult {
   bool ok() const { return value.has_value(); }
 };
 
+// Supplies the contents of a file a scenario names (its map, its catalogue), given the path
+// resolved against the scenario's folder; nullopt when there is no such file. Replays pass one
+// that answers from the files they embed, so a replay never reads the disk.
+using FileReader = std::function<std::optional<std::string>(const std::filesystem::path&)>;
+// The whole of a regular file on disk, or nullopt.
+std::optional<std::string> readDiskFile(const std::filesystem::path& file);
+
 // `text` is read as if it were the file `file` (relative paths resolve against its folder).
+// Referenced files come from `files` (default: the disk).
 ScenarioResult<Scenario> parseScenario(std::string_view text, const std::filesystem::path& file);
+ScenarioResult<Scenario> parseScenario(std::string_view text, const std::filesystem::path& file,
+                                       const FileReader& files);
 ScenarioResult<Scenario> loadScenario(const std::filesystem::path& file);
 // A catalogue file: `unit_types:` mapping type names to their fields.
 ScenarioResult<std::vector<units::UnitType>> loadCatalogue(const std::filesystem::path& file);

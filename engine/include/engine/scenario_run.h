@@ -53,6 +53,14 @@ struct Report {
   bool operator==(const Report&) const = default;
 };
 
+// A move order as the world received it: given before step `tick` + 1 ran (the world applies
+// it at the start of that step). What a replay records as the command stream.
+struct IssuedOrder {
+  std::int64_t tick = 0;
+  std::vector<UnitId> units;  // ascending index
+  pathing::CellRect area;
+};
+
 // Nearest-rank percentile of ascending `sorted`; [Limit: !sorted.empty(), p in 0..100]
 double percentile(const std::vector<double>& sorted, double p);
 
@@ -60,21 +68,32 @@ class ScenarioRun {
  public:
   // `seed` replaces the scenario's seed when given. The scenario must outlive the run.
   explicit ScenarioRun(const Scenario& scenario, std::optional<std::uint64_t> seed = {});
+  // Plays `script` (ascending tick) instead of the scenario's own orders: its group goals and
+  // its timed and triggered orders are not evaluated, so playback never re-derives a trigger.
+  // The caller checks that the script names units the scenario spawns.
+  ScenarioRun(const Scenario& scenario, std::optional<std::uint64_t> seed,
+              std::vector<IssuedOrder> script);
 
   void step();
   bool done() const { return world_.tick() >= scenario_.durationTicks(); }
   const World& world() const { return world_; }
   const Scenario& scenario() const { return scenario_; }
   Report report() const;
+  // Every order given to the world so far, in the order given.
+  const std::vector<IssuedOrder>& issued() const { return issued_; }
 
  private:
   static WorldSettings settingsFor(const Scenario& scenario, std::optional<std::uint64_t> seed);
   void issue(const std::vector<int>& groups, const pathing::CellRect& area);
+  void give(std::vector<UnitId> units, const pathing::CellRect& area);
 
   const Scenario& scenario_;
   World world_;
   std::vector<std::vector<UnitId>> members_;  // per group
   std::vector<bool> fired_;                   // per order
+  std::optional<std::vector<IssuedOrder>> script_;
+  std::size_t scriptNext_ = 0;  // first order of script_ not yet given
+  std::vector<IssuedOrder> issued_;
 };
 
 }  // namespace warpath::engine

@@ -32,7 +32,7 @@ namespace {
 
 class Parser {
  public:
-  explicit Parser(fs::path file) : file_(std::move(file)) {}
+  Parser(fs::path file, const FileReader& files) : file_(std::move(file)), files_(files) {}
 
   [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const {
     const YAML::Mark mark = node.Mark();
@@ -44,6 +44,15 @@ class Parser {
 
   const fs::path& file() const { return file_; }
   fs::path resolve(const std::string& relative) const { return file_.parent_path() / relative; }
+  // The contents of the file `node` names (resolved against the scenario's folder) through the
+  // file reader; fails at `node` when it has none. `what` is "map" or "catalogue".
+  std::pair<fs::path, std::string> referenced(const YAML::Node& node,
+                                              const std::string& what) const {
+    const fs::path file = resolve(text(node, what));
+    std::optional<std::string> contents = files_(file);
+    if (!contents) fail(node, what + " file '" + file.string() + "' not found");
+    return {file, std::move(*contents)};
+  }
 
   void expectMap(const YAML::Node& node, const std::string& what) const {
     if (!node.IsMap()) fail(node, what + " must be a mapping");
@@ -107,6 +116,7 @@ class Parser {
 
  private:
   fs::path file_;
+  const FileReader& files_;
 };
 
 Capability parseCapabilityNode(const Parser& p, const YAML::Node& node) {
@@ -185,19 +195,11 @@ YAML::Node loadYaml(const Parser& p, std::string_view text) {
   }
 }
 
-std::string readFile(const fs::path& file, bool* ok) {
-  std::ifstream in(file, std::ios::binary);
-  *ok = static_cast<bool>(in);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
-
 GridMap parseMapNode(const Parser& p, const YAML::Node& node) {
   if (node.IsScalar()) {
-    const fs::path file = p.resolve(node.Scalar());
-    if (!fs::exists(file)) p.fail(node, "map file '" + file.string() + "' not found");
-    Loaded<GridMap> map = loadMap(file);
+    const auto [file, contents] = p.referenced(node, "map");
+    std::istringstream in(contents);
+    Loaded<GridMap> map = parseMap(in, file.string());
     if (!map) p.fail(node, "map: " + map.error().describe());
     return std::move(map).value();
   }
@@ -316,6 +318,24 @@ Expectation parseExpectation(const Parser& p, const YAML::Node& node, const Scen
   return e;
 }
 
+ScenarioResult<std::vector<units::UnitType>> parseCatalogue(std::string_view text,
+                                                            const fs::path& file) {
+  // A catalogue names no other files.
+  const FileReader none = [](const fs::path&) { return std::optional<std::string>(); };
+  const Parser p(file, none);
+  try {
+    const YAML::Node root = loadYaml(p, text);
+    p.checkKeys(root, "the catalogue", {"unit_types"});
+    std::vector<units::UnitType> catalogue;
+    parseUnitTypes(p, p.need(root, "unit_types", "the catalogue"), catalogue);
+    return {std::move(catalogue), {}};
+  } catch (const ScenarioError& e) {
+    return {std::nullopt, e};
+  } catch (const YAML::Exception& e) {
+    return {std::nullopt, {file.string(), e.mark.line + 1, e.mark.column + 1, e.msg}};
+  }
+}
+
 Scenario parse(const Parser& p, std::string_view text) {
   const YAML::Node root = loadYaml(p, text);
   p.checkKeys(root, "the scenario",
@@ -329,9 +349,8 @@ Scenario parse(const Parser& p, std::string_view text) {
   const GridMap& map = s.grid->map();
 
   if (const YAML::Node cat = root["catalogue"]) {
-    const fs::path file = p.resolve(p.text(cat, "catalogue"));
-    if (!fs::exists(file)) p.fail(cat, "catalogue file '" + file.string() + "' not found");
-    ScenarioResult<std::vector<units::UnitType>> loaded = loadCatalogue(file);
+    const auto [file, contents] = p.referenced(cat, "catalogue");
+    ScenarioResult<std::vector<units::UnitType>> loaded = parseCatalogue(contents, file);
     if (!loaded.ok()) throw loaded.error;
     s.catalogue = std::move(*loaded.value);
   }
@@ -478,9 +497,24 @@ std::vector<Cell> placeUnits(const AnnotatedGrid& grid, Agent agent, CellRect ar
   return anchors;
 }
 
+std::optional<std::string> readDiskFile(const fs::path& file) {
+  std::error_code error;
+  if (!fs::is_regular_file(file, error)) return std::nullopt;
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream out;
+  out << in.rdbuf();
+  return std::move(out).str();
+}
+
 ScenarioResult<Scenario> parseScenario(std::string_view text, const fs::path& file) {
+  return parseScenario(text, file, readDiskFile);
+}
+
+ScenarioResult<Scenario> parseScenario(std::string_view text, const fs::path& file,
+                                       const FileReader& files) {
   try {
-    return {parse(Parser(file), text), {}};
+    return {parse(Parser(file, files), text), {}};
   } catch (const ScenarioError& e) {
     return {std::nullopt, e};
   } catch (const YAML::Exception& e) {
@@ -489,28 +523,15 @@ ScenarioResult<Scenario> parseScenario(std::string_view text, const fs::path& fi
 }
 
 ScenarioResult<Scenario> loadScenario(const fs::path& file) {
-  bool ok = false;
-  const std::string text = readFile(file, &ok);
-  if (!ok) return {std::nullopt, {file.string(), 0, 0, "cannot open the scenario file"}};
-  return parseScenario(text, file);
+  const std::optional<std::string> text = readDiskFile(file);
+  if (!text) return {std::nullopt, {file.string(), 0, 0, "cannot open the scenario file"}};
+  return parseScenario(*text, file);
 }
 
 ScenarioResult<std::vector<units::UnitType>> loadCatalogue(const fs::path& file) {
-  bool ok = false;
-  const std::string text = readFile(file, &ok);
-  if (!ok) return {std::nullopt, {file.string(), 0, 0, "cannot open the catalogue file"}};
-  const Parser p(file);
-  try {
-    const YAML::Node root = loadYaml(p, text);
-    p.checkKeys(root, "the catalogue", {"unit_types"});
-    std::vector<units::UnitType> catalogue;
-    parseUnitTypes(p, p.need(root, "unit_types", "the catalogue"), catalogue);
-    return {std::move(catalogue), {}};
-  } catch (const ScenarioError& e) {
-    return {std::nullopt, e};
-  } catch (const YAML::Exception& e) {
-    return {std::nullopt, {file.string(), e.mark.line + 1, e.mark.column + 1, e.msg}};
-  }
+  const std::optional<std::string> text = readDiskFile(file);
+  if (!text) return {std::nullopt, {file.string(), 0, 0, "cannot open the catalogue file"}};
+  return parseCatalogue(*text, file);
 }
 
 }  // namespace warpath::engine

@@ -1,0 +1,144 @@
+#pragma once
+// Self-contained replays (format in docs/replays.md): the scenario text and every file it
+// read, the seed, the orders the world received and the state hash every N ticks. Written
+// record by record and flushed after every tick, so a run that stops early still leaves a
+// replay that verifies up to its last recorded tick. Every record carries CRC-32s; reading a
+// truncated, corrupted or foreign file gives an error naming the file and the problem.
+
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/scenario.h"
+#include "engine/scenario_run.h"
+
+namespace warpath::engine {
+
+inline constexpr std::uint32_t kReplayVersion = 1;
+
+// A file the scenario read, under the path the scenario resolved for it.
+struct ReplayFile {
+  std::string path;
+  std::string contents;
+};
+
+// Everything needed to rebuild the run's scenario and world.
+struct ReplaySource {
+  std::string scenarioPath;  // as given to `rts run`; relative files resolve against it
+  std::string scenarioText;
+  std::vector<ReplayFile> files;  // in the order the scenario read them
+  std::uint64_t seed = 0;         // after any --seed override
+  std::int64_t hashEvery = 1;     // [Unit: ticks] [Limit: >= 1]
+};
+
+struct TickHash {
+  std::int64_t tick = 0;
+  std::uint64_t hash = 0;
+};
+
+enum class ReplayEnd : std::uint8_t {
+  Complete,     // ran the scenario's whole duration
+  Stopped,      // stopped at a tick limit (--until)
+  Interrupted,  // stopped by SIGINT/SIGTERM between ticks
+};
+std::string_view toString(ReplayEnd end);
+
+struct ReplayEndRecord {
+  ReplayEnd reason = ReplayEnd::Complete;
+  TickHash last;  // the final tick and its hash
+};
+
+struct Replay {
+  std::uint32_t version = kReplayVersion;
+  ReplaySource source;
+  std::vector<IssuedOrder> orders;  // ascending tick
+  std::vector<TickHash> hashes;     // ascending tick, every source.hashEvery ticks
+  // Absent when the writer never finished (killed, or the file was cut at a record boundary).
+  std::optional<ReplayEndRecord> end;
+
+  // The last tick the replay vouches for: the end record's, else the last hash's.
+  std::int64_t lastTick() const;
+};
+
+// Loads a scenario from disk as loadScenario does and keeps in `source` the scenario's text and
+// every file it read (seed and hash interval are left to the caller).
+ScenarioResult<Scenario> loadRecordedScenario(const std::filesystem::path& file,
+                                              ReplaySource& source);
+
+// Reads and checks a whole replay. Errors: "FILE: problem" (ScenarioError with line 0).
+ScenarioResult<Replay> readReplay(const std::filesystem::path& file);
+
+// The embedded scenario, its map and catalogue read from the replay, never from disk.
+ScenarioResult<Scenario> replayScenario(const Replay& replay);
+
+// Appends a replay while a ScenarioRun runs: record() after construction and after every step,
+// finish() at the end. Each call flushes. Errors name the file.
+class ReplayWriter {
+ public:
+  static ScenarioResult<ReplayWriter> open(const std::filesystem::path& file,
+                                           const ReplaySource& source);
+  // The orders given since the last call and, when the tick is a multiple of hashEvery, the
+  // world's hash.
+  std::optional<ScenarioError> record(const ScenarioRun& run);
+  std::optional<ScenarioError> finish(const ScenarioRun& run, ReplayEnd reason);
+
+ private:
+  struct Closer {
+    void operator()(std::FILE* f) const { std::fclose(f); }
+  };
+  ReplayWriter(std::string file, std::unique_ptr<std::FILE, Closer> out, std::int64_t every)
+      : file_(std::move(file)), out_(std::move(out)), every_(every) {}
+  std::optional<ScenarioError> append(char kind, const std::string& payload);
+
+  std::string file_;
+  std::unique_ptr<std::FILE, Closer> out_;
+  std::int64_t every_ = 1;
+  std::size_t ordersWritten_ = 0;
+  std::int64_t lastHashed_ = 0;
+};
+
+struct HashMismatch {
+  std::int64_t tick = 0;
+  std::uint64_t expected = 0;
+  std::uint64_t actual = 0;
+};
+
+// Re-simulates a replay: its embedded scenario, recorded seed and recorded orders. Movable.
+class ReplayPlayback {
+ public:
+  // `replay` must outlive the playback. Errors name `file` and the problem (an embedded scenario
+  // that no longer loads, an order naming a unit the scenario never spawns).
+  static ScenarioResult<ReplayPlayback> open(const Replay& replay, const std::string& file);
+
+  // Steps once; a mismatch when the new tick has a recorded hash that differs.
+  std::optional<HashMismatch> step();
+  // Starts again from tick 0 (scrubbing back: worlds cannot be copied, so re-simulate).
+  void restart();
+  bool done() const { return run_->world().tick() >= replay_->lastTick(); }
+  const ScenarioRun& run() const { return *run_; }
+  const Scenario& scenario() const { return *scenario_; }
+  const Replay& replay() const { return *replay_; }
+
+ private:
+  ReplayPlayback(const Replay& replay, std::unique_ptr<Scenario> scenario);
+
+  const Replay* replay_;
+  std::unique_ptr<Scenario> scenario_;  // stable address: the run refers to it
+  std::unique_ptr<ScenarioRun> run_;
+  std::size_t nextHash_ = 0;
+};
+
+struct VerifyOutcome {
+  std::int64_t ticks = 0;   // ticks re-simulated
+  std::int64_t hashes = 0;  // hashes compared (the end record's included)
+  std::optional<HashMismatch> mismatch;
+};
+
+// Re-simulates to the replay's last tick, stopping at the first hash that differs.
+VerifyOutcome verifyReplay(ReplayPlayback& playback);
+
+}  // namespace warpath::engine

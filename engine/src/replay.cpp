@@ -1,0 +1,439 @@
+#include "engine/replay.h"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <array>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <string_view>
+
+namespace warpath::engine {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::array<char, 8> kMagic = {'W', 'P', 'R', 'E', 'P', 'L', 'A', 'Y'};
+constexpr std::size_t kFileHeader = kMagic.size() + 4;  // magic, version
+// A record: kind (1), payload length (4), CRC-32 of those five bytes (4), payload, CRC-32 of
+// the payload (4). The header's own CRC tells a corrupted length from a truncated file.
+constexpr std::size_t kRecordHead = 9;
+constexpr std::size_t kRecordTail = 4;
+
+std::uint32_t crc(const void* data, std::size_t size) {
+  return static_cast<std::uint32_t>(
+      crc32(0L, static_cast<const Bytef*>(data), static_cast<uInt>(size)));
+}
+
+// Little-endian encoding, independent of the host.
+class Encoder {
+ public:
+  void u8(std::uint8_t v) { bytes_.push_back(static_cast<char>(v)); }
+  void u32(std::uint32_t v) {
+    for (int i = 0; i < 4; ++i)
+      u8(static_cast<std::uint8_t>(v >> (8 * i)));
+  }
+  void u64(std::uint64_t v) {
+    for (int i = 0; i < 8; ++i)
+      u8(static_cast<std::uint8_t>(v >> (8 * i)));
+  }
+  void i32(int v) { u32(static_cast<std::uint32_t>(v)); }
+  void i64(std::int64_t v) { u64(static_cast<std::uint64_t>(v)); }
+  void str(std::string_view s) {
+    u32(static_cast<std::uint32_t>(s.size()));
+    bytes_.append(s);
+  }
+  const std::string& bytes() const { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+// Thrown inside the reader only; readReplay turns it into a ScenarioError.
+struct Malformed {
+  std::string problem;
+};
+
+class Decoder {
+ public:
+  explicit Decoder(std::string_view bytes) : bytes_(bytes) {}
+  std::uint8_t u8() {
+    need(1);
+    return static_cast<std::uint8_t>(bytes_[at_++]);
+  }
+  std::uint32_t u32() {
+    need(4);
+    std::uint32_t v = 0;
+    for (int i = 0; i < 4; ++i)
+      v |= static_cast<std::uint32_t>(static_cast<std::uint8_t>(bytes_[at_++])) << (8 * i);
+    return v;
+  }
+  std::uint64_t u64() {
+    need(8);
+    std::uint64_t v = 0;
+    for (int i = 0; i < 8; ++i)
+      v |= static_cast<std::uint64_t>(static_cast<std::uint8_t>(bytes_[at_++])) << (8 * i);
+    return v;
+  }
+  int i32() { return static_cast<int>(u32()); }
+  std::int64_t i64() { return static_cast<std::int64_t>(u64()); }
+  std::string str() {
+    const std::uint32_t n = u32();
+    need(n);
+    std::string s(bytes_.substr(at_, n));
+    at_ += n;
+    return s;
+  }
+  bool empty() const { return at_ == bytes_.size(); }
+  std::size_t left() const { return bytes_.size() - at_; }
+
+ private:
+  void need(std::size_t n) const {
+    if (bytes_.size() - at_ < n) throw Malformed{"a record's contents end early"};
+  }
+  std::string_view bytes_;
+  std::size_t at_ = 0;
+};
+
+std::string sourcePayload(const ReplaySource& s) {
+  Encoder e;
+  e.str(s.scenarioPath);
+  e.str(s.scenarioText);
+  e.u64(s.seed);
+  e.i64(s.hashEvery);
+  e.u32(static_cast<std::uint32_t>(s.files.size()));
+  for (const ReplayFile& f : s.files) {
+    e.str(f.path);
+    e.str(f.contents);
+  }
+  return e.bytes();
+}
+
+ReplaySource decodeSource(Decoder& d) {
+  ReplaySource s;
+  s.scenarioPath = d.str();
+  s.scenarioText = d.str();
+  s.seed = d.u64();
+  s.hashEvery = d.i64();
+  if (s.hashEvery < 1) throw Malformed{"the hash interval must be at least 1"};
+  const std::uint32_t n = d.u32();
+  for (std::uint32_t i = 0; i < n; ++i) {
+    ReplayFile f;
+    f.path = d.str();
+    f.contents = d.str();
+    s.files.push_back(std::move(f));
+  }
+  return s;
+}
+
+std::string orderPayload(const IssuedOrder& o) {
+  Encoder e;
+  e.i64(o.tick);
+  e.i32(o.area.x);
+  e.i32(o.area.y);
+  e.i32(o.area.width);
+  e.i32(o.area.height);
+  e.u32(static_cast<std::uint32_t>(o.units.size()));
+  for (UnitId id : o.units) {
+    e.u32(id.index);
+    e.u32(id.generation);
+  }
+  return e.bytes();
+}
+
+IssuedOrder decodeOrder(Decoder& d) {
+  IssuedOrder o;
+  o.tick = d.i64();
+  o.area = {d.i32(), d.i32(), d.i32(), d.i32()};
+  const std::uint32_t n = d.u32();
+  if (n > d.left() / 8) throw Malformed{"an order lists more units than it holds"};
+  o.units.reserve(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t index = d.u32();
+    o.units.push_back({index, d.u32()});
+  }
+  return o;
+}
+
+std::string hashPayload(TickHash h) {
+  Encoder e;
+  e.i64(h.tick);
+  e.u64(h.hash);
+  return e.bytes();
+}
+
+std::string endPayload(const ReplayEndRecord& end) {
+  Encoder e;
+  e.u8(static_cast<std::uint8_t>(end.reason));
+  e.i64(end.last.tick);
+  e.u64(end.last.hash);
+  return e.bytes();
+}
+
+// Adds one record's contents to `replay`, checking the order records must come in.
+void addRecord(Replay& replay, bool& haveSource, char kind, Decoder& d) {
+  if (replay.end) throw Malformed{"a record follows the end record"};
+  if (!haveSource && kind != 'S') throw Malformed{"the first record is not the scenario"};
+  switch (kind) {
+    case 'S':
+      if (haveSource) throw Malformed{"a second scenario record"};
+      replay.source = decodeSource(d);
+      haveSource = true;
+      break;
+    case 'O': {
+      IssuedOrder o = decodeOrder(d);
+      if (o.tick < 0 || (!replay.orders.empty() && o.tick < replay.orders.back().tick))
+        throw Malformed{"order ticks out of sequence"};
+      replay.orders.push_back(std::move(o));
+      break;
+    }
+    case 'H': {
+      const TickHash h{d.i64(), d.u64()};
+      if (h.tick <= (replay.hashes.empty() ? 0 : replay.hashes.back().tick))
+        throw Malformed{"hash ticks out of sequence"};
+      replay.hashes.push_back(h);
+      break;
+    }
+    case 'E': {
+      const std::uint8_t reason = d.u8();
+      if (reason > static_cast<std::uint8_t>(ReplayEnd::Interrupted))
+        throw Malformed{"unknown end reason " + std::to_string(reason)};
+      ReplayEndRecord end{static_cast<ReplayEnd>(reason), {d.i64(), d.u64()}};
+      if (end.last.tick < (replay.hashes.empty() ? 0 : replay.hashes.back().tick))
+        throw Malformed{"the end record's tick precedes a recorded hash"};
+      replay.end = end;
+      break;
+    }
+    default:
+      throw Malformed{"unknown record kind " + std::to_string(static_cast<unsigned char>(kind))};
+  }
+  if (!d.empty()) throw Malformed{"a record holds more than its contents"};
+}
+
+}  // namespace
+
+std::string_view toString(ReplayEnd end) {
+  switch (end) {
+    case ReplayEnd::Complete:
+      return "complete";
+    case ReplayEnd::Stopped:
+      return "stopped at a tick limit";
+    case ReplayEnd::Interrupted:
+      return "interrupted";
+  }
+  return "?";
+}
+
+std::int64_t Replay::lastTick() const {
+  if (end) return end->last.tick;
+  return hashes.empty() ? 0 : hashes.back().tick;
+}
+
+ScenarioResult<Scenario> loadRecordedScenario(const fs::path& file, ReplaySource& source) {
+  const std::optional<std::string> text = readDiskFile(file);
+  if (!text) return {std::nullopt, {file.string(), 0, 0, "cannot open the scenario file"}};
+  source.scenarioPath = file.generic_string();
+  source.scenarioText = *text;
+  source.files.clear();
+  const FileReader recording = [&source](const fs::path& f) {
+    std::optional<std::string> contents = readDiskFile(f);
+    if (contents) source.files.push_back({f.generic_string(), *contents});
+    return contents;
+  };
+  return parseScenario(*text, source.scenarioPath, recording);
+}
+
+ScenarioResult<Replay> readReplay(const fs::path& file) {
+  const auto fail = [&](const std::string& problem) -> ScenarioResult<Replay> {
+    return {std::nullopt, {file.string(), 0, 0, problem}};
+  };
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return fail("cannot open the replay");
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) return fail("cannot read the replay");
+  if (bytes.size() < kFileHeader || !std::equal(kMagic.begin(), kMagic.end(), bytes.begin()))
+    return fail("not a warpath replay (no WPREPLAY header)");
+
+  Replay replay;
+  replay.version = Decoder(std::string_view(bytes).substr(kMagic.size(), 4)).u32();
+  if (replay.version != kReplayVersion) {
+    return fail("replay format version " + std::to_string(replay.version) +
+                " is not supported (this build reads version " + std::to_string(kReplayVersion) +
+                ")");
+  }
+  bool haveSource = false;
+  std::size_t at = kFileHeader;
+  while (at < bytes.size()) {
+    const std::string where = "record at byte " + std::to_string(at);
+    const std::size_t left = bytes.size() - at;
+    if (left < kRecordHead) {
+      return fail("truncated in the middle of a record at byte " + std::to_string(at) +
+                  " (the file ends " + std::to_string(left) + " bytes into it)");
+    }
+    Decoder head(std::string_view(bytes).substr(at, kRecordHead));
+    const char kind = static_cast<char>(head.u8());
+    const std::uint32_t length = head.u32();
+    if (head.u32() != crc(bytes.data() + at, 5))
+      return fail(where + " is corrupted (header checksum mismatch)");
+    const std::size_t total = kRecordHead + std::size_t{length} + kRecordTail;
+    if (left < total) {
+      return fail("truncated in the middle of a record at byte " + std::to_string(at) +
+                  " (the file ends " + std::to_string(left) + " bytes into its " +
+                  std::to_string(total) + ")");
+    }
+    const std::string_view payload = std::string_view(bytes).substr(at + kRecordHead, length);
+    const std::uint32_t stored =
+        Decoder(std::string_view(bytes).substr(at + kRecordHead + length, kRecordTail)).u32();
+    if (stored != crc(payload.data(), payload.size()))
+      return fail(where + " is corrupted (checksum mismatch)");
+    try {
+      Decoder d(payload);
+      addRecord(replay, haveSource, kind, d);
+    } catch (const Malformed& m) {
+      return fail(where + " is malformed: " + m.problem);
+    }
+    at += total;
+  }
+  if (!haveSource) return fail("truncated: no scenario record");
+  return {std::move(replay), {}};
+}
+
+ScenarioResult<Scenario> replayScenario(const Replay& replay) {
+  std::map<std::string, const std::string*> embedded;
+  for (const ReplayFile& f : replay.source.files)
+    embedded[f.path] = &f.contents;
+  const FileReader fromReplay = [&embedded](const fs::path& f) -> std::optional<std::string> {
+    const auto it = embedded.find(f.generic_string());
+    if (it == embedded.end()) return std::nullopt;
+    return *it->second;
+  };
+  return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay);
+}
+
+ScenarioResult<ReplayWriter> ReplayWriter::open(const fs::path& file, const ReplaySource& source) {
+  std::unique_ptr<std::FILE, Closer> out(std::fopen(file.c_str(), "wb"));
+  if (!out) return {std::nullopt, {file.string(), 0, 0, "cannot create the replay"}};
+  ReplayWriter writer(file.string(), std::move(out), std::max<std::int64_t>(source.hashEvery, 1));
+  Encoder head;
+  head.u32(kReplayVersion);
+  if (std::fwrite(kMagic.data(), 1, kMagic.size(), writer.out_.get()) != kMagic.size() ||
+      std::fwrite(head.bytes().data(), 1, 4, writer.out_.get()) != 4) {
+    return {std::nullopt, {file.string(), 0, 0, "cannot write the replay"}};
+  }
+  if (std::optional<ScenarioError> e = writer.append('S', sourcePayload(source)))
+    return {std::nullopt, *e};
+  return {std::move(writer), {}};
+}
+
+std::optional<ScenarioError> ReplayWriter::append(char kind, const std::string& payload) {
+  Encoder head;
+  head.u8(static_cast<std::uint8_t>(kind));
+  head.u32(static_cast<std::uint32_t>(payload.size()));
+  head.u32(crc(head.bytes().data(), head.bytes().size()));
+  Encoder tail;
+  tail.u32(crc(payload.data(), payload.size()));
+  std::FILE* f = out_.get();
+  if (std::fwrite(head.bytes().data(), 1, kRecordHead, f) != kRecordHead ||
+      std::fwrite(payload.data(), 1, payload.size(), f) != payload.size() ||
+      std::fwrite(tail.bytes().data(), 1, kRecordTail, f) != kRecordTail) {
+    return ScenarioError{file_, 0, 0, "cannot write the replay"};
+  }
+  return std::nullopt;
+}
+
+std::optional<ScenarioError> ReplayWriter::record(const ScenarioRun& run) {
+  const std::vector<IssuedOrder>& orders = run.issued();
+  for (; ordersWritten_ < orders.size(); ++ordersWritten_) {
+    if (auto e = append('O', orderPayload(orders[ordersWritten_]))) return e;
+  }
+  const std::int64_t tick = run.world().tick();
+  if (tick > lastHashed_ && tick % every_ == 0) {
+    if (auto e = append('H', hashPayload({tick, run.world().stateHash()}))) return e;
+    lastHashed_ = tick;
+  }
+  // Flushed every tick: a run killed between ticks leaves whole records behind.
+  if (std::fflush(out_.get()) != 0) return ScenarioError{file_, 0, 0, "cannot write the replay"};
+  return std::nullopt;
+}
+
+std::optional<ScenarioError> ReplayWriter::finish(const ScenarioRun& run, ReplayEnd reason) {
+  if (auto e = record(run)) return e;
+  if (auto e = append('E', endPayload({reason, {run.world().tick(), run.world().stateHash()}})))
+    return e;
+  if (std::fflush(out_.get()) != 0) return ScenarioError{file_, 0, 0, "cannot write the replay"};
+  return std::nullopt;
+}
+
+ReplayPlayback::ReplayPlayback(const Replay& replay, std::unique_ptr<Scenario> scenario)
+    : replay_(&replay), scenario_(std::move(scenario)) {
+  restart();
+}
+
+ScenarioResult<ReplayPlayback> ReplayPlayback::open(const Replay& replay, const std::string& file) {
+  ScenarioResult<Scenario> loaded = replayScenario(replay);
+  if (!loaded.ok()) {
+    return {std::nullopt,
+            {file, 0, 0, "the embedded scenario does not load: " + loaded.error.describe()}};
+  }
+  std::size_t spawned = 0;
+  for (const GroupSpec& g : loaded.value->groups)
+    spawned += g.anchors.size();
+  const pathing::GridMap& map = loaded.value->grid->map();
+  for (const IssuedOrder& o : replay.orders) {
+    const pathing::CellRect& a = o.area;
+    const bool inside = a.width >= 1 && a.height >= 1 && a.x >= 0 && a.y >= 0 &&
+                        a.x <= map.width() - a.width && a.y <= map.height() - a.height;
+    const bool known = std::all_of(o.units.begin(), o.units.end(), [&](UnitId id) {
+      return id.index < spawned && id.generation == 0;
+    });
+    if (!inside || !known) {
+      return {std::nullopt,
+              {file, 0, 0,
+               "the order at tick " + std::to_string(o.tick) +
+                   (inside ? " names a unit the scenario never spawns"
+                           : " moves to an area outside the map")}};
+    }
+  }
+  return {ReplayPlayback(replay, std::make_unique<Scenario>(std::move(*loaded.value))), {}};
+}
+
+void ReplayPlayback::restart() {
+  run_ = std::make_unique<ScenarioRun>(*scenario_, replay_->source.seed, replay_->orders);
+  nextHash_ = 0;
+}
+
+std::optional<HashMismatch> ReplayPlayback::step() {
+  run_->step();
+  const std::int64_t tick = run_->world().tick();
+  const std::uint64_t actual = run_->world().stateHash();
+  const std::vector<TickHash>& hashes = replay_->hashes;
+  while (nextHash_ < hashes.size() && hashes[nextHash_].tick < tick)
+    ++nextHash_;
+  if (nextHash_ < hashes.size() && hashes[nextHash_].tick == tick &&
+      hashes[nextHash_].hash != actual) {
+    return HashMismatch{tick, hashes[nextHash_].hash, actual};
+  }
+  if (replay_->end && replay_->end->last.tick == tick && replay_->end->last.hash != actual)
+    return HashMismatch{tick, replay_->end->last.hash, actual};
+  return std::nullopt;
+}
+
+VerifyOutcome verifyReplay(ReplayPlayback& playback) {
+  playback.restart();
+  VerifyOutcome outcome;
+  const Replay& replay = playback.replay();
+  while (!playback.done()) {
+    outcome.mismatch = playback.step();
+    ++outcome.ticks;
+    if (outcome.mismatch) return outcome;
+  }
+  outcome.hashes = static_cast<std::int64_t>(
+      std::count_if(replay.hashes.begin(), replay.hashes.end(),
+                    [&](const TickHash& h) { return h.tick <= outcome.ticks; }));
+  if (replay.end) ++outcome.hashes;
+  return outcome;
+}
+
+}  // namespace warpath::engine

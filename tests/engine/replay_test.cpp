@@ -1,0 +1,299 @@
+// Replays: record while running, read back, re-simulate; every way a file can be damaged is
+// refused with a message naming the file and the problem; `rts run --replay` and
+// `rts replay verify|info` end to end.
+
+#include "engine/replay.h"
+
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "engine/scenario_run.h"
+#include "support/rts_process.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace warpath::engine;
+
+using Result = warpath::testing::RtsResult;
+using warpath::testing::rts;
+
+std::string slurp(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void spit(const fs::path& file, const std::string& bytes) {
+  std::ofstream(file, std::ios::binary) << bytes;
+}
+
+// The byte offset of every record (docs/replays.md: kind, length, header CRC, payload, CRC).
+std::vector<std::size_t> recordOffsets(const std::string& bytes) {
+  std::vector<std::size_t> at;
+  for (std::size_t i = 12; i + 9 <= bytes.size();) {
+    at.push_back(i);
+    std::uint32_t length = 0;
+    for (int b = 0; b < 4; ++b)
+      length |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 1 + b])) << (8 * b);
+    i += 9 + length + 4;
+  }
+  return at;
+}
+
+class Replays : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("warpath_replay_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    // A map file and a catalogue beside the scenario, so the test can change and delete them.
+    std::ofstream(dir_ / "small.map") << "type octile\nheight 8\nwidth 16\nmap\n"
+                                         "................\n"
+                                         "................\n"
+                                         "......TTTT......\n"
+                                         "......TTTT......\n"
+                                         "......@@@@......\n"
+                                         "................\n"
+                                         "................\n"
+                                         "................\n";
+    fs::copy_file(fs::path(WARPATH_SOURCE_DIR) / "assets/units.yaml", dir_ / "units.yaml");
+    // A triggered order: playback must give it at the recorded tick without re-deriving it.
+    std::ofstream(dir_ / "s.yaml")
+        << "name: small\nmap: small.map\ncatalogue: units.yaml\nseed: 7\nduration: 12\n"
+           "teams: [blue, red]\n"
+           "groups:\n"
+           "  - {name: a, team: blue, type: infantry, count: 4, spawn: {x: 0, y: 0, w: 3, h: 4},"
+           " goal: {x: 12, y: 0, w: 4, h: 4}}\n"
+           "  - {name: b, team: red, type: jeep, count: 2, spawn: {x: 12, y: 5, w: 4, h: 3},"
+           " goal: {x: 0, y: 5, w: 4, h: 3}}\n"
+           "orders:\n"
+           "  - when: {arrived: a, fraction: 0.5}\n"
+           "    group: b\n"
+           "    move_to: {x: 6, y: 6, w: 4, h: 2}\n"
+           "expectations:\n  - max_stuck: 10\n";
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path scenario() const { return dir_ / "s.yaml"; }
+
+  // Records a replay in-process with hash interval `every`, stopping after `until` ticks.
+  fs::path record(std::int64_t every, std::int64_t until = -1) {
+    ReplaySource source;
+    ScenarioResult<Scenario> loaded = loadRecordedScenario(scenario(), source);
+    EXPECT_TRUE(loaded.ok()) << loaded.error.describe();
+    source.seed = loaded.value->settings.seed;
+    source.hashEvery = every;
+    const fs::path file = dir_ / "r.rpl";
+    ScenarioResult<ReplayWriter> writer = ReplayWriter::open(file, source);
+    EXPECT_TRUE(writer.ok()) << writer.error.describe();
+    ScenarioRun run(*loaded.value);
+    EXPECT_FALSE(writer.value->record(run));
+    while (!run.done() && run.world().tick() != until) {
+      run.step();
+      EXPECT_FALSE(writer.value->record(run));
+    }
+    EXPECT_FALSE(writer.value->finish(run, run.done() ? ReplayEnd::Complete : ReplayEnd::Stopped));
+    finalHash_ = run.world().stateHash();
+    issued_ = run.issued().size();
+    return file;
+  }
+
+  std::string readError(const fs::path& file) {
+    ScenarioResult<Replay> r = readReplay(file);
+    EXPECT_FALSE(r.ok());
+    return r.ok() ? "" : r.error.describe();
+  }
+
+  fs::path dir_;
+  std::uint64_t finalHash_ = 0;
+  std::size_t issued_ = 0;
+};
+
+TEST_F(Replays, RecordReadVerify) {
+  const fs::path file = record(1);
+  ScenarioResult<Replay> replay = readReplay(file);
+  ASSERT_TRUE(replay.ok()) << replay.error.describe();
+  EXPECT_EQ(replay.value->version, kReplayVersion);
+  EXPECT_EQ(replay.value->source.seed, 7u);
+  ASSERT_EQ(replay.value->source.files.size(), 2u);  // the map and the catalogue
+  EXPECT_EQ(replay.value->source.files[0].contents, slurp(dir_ / "small.map"));
+  EXPECT_EQ(replay.value->source.files[1].contents, slurp(dir_ / "units.yaml"));
+  EXPECT_EQ(replay.value->hashes.size(), 360u);
+  ASSERT_TRUE(replay.value->end);
+  EXPECT_EQ(replay.value->end->reason, ReplayEnd::Complete);
+  EXPECT_EQ(replay.value->end->last.hash, finalHash_);
+  // Two group goals at tick 0 and the triggered order later.
+  ASSERT_EQ(replay.value->orders.size(), 3u);
+  EXPECT_EQ(issued_, 3u);
+  EXPECT_GT(replay.value->orders[2].tick, 0);
+
+  ScenarioResult<ReplayPlayback> playback = ReplayPlayback::open(*replay.value, file.string());
+  ASSERT_TRUE(playback.ok()) << playback.error.describe();
+  const VerifyOutcome outcome = verifyReplay(*playback.value);
+  EXPECT_FALSE(outcome.mismatch);
+  EXPECT_EQ(outcome.ticks, 360);
+  EXPECT_EQ(outcome.hashes, 361);
+  EXPECT_EQ(playback.value->run().world().stateHash(), finalHash_);
+  ASSERT_EQ(playback.value->run().issued().size(), 3u);
+  EXPECT_EQ(playback.value->run().issued()[2].tick, replay.value->orders[2].tick);
+  // Verifying again restarts from tick 0 and agrees.
+  EXPECT_FALSE(verifyReplay(*playback.value).mismatch);
+}
+
+TEST_F(Replays, ADifferentHashIsFoundAtItsTick) {
+  const fs::path file = record(5);
+  ScenarioResult<Replay> replay = readReplay(file);
+  ASSERT_TRUE(replay.ok());
+  EXPECT_EQ(replay.value->hashes.size(), 72u);
+  replay.value->hashes[9].hash ^= 1;  // tick 50
+  ScenarioResult<ReplayPlayback> playback = ReplayPlayback::open(*replay.value, file.string());
+  ASSERT_TRUE(playback.ok());
+  const VerifyOutcome outcome = verifyReplay(*playback.value);
+  ASSERT_TRUE(outcome.mismatch);
+  EXPECT_EQ(outcome.mismatch->tick, 50);
+  EXPECT_EQ(outcome.mismatch->expected ^ 1, outcome.mismatch->actual);
+}
+
+TEST_F(Replays, PlaysBackAfterTheFilesChangeOrVanish) {
+  const fs::path file = record(1);
+  fs::remove(dir_ / "small.map");
+  std::ofstream(dir_ / "units.yaml") << "unit_types: {}\n";
+  std::ofstream(scenario()) << "garbage: [";
+  const Result r = rts("replay verify " + file.string());
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("verified 360 ticks"), std::string::npos) << r.out;
+}
+
+TEST_F(Replays, ACorruptedByteIsRefused) {
+  const fs::path file = record(1);
+  const std::string good = slurp(file);
+  const std::vector<std::size_t> records = recordOffsets(good);
+  ASSERT_GT(records.size(), 100u);
+  std::string bad = good;
+  bad[records[50] + 12] ^= 0x10;  // inside a payload
+  spit(file, bad);
+  EXPECT_EQ(readError(file), file.string() + ": record at byte " + std::to_string(records[50]) +
+                                 " is corrupted (checksum mismatch)");
+  bad = good;
+  bad[records[50] + 2] ^= 0x01;  // the length
+  spit(file, bad);
+  EXPECT_EQ(readError(file), file.string() + ": record at byte " + std::to_string(records[50]) +
+                                 " is corrupted (header checksum mismatch)");
+  const Result r = rts("replay verify " + file.string());
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("header checksum mismatch"), std::string::npos) << r.out;
+}
+
+TEST_F(Replays, TruncationInsideARecordIsRefused) {
+  const fs::path file = record(1);
+  const std::string good = slurp(file);
+  const std::vector<std::size_t> records = recordOffsets(good);
+  for (std::size_t cut : {records[40] + 3, records[40] + 15, good.size() - 1}) {
+    spit(file, good.substr(0, cut));
+    const std::string e = readError(file);
+    EXPECT_NE(e.find(file.string() + ": truncated in the middle of a record at byte"),
+              std::string::npos)
+        << e;
+  }
+  spit(file, good.substr(0, 10));
+  EXPECT_EQ(readError(file), file.string() + ": not a warpath replay (no WPREPLAY header)");
+  spit(file, good.substr(0, 12));
+  EXPECT_EQ(readError(file), file.string() + ": truncated: no scenario record");
+}
+
+// Cut at a record boundary, a replay is an interrupted run: it verifies up to its last hash.
+TEST_F(Replays, TruncationBetweenRecordsVerifiesUpToTheLastTick) {
+  const fs::path file = record(1);
+  const std::string good = slurp(file);
+  const std::vector<std::size_t> records = recordOffsets(good);
+  spit(file, good.substr(0, records[200]));
+  ScenarioResult<Replay> replay = readReplay(file);
+  ASSERT_TRUE(replay.ok()) << replay.error.describe();
+  EXPECT_FALSE(replay.value->end);
+  const std::int64_t last = replay.value->lastTick();
+  EXPECT_GT(last, 150);
+  EXPECT_LT(last, 200);
+  ScenarioResult<ReplayPlayback> playback = ReplayPlayback::open(*replay.value, file.string());
+  ASSERT_TRUE(playback.ok());
+  const VerifyOutcome outcome = verifyReplay(*playback.value);
+  EXPECT_FALSE(outcome.mismatch);
+  EXPECT_EQ(outcome.ticks, last);
+  const Result info = rts("replay info " + file.string());
+  EXPECT_EQ(info.status, 0) << info.out;
+  EXPECT_NE(info.out.find("status: interrupted (no end record"), std::string::npos) << info.out;
+}
+
+TEST_F(Replays, AnotherVersionIsRefused) {
+  const fs::path file = record(1);
+  std::string bytes = slurp(file);
+  bytes[8] = 2;
+  spit(file, bytes);
+  EXPECT_EQ(readError(file), file.string() +
+                                 ": replay format version 2 is not supported (this build reads "
+                                 "version 1)");
+  const Result r = rts("replay info " + file.string());
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("version 2 is not supported"), std::string::npos) << r.out;
+  EXPECT_EQ(rts("replay verify " + (dir_ / "none.rpl").string()).status, 2);
+}
+
+// A record whose checksums hold but whose hash differs: verify exits 1 naming the tick.
+TEST_F(Replays, CliVerifyNamesTheFirstDifferingTick) {
+  const fs::path file = (dir_ / "cli.rpl");
+  Result r = rts("run " + scenario().string() + " --quiet --replay " + file.string() +
+                 " --replay-every 10");
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::string bytes = slurp(file);
+  // Records: scenario, two tick-0 orders, then hashes for ticks 10, 20, ...: the third is 30.
+  const std::vector<std::size_t> records = recordOffsets(bytes);
+  const std::size_t h = records[5];
+  ASSERT_EQ(bytes[h], 'H');
+  bytes[h + 9 + 8] ^= 0x01;  // the hash's low byte
+  const std::uint32_t c = static_cast<std::uint32_t>(
+      crc32(0L, reinterpret_cast<const Bytef*>(bytes.data() + h + 9), 16));
+  for (int b = 0; b < 4; ++b)
+    bytes[h + 9 + 16 + static_cast<std::size_t>(b)] = static_cast<char>(c >> (8 * b));
+  spit(file, bytes);
+  r = rts("replay verify " + file.string());
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find(file.string() + ": tick 30: state hash differs: expected "),
+            std::string::npos)
+      << r.out;
+}
+
+TEST_F(Replays, AnUntilRunLeavesAReplayThatVerifies) {
+  const fs::path file = (dir_ / "until.rpl");
+  Result r = rts("run " + scenario().string() + " --quiet --until 100 --seed 99 --replay " +
+                 file.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  r = rts("replay info " + file.string());
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("seed: 99\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("ticks recorded: 100\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("status: stopped at a tick limit at tick 100"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("small.map (170 bytes)"), std::string::npos) << r.out;
+  r = rts("replay verify " + file.string());
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("verified 100 ticks, 101 state hashes match"), std::string::npos) << r.out;
+}
+
+// Recording a replay changes nothing in the run.
+TEST_F(Replays, RecordingDoesNotChangeTheRun) {
+  record(3);
+  ScenarioResult<Scenario> plain = loadScenario(scenario());
+  ASSERT_TRUE(plain.ok());
+  ScenarioRun run(*plain.value);
+  while (!run.done())
+    run.step();
+  EXPECT_EQ(run.world().stateHash(), finalHash_);
+}
+
+}  // namespace
