@@ -355,7 +355,13 @@ void HierarchicalAStar::smooth(const AgentLayer& layer) {
   std::size_t i = 0;
   while (i + 1 < n) {
     std::size_t next = i + 1;
-    const std::size_t farthest = std::min(n - 1, i + lookahead);
+    // Shortcuts start only where the path turns (or at its start): from the middle of a
+    // straight stretch they rarely gain, and trying them was most of a query's time on
+    // winding paths (8room_000: long-query median 1080 -> 574 us, error unchanged; on the
+    // game maps +/- 0.1 point of error, 10-40 % faster).
+    const bool turning = i == 0 || cells[i].x - cells[i - 1].x != cells[i + 1].x - cells[i].x ||
+                         cells[i].y - cells[i - 1].y != cells[i + 1].y - cells[i].y;
+    const std::size_t farthest = turning ? std::min(n - 1, i + lookahead) : i + 1;
     for (std::size_t j = farthest; j >= i + 2; --j) {
       const double direct = octileDistance(cells[j].x - cells[i].x, cells[j].y - cells[i].y);
       if (direct >= s.prefixCost[j] - s.prefixCost[i] - 1e-9) continue;
