@@ -33,5 +33,6 @@ void registerBenchPaperCommand(CLI::App& bench, CommandRunner& run);
 void registerRunCommand(CLI::App& app, CommandRunner& run);
 void registerTestCommand(CLI::App& app, CommandRunner& run);
 void registerReplayCommand(CLI::App& app, CommandRunner& run);
+void registerViewCommand(CLI::App& app, CommandRunner& run);
 
 }  // namespace warpath::tools

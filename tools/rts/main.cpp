@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   registerRunCommand(app, run);
   registerTestCommand(app, run);
   registerReplayCommand(app, run);
+  registerViewCommand(app, run);
 
   try {
     app.parse(argc, argv);

@@ -75,13 +75,7 @@ FrameRecorder::FrameRecorder(const FrameOptions& options, const pathing::GridMap
     : teamCount_(teamCount) {
   if (options.every < 1) throw BadInput{"--frame-every must be at least 1"};
   if (options.size < 16 || options.size > 8192) throw BadInput{"--frame-size must be 16..8192"};
-  // The map's aspect ratio, its longer side `size` pixels.
-  const int longest = std::max({map.width(), map.height(), 1});
-  render::RenderDef def{
-      .width = std::max(1, static_cast<int>(std::lround(static_cast<double>(options.size) *
-                                                        map.width() / longest))),
-      .height = std::max(1, static_cast<int>(std::lround(static_cast<double>(options.size) *
-                                                         map.height() / longest)))};
+  render::RenderDef def = render::fittedDef(map, options.size);
   auto overlays = render::parseOverlays(options.overlays);
   if (!overlays) throw BadInput{"--overlay: " + overlays.status().message()};
   def.overlays = overlays.value();

@@ -368,6 +368,19 @@ struct Renderer::Impl {
     }
   }
 
+  // On a dark strip, shrunk to one font pixel a pixel when the line is too long at the HUD's
+  // scale.
+  void addCaption(const std::string& caption) {
+    float s = static_cast<float>(std::max(1, std::min(image.width, image.height) / 256));
+    if (static_cast<float>(caption.size() * kGlyphAdvance) * s > static_cast<float>(image.width))
+      s = 1.0f;
+    const float height = static_cast<float>(kGlyphHeight + 4) * s;
+    const float top = static_cast<float>(image.height) - height;
+    tris.rect(0, top, static_cast<float>(image.width), static_cast<float>(image.height),
+              withAlpha(palette::kBlack, 200));
+    addText(2.0f * s, top + 2.0f * s, s, caption, palette::kWhite);
+  }
+
   Status render(const FrameScene& scene) {
     if (Status s = makeCurrent(); !s) return s;
     const Rgba bg = palette::kBackground;
@@ -395,10 +408,11 @@ struct Renderer::Impl {
     addUnits(scene, ppc);
     tris.draw(GL_TRIANGLES);
 
-    if (def.overlays.hud) {
+    if (def.overlays.hud || !scene.caption.empty()) {
       enterPixelSpace();
       tris.clear();
-      addHud(scene);
+      if (def.overlays.hud) addHud(scene);
+      if (!scene.caption.empty()) addCaption(scene.caption);
       tris.draw(GL_TRIANGLES);
     }
     glFinish();
@@ -408,6 +422,14 @@ struct Renderer::Impl {
     return Status::success();
   }
 };
+
+RenderDef fittedDef(const pathing::GridMap& map, int size) {
+  const int longest = std::max({map.width(), map.height(), 1});
+  const auto side = [&](int cells) {
+    return std::max(1, static_cast<int>(std::lround(static_cast<double>(size) * cells / longest)));
+  };
+  return RenderDef{.width = side(map.width()), .height = side(map.height())};
+}
 
 Result<Overlays> parseOverlays(std::string_view names, Overlays base) {
   static constexpr std::pair<std::string_view, bool Overlays::*> kSwitches[] = {

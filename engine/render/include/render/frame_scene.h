@@ -6,6 +6,7 @@
 // at cell (x, y) has its centre at (x + s/2, y + s/2).
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "pathing/grid_map.h"
@@ -53,6 +54,8 @@ struct FrameScene {
   std::vector<UnitView> units{};    // drawn in order: later units on top
   std::vector<TeamCounts> teams{};  // HUD line per team, indexed by team
   std::vector<ArrivalZone> arrivalZones{};
+  // A line of text along the bottom edge (the viewer's status and keys); empty: none.
+  std::string caption{};
 };
 
 }  // namespace warpath::render

@@ -46,6 +46,9 @@ struct RenderDef {
   Overlays overlays{};
 };
 
+// The whole map at its aspect ratio, its longer side `size` pixels. [Limit: size >= 1]
+RenderDef fittedDef(const pathing::GridMap& map, int size);
+
 class Renderer {
  public:
   // Fails (never crashes) when OSMesa cannot create a context, the resolution or camera is
