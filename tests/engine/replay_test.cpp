@@ -5,9 +5,11 @@
 #include "engine/replay.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <zlib.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -283,6 +285,26 @@ TEST_F(Replays, AnUntilRunLeavesAReplayThatVerifies) {
   r = rts("replay verify " + file.string());
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("verified 100 ticks, 101 state hashes match"), std::string::npos) << r.out;
+}
+
+// SIGINT between ticks: the run stops, the replay ends with an "interrupted" record and
+// verifies. The signal is sent once the replay exists, i.e. after the handlers are installed.
+TEST_F(Replays, AnInterruptedRunLeavesAReplayThatVerifies) {
+  std::string text = slurp(scenario());
+  text.replace(text.find("duration: 12"), 12, "duration: 100000");
+  spit(dir_ / "long.yaml", text);
+  const fs::path file = dir_ / "int.rpl";
+  const std::string script = "'" + std::string(RTS_BINARY) + "' run '" +
+                             (dir_ / "long.yaml").string() + "' --quiet --replay '" +
+                             file.string() + "' & pid=$!; while [ ! -s '" + file.string() +
+                             "' ]; do sleep 0.05; done; sleep 0.3; kill -INT $pid; wait $pid";
+  const int raw = std::system(script.c_str());
+  EXPECT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 1);  // interrupted: a partial run
+  Result r = rts("replay info " + file.string());
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("status: interrupted at tick"), std::string::npos) << r.out;
+  r = rts("replay verify " + file.string());
+  EXPECT_EQ(r.status, 0) << r.out;
 }
 
 // Recording a replay changes nothing in the run.

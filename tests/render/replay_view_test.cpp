@@ -83,9 +83,9 @@ TEST_F(ReplayPictures, ViewerDrawsFramesAndQuitsUnderTheOffscreenDriver) {
 }
 
 TEST_F(ReplayPictures, ViewerPlaysAndTogglesUnderTheDummyDriver) {
-  // Playing at x2, one tick a frame of 1/60 s, but two in frame 9 ('+' makes it x4 until the
-  // '-' of frame 10): 61 ticks.
-  RtsResult r = view("dummy", "--speed 2 --keys 1,2,3,4,5,6,c,h,h,+,- --frames-then-exit 60");
+  // Playing at x2, one tick a frame of 1/60 s, but two in frame 10 ('+' makes it x4 until the
+  // '-' of frame 11): 61 ticks.
+  RtsResult r = view("dummy", "--speed 2 --keys 1,2,3,4,5,6,7,c,h,h,+,- --frames-then-exit 60");
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("60 frames drawn, tick 61"), std::string::npos) << r.out;
   r = view("dummy", "--keys Nonesuch --frames-then-exit 2");

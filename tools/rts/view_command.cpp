@@ -35,7 +35,7 @@ void registerViewCommand(CLI::App& app, CommandRunner& run) {
   auto [cmd, options] = addSubcommand<ViewOptions>(
       app, run, "view",
       "Watch a replay in a window: space play/pause, right/. step, left back, shift+arrows 10 s, "
-      "Home/End, +/- speed, 1-6 overlays, c clearance type, h help, q quit",
+      "Home/End, +/- speed, 1-7 overlays, c unit type, h help, q quit",
       runView);
   cmd->add_option("file", options->file, "Replay file (rts run --replay)")->required();
   cmd->add_option("--size", options->def.size, "Pixels along the window's longer side (768)")

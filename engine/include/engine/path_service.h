@@ -79,6 +79,8 @@ class PathService {
   std::size_t queued() const { return queue_.size(); }
   const PathServiceMetrics& metrics() const { return metrics_; }
   const PathServiceSettings& settings() const { return settings_; }
+  // The HAA* graph the service plans on (for drawing); null when the algorithm needs none.
+  const pathing::ClusterAbstraction* abstraction() const { return abstraction_.get(); }
 
  private:
   using Key = std::tuple<int, std::uint8_t, int, int, int, int>;

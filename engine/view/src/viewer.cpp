@@ -123,8 +123,8 @@ class Session {
         speed_ = std::max(speed_ / 2.0, kMinSpeed);
         break;
       case SDLK_c:
-        clearanceType_ = (clearanceType_ + 1) % playback_.scenario().catalogue.size();
-        useClearanceOf(clearanceType_);
+        showType_ = (showType_ + 1) % playback_.scenario().catalogue.size();
+        showType(showType_);
         break;
       case SDLK_h:
         help_ = !help_;
@@ -143,11 +143,15 @@ class Session {
     }
   }
 
-  // The clearance heat map shows where units of catalogue type `type` may stand.
-  void useClearanceOf(std::size_t type) {
+  // The clearance heat map shows where units of catalogue type `type` may stand, the graph
+  // the edges they may use.
+  void showType(std::size_t type) {
     const units::UnitType& t = playback_.scenario().catalogue[type];
     if (render::Status s = renderer_.setClearance(world().grid().clearance(t.capability)); !s)
       failure_ = s;
+    if (const pathing::ClusterAbstraction* graph = world().pathService().abstraction()) {
+      if (render::Status s = renderer_.setAbstractGraph(*graph, t.agent()); !s) failure_ = s;
+    }
   }
 
   std::string status() const {
@@ -160,7 +164,7 @@ class Session {
 
   std::string caption() const {
     if (!help_) return {};
-    return "SPACE PLAY  ./RIGHT STEP  LEFT BACK  SHIFT 10S  HOME END  +- SPEED  1-6 OVERLAYS  "
+    return "SPACE PLAY  ./RIGHT STEP  LEFT BACK  SHIFT 10S  HOME END  +- SPEED  1-7 OVERLAYS  "
            "C TYPE  H HELP  Q QUIT";
   }
 
@@ -172,7 +176,7 @@ class Session {
   double budget_ = 0.0;  // [Unit: ticks] owed to playback, fractional
   bool help_ = true;
   bool quit_ = false;
-  std::size_t clearanceType_ = 0;
+  std::size_t showType_ = 0;  // the catalogue type clearance and graph are shown for
   render::Status failure_ = render::Status::success();
 };
 
@@ -229,7 +233,7 @@ render::Status runViewer(engine::ReplayPlayback& playback, const ViewerDef& def)
   std::vector<SDL_Keysym> script;
   if (render::Status s = scriptedKeys(def.keys, script); !s) return s;
   Session session(playback, renderer, def);
-  session.useClearanceOf(0);
+  session.showType(0);
   const int teams = static_cast<int>(scenario.teams.size());
   constexpr double kFrameSeconds = 1.0 / 60.0;
   std::uint64_t last = SDL_GetTicks64();

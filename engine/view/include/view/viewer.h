@@ -3,8 +3,9 @@
 // (OSMesa, offscreen) and shown in an SDL2 window; the replay is re-simulated as it plays.
 //
 // Keys: space play/pause; right or '.' one tick on; left one tick back; shift+right / shift+left
-// ten seconds on / back; Home / End the first / last tick; '+' / '-' speed x2 / x0.5; 1-6
-// overlays (paths, footprints, stuck, zones, HUD, clearance); c the clearance's unit type;
+// ten seconds on / back; Home / End the first / last tick; '+' / '-' speed x2 / x0.5; 1-7
+// overlays (paths, footprints, stuck, zones, HUD, clearance, HAA* graph); c the unit type
+// clearance and graph are shown for;
 // h the help line; q or Escape quit. Going back re-simulates from tick 0: worlds hold Box2D
 // state and cannot be copied, and re-simulating the bundled scenarios takes well under a second.
 
