@@ -10,7 +10,8 @@
 int main(int argc, char** argv) {
   using namespace warpath::tools;
   CLI::App app{
-      "warpath: size- and terrain-aware pathfinding for real-time strategy units.\n"
+      "warpath: a deterministic RTS simulation whose units plan size- and terrain-aware routes,\n"
+      "avoid each other through Box2D and are drawn headlessly; scenarios, replays, benchmarks.\n"
       "Coordinates are X,Y with X the column and Y the row, from the top-left, as in MovingAI."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "warpath 0.1.0");
