@@ -44,11 +44,7 @@ PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vec
   const QueryClock clock;
   PathResult result;
   if (path) path->clear();
-  const auto finish = [&](PathStatus status) {
-    result.status = status;
-    result.metrics.microseconds = clock.elapsedMicroseconds();
-    return result;
-  };
+  const auto finish = [&](PathStatus status) { return finishQuery(result, status, clock); };
 
   if (const auto answer = screenEndpoints(grid_, agent, start, goal)) return finish(*answer);
   const GridMap& map = grid_.map();

@@ -147,11 +147,7 @@ PathResult HierarchicalAStar::findPath(Agent agent, Cell start, Cell goal,
   const QueryClock clock;
   PathResult result;
   if (path) path->clear();
-  const auto finish = [&](PathStatus status) {
-    result.status = status;
-    result.metrics.microseconds = clock.elapsedMicroseconds();
-    return result;
-  };
+  const auto finish = [&](PathStatus status) { return finishQuery(result, status, clock); };
   const AnnotatedGrid& grid = abstraction_.grid();
   if (const auto answer = screenEndpoints(grid, agent, start, goal)) return finish(*answer);
   if (!abstraction_.supports(agent)) {

@@ -63,4 +63,11 @@ class QueryClock {
   std::chrono::steady_clock::time_point began_ = std::chrono::steady_clock::now();
 };
 
+// Stamps `result` with its status and the query's wall time; every planner's exits share it.
+inline PathResult finishQuery(PathResult& result, PathStatus status, const QueryClock& clock) {
+  result.status = status;
+  result.metrics.microseconds = clock.elapsedMicroseconds();
+  return result;
+}
+
 }  // namespace warpath::pathing
