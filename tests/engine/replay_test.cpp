@@ -17,6 +17,7 @@
 
 #include "engine/scenario_run.h"
 #include "support/rts_process.h"
+#include "support/scratch_dir.h"
 
 namespace {
 
@@ -51,11 +52,7 @@ std::vector<std::size_t> recordOffsets(const std::string& bytes) {
 class Replays : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("warpath_replay_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = warpath::testing::freshTestDir("warpath_replay_");
     // A map file and a catalogue beside the scenario, so the test can change and delete them.
     std::ofstream(dir_ / "small.map") << "type octile\nheight 8\nwidth 16\nmap\n"
                                          "................\n"

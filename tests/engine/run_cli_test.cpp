@@ -9,6 +9,7 @@
 #include <string>
 
 #include "support/rts_process.h"
+#include "support/scratch_dir.h"
 
 namespace {
 
@@ -19,13 +20,7 @@ using warpath::testing::rts;
 
 class RunCli : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("warpath_run_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = warpath::testing::freshTestDir("warpath_run_cli_"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   std::string write(const std::string& name, const std::string& expectations,

@@ -14,6 +14,7 @@
 #include "render/png_io.h"
 #include "render/renderer.h"
 #include "support/rts_process.h"
+#include "support/scratch_dir.h"
 
 namespace warpath::render {
 namespace {
@@ -25,11 +26,7 @@ using warpath::testing::RtsResult;
 class ReplayPictures : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("warpath_replay_view_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = warpath::testing::freshTestDir("warpath_replay_view_");
     std::ofstream(dir_ / "s.yaml")
         << "map: {rows: ['........', '........', '..TT....', '........', '........']}\n"
            "catalogue: " WARPATH_SOURCE_DIR
