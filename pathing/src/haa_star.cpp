@@ -376,7 +376,6 @@ HybridPlanner::HybridPlanner(const ClusterAbstraction& abstraction, HybridOption
                              HaaOptions haa)
     : options_(hybrid),
       shortQueryDistance_(std::sqrt(static_cast<double>(hybrid.tau)) / 2.0),
-      gridSearch_(abstraction.grid()),
       hierarchical_(abstraction, haa) {}
 
 PathResult HybridPlanner::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path) {
@@ -385,7 +384,7 @@ PathResult HybridPlanner::findPath(Agent agent, Cell start, Cell goal, std::vect
   if (std::sqrt(dx * dx + dy * dy) <= shortQueryDistance_) {
     SearchLimits budget;
     budget.maxExpanded = options_.tau;
-    PathResult quick = gridSearch_.findPath(agent, start, goal, path, budget);
+    PathResult quick = hierarchical_.gridSearch_.findPath(agent, start, goal, path, budget);
     quick.metrics.gridExpanded = quick.metrics.expanded;
     quick.metrics.usedGridSearch = true;
     if (quick.status != PathStatus::BudgetExhausted) return quick;

@@ -37,6 +37,7 @@ class HierarchicalAStar {
   PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path);
 
  private:
+  friend class HybridPlanner;
   struct Scratch;
   void smooth(const AgentLayer& layer);
 
@@ -62,7 +63,8 @@ class HybridPlanner {
  private:
   HybridOptions options_;
   double shortQueryDistance_;
-  AnnotatedAStar gridSearch_;
+  // Short queries use the hierarchical planner's own AA* query object: a second one would
+  // hold another whole-map scratch (12 bytes a cell) for nothing.
   HierarchicalAStar hierarchical_;
 };
 
