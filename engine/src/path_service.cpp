@@ -37,6 +37,10 @@ void PathService::request(const PathRequest& request) {
   metrics_.maxQueue = std::max(metrics_.maxQueue, queue_.size());
 }
 
+void PathService::cancel(UnitId unit) {
+  std::erase_if(queue_, [&](const PathRequest& r) { return r.unit == unit; });
+}
+
 void PathService::serve(std::vector<PathDelivery>& out) {
   std::uint64_t spent = 0;
   while (!queue_.empty()) {

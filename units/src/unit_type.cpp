@@ -33,6 +33,11 @@ std::string problemWith(const UnitType& type) {
   if (!(type.radius > 0.0) || type.radius > 0.5 * type.size)
     return "radius must be positive and at most size/2";
   if (type.hp < 1) return "hp must be at least 1";
+  if (static_cast<int>(type.armour) >= kArmourClasses) return "unknown armour class";
+  if (type.weapon) {
+    const std::string problem = problemWith(*type.weapon);
+    if (!problem.empty()) return "weapon: " + problem;
+  }
   return {};
 }
 

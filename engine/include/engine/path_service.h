@@ -73,6 +73,8 @@ class PathService {
   PathService& operator=(const PathService&) = delete;
 
   void request(const PathRequest& request);
+  // Drops the unit's queued requests (it died): its searches are not run.
+  void cancel(UnitId unit);
   // Serves queued requests in order within the budget, appending one delivery each.
   void serve(std::vector<PathDelivery>& out);
 

@@ -25,7 +25,7 @@ std::uint16_t collisionMaskFor(pathing::Capability capability);
 
 struct PhysicsStats {
   int staticBoxes = 0;  // boxes of terrain geometry, border included
-  int bodies = 0;
+  int bodies = 0;       // in the simulation now
 };
 
 class Physics {
@@ -38,8 +38,12 @@ class Physics {
   Physics(const Physics&) = delete;
   Physics& operator=(const Physics&) = delete;
 
-  // Adds a dynamic circle; returns its index (bodies are never removed).
+  // Adds a dynamic circle; returns its index (indices are never reused).
   std::uint32_t addBody(units::Vec2 centre, double radius, pathing::Capability capability);
+  // Turns a body into a fixed obstacle (a wreck): it stops and no longer moves when pushed.
+  void freeze(std::uint32_t body);
+  // Takes a body out of the simulation. Its last position and a zero velocity stay readable.
+  void removeBody(std::uint32_t body);
   void setVelocity(std::uint32_t body, units::Vec2 velocity);
   // Advances every body by dt seconds.
   void step(double dt);

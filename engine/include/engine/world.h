@@ -1,13 +1,17 @@
 #pragma once
 // The world: units on a grid map, advanced by a fixed timestep. One tick (DESIGN.md §4):
-// commands due → path service (within its expansion budget) → steering → Box2D step → rules
-// (arrivals, blocked waypoints, stuck units) → state hash. Everything that changes the state
-// is a function of the map, the catalogue, the seed and the commands: the world owns its RNG,
-// iterates units in id order and never reads a clock except to measure itself.
+// commands due → path service (within its expansion budget) → targets → steering → firing and
+// shots landing (deaths) → Box2D step → rules (arrivals, blocked waypoints, stuck units, wrecks)
+// → state hash. docs/combat.md states the combat rules and the order of fire within a tick.
+// Everything that changes the state is a function of the map, the catalogue, the seed and the
+// commands: the world owns its RNG, iterates units in id order and never reads a clock except to
+// measure itself.
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/handle.h"
@@ -15,11 +19,24 @@
 #include "engine/physics.h"
 #include "pathing/annotated_grid.h"
 #include "pathing/random.h"
+#include "units/combat.h"
 #include "units/steering.h"
 #include "units/stuck.h"
 #include "units/unit_type.h"
 
 namespace warpath::engine {
+
+struct CombatSettings {
+  bool enabled = true;  // false: weapons never fire (travel-only scenarios)
+  units::SightRules sight;
+  units::ArmourTable armour = units::defaultArmourTable();
+  // [Unit: s] [Limit: >= 0] how long a destroyed unit's wreck stays as an obstacle; 0 removes
+  // the body at once.
+  double wreckSeconds = 20.0;
+  // [Unit: ticks] [Limit: >= 1] how often a unit without a target scans for one (staggered by
+  // id); a unit with a target checks every tick that it may still engage it.
+  int scanEveryTicks = 5;
+};
 
 struct WorldSettings {
   double tickRate = 30.0;  // [Unit: ticks/s] [Limit: > 0]
@@ -27,6 +44,27 @@ struct WorldSettings {
   PathServiceSettings pathing;
   units::StuckRule stuck;
   units::SteeringParams steering;
+  CombatSettings combat;
+};
+
+// What a unit was told to do (RTS semantics; docs/combat.md).
+enum class OrderKind : std::uint8_t {
+  Stop,        // stand still; fire at enemies in range
+  Move,        // go to an area; fire on the move, never stop to fight
+  AttackMove,  // go to an area; halt to fight enemies in range, then go on
+  Attack,      // close in on a set of enemy units and fire at them until all are dead
+  Hold,        // keep the current spot; fire at enemies in range, never move
+};
+std::string_view toString(OrderKind kind);
+std::optional<OrderKind> orderKindFromName(std::string_view name);  // "move", "attack_move", …
+
+// An order as the world receives it (and as replays record it).
+struct Command {
+  OrderKind kind = OrderKind::Move;
+  std::vector<UnitId> units;    // ascending index; dead or unknown units are skipped
+  pathing::CellRect area;       // Move, AttackMove
+  std::vector<UnitId> targets;  // Attack: ascending index; each unit closes on the nearest
+  bool operator==(const Command&) const = default;
 };
 
 enum class UnitState : std::uint8_t {
@@ -35,6 +73,17 @@ enum class UnitState : std::uint8_t {
   Moving,       // following a path
   Parked,       // reached its goal cell
   NoPath,       // the goal cannot be reached; reported once, not retried
+  Dead,         // destroyed: no body (or a wreck's), no orders, never steps again
+};
+
+// Per unit, since spawn; the report sums them per (team, type).
+struct CombatStats {
+  int shotsFired = 0;
+  int hits = 0;         // shots that landed on a living target
+  int damageDealt = 0;  // hit points removed, capped at what the target had left
+  int damageTaken = 0;
+  int kills = 0;
+  bool operator==(const CombatStats&) const = default;
 };
 
 struct Unit {
@@ -58,6 +107,30 @@ struct Unit {
   units::ProgressMonitor progress;
   bool everStuck = false;  // flagged by the stuck rule at least once
   int repaths = 0;
+  // Combat.
+  OrderKind order = OrderKind::Stop;
+  std::vector<UnitId> attackTargets;  // Attack order: the enemies to close on
+  UnitId target;                      // what the weapon aims at; invalid when none
+  std::int64_t readyTick = 0;         // the weapon may fire at this tick or later
+  bool engaged = false;               // halted this tick to fight (AttackMove, Attack)
+  std::int64_t deathTick = -1;
+  std::int64_t wreckUntilTick = -1;  // the wreck's body is removed at this tick
+  UnitId killedBy;
+  CombatStats combat;
+
+  bool alive() const { return hp > 0; }
+};
+
+// A shot in flight (or landing this tick). Homing: it lands on its target when that is still
+// alive at landTick, wherever the target went.
+struct Shot {
+  UnitId shooter;
+  UnitId target;
+  int damage = 0;  // after the armour multiplier
+  std::int64_t firedTick = 0;
+  std::int64_t landTick = 0;
+  units::Vec2 from;  // [Unit: cells] the shooter's centre when fired
+  units::Vec2 to;    // [Unit: cells] the target's centre when fired
 };
 
 enum class EventKind : std::uint8_t {
@@ -69,6 +142,8 @@ enum class EventKind : std::uint8_t {
   Parked,        // reached its goal cell
   Repath,        // detail: 0 stuck, 1 left its path, 2 goal cell taken
   StuckFlagged,  // stuck for StuckRule::flagAfter windows in a row
+  Killed,        // hp reached 0; detail: the killer's index
+  WreckCleared,  // the wreck's body was removed
 };
 std::string_view toString(EventKind kind);
 
@@ -82,6 +157,7 @@ struct Event {
 // Mean wall time per phase over the ticks stepped so far: measurement only.
 struct TickTiming {
   double pathingMicros = 0.0;
+  double combatMicros = 0.0;  // targets, firing, shots landing
   double steeringMicros = 0.0;
   double physicsMicros = 0.0;
   double bookkeepingMicros = 0.0;  // commands, rules, state hash
@@ -101,9 +177,12 @@ class World {
 
   // Spawns a unit at an anchor cell where its type can stand (the caller checks).
   UnitId spawn(int type, int team, int group, pathing::Cell anchor);
-  // Orders units to move into `area`; applied at the start of the next step. Each unit gets a
-  // goal cell of its own inside the area, drawn with the world's RNG.
-  void orderMove(std::vector<UnitId> units, pathing::CellRect area);
+  // Gives an order; applied at the start of the next step, in the order given. Move and
+  // AttackMove give each unit a goal cell of its own inside the area, drawn with the world's RNG.
+  void order(Command command);
+  void orderMove(std::vector<UnitId> units, pathing::CellRect area) {
+    order({OrderKind::Move, std::move(units), area, {}});
+  }
 
   void step();
 
@@ -114,23 +193,40 @@ class World {
   const Unit* find(UnitId id) const;
   const std::vector<units::UnitType>& catalogue() const { return catalogue_; }
   const std::vector<Event>& events() const { return events_; }
+  // Shots in flight after the last step, and those that were fired or landed during it.
+  const std::vector<Shot>& shotsInFlight() const { return inFlight_; }
+  const std::vector<Shot>& shotsLastTick() const { return lastTickShots_; }
+  int aliveCount(int team) const;
   const pathing::AnnotatedGrid& grid() const { return *grid_; }
   const PathService& pathService() const { return *paths_; }
   const Physics& physics() const { return *physics_; }
-  // FNV-1a over the tick and every unit's quantised position, velocity, hp and order, in id
-  // order; updated at the end of every step.
+  // FNV-1a over the tick, every unit's quantised position, velocity, hp, order and weapon state
+  // in id order, and the shots in flight; updated at the end of every step.
   std::uint64_t stateHash() const { return stateHash_; }
   TickTiming meanTiming() const;
 
  private:
-  struct MoveCommand {
-    std::vector<UnitId> units;
-    pathing::CellRect area;
-  };
+  static constexpr int kBucketCells = 8;  // side of a target-scan bucket
 
-  void applyCommand(const MoveCommand& command);
+  const units::UnitType& typeOf(const Unit& unit) const;
+  void applyCommand(const Command& command);
+  // Undoes what the current order holds: goal claim, parking spot, path, attack targets.
+  void leaveOrder(Unit& unit);
+  std::vector<pathing::Cell> shuffledStandable(pathing::Agent agent, const pathing::CellRect& area);
+  void beginMove(Unit& unit, const pathing::CellRect& area,
+                 const std::vector<pathing::Cell>& candidates, std::size_t& cursor);
+  std::optional<pathing::Cell> approachCell(const Unit& unit, const Unit& target) const;
+  // Attack order: heads for the nearest living target (a new path when it moved, or `force`);
+  // the order ends when every target is dead.
+  void pursue(Unit& unit, bool force);
   void requestPath(Unit& unit);
   void deliver(const PathDelivery& delivery);
+  units::Combatant combatantOf(const Unit& unit) const;
+  void indexUnits();
+  std::optional<std::uint32_t> scanForTarget(const Unit& unit, const units::Weapon& weapon);
+  void chooseTargets();
+  void fire();
+  void kill(Unit& unit, UnitId killer);
   void steerAll();
   void applyRules();
   bool reassignGoal(Unit& unit);
@@ -146,7 +242,9 @@ class World {
   std::unique_ptr<Physics> physics_;
   std::unique_ptr<PathService> paths_;
   std::vector<Unit> units_;
-  std::vector<MoveCommand> pending_;
+  std::vector<Command> pending_;
+  std::vector<Shot> inFlight_;  // in firing order
+  std::vector<Shot> lastTickShots_;
   std::vector<PathDelivery> deliveries_;  // scratch, reused every tick
   // Unit index + 1 of the parked unit covering each cell, 0 where none.
   std::vector<std::uint32_t> parkedAt_;
@@ -154,6 +252,14 @@ class World {
   // cells handed out by different orders do not overlap while the area has room.
   std::vector<std::uint32_t> claimedBy_;
   std::vector<Event> events_;
+  // Target scans: living units bucketed by position (CSR), rebuilt every tick.
+  int bucketsWide_ = 0;
+  int bucketsHigh_ = 0;
+  int maxUnitSize_ = 1;
+  std::vector<std::uint32_t> bucketStart_;
+  std::vector<std::uint32_t> bucketUnits_;
+  std::vector<units::Combatant> combatants_;  // per unit, this tick
+  std::vector<units::Combatant> candidates_;  // scratch
   std::int64_t tick_ = 0;
   std::uint64_t stateHash_ = 0;
   TickTiming timing_;  // sums

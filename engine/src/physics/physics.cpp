@@ -24,7 +24,8 @@ std::uint16_t collisionMaskFor(Capability capability) {
 struct Physics::Impl {
   b2World world{b2Vec2(0.0f, 0.0f)};
   b2Body* terrain = nullptr;
-  std::vector<b2Body*> bodies;
+  std::vector<b2Body*> bodies;       // null once removed
+  std::vector<b2Vec2> lastPosition;  // of removed bodies
 };
 
 namespace {
@@ -135,11 +136,29 @@ std::uint32_t Physics::addBody(units::Vec2 centre, double radius, Capability cap
   fixture.filter.maskBits = collisionMaskFor(capability);
   body->CreateFixture(&fixture);
   impl_->bodies.push_back(body);
+  impl_->lastPosition.push_back(def.position);
   ++stats_.bodies;
   return static_cast<std::uint32_t>(impl_->bodies.size() - 1);
 }
 
+void Physics::freeze(std::uint32_t body) {
+  b2Body* b = impl_->bodies[body];
+  if (b == nullptr) return;
+  b->SetLinearVelocity(b2Vec2(0.0f, 0.0f));
+  b->SetType(b2_staticBody);
+}
+
+void Physics::removeBody(std::uint32_t body) {
+  b2Body*& b = impl_->bodies[body];
+  if (b == nullptr) return;
+  impl_->lastPosition[body] = b->GetPosition();
+  impl_->world.DestroyBody(b);
+  b = nullptr;
+  --stats_.bodies;
+}
+
 void Physics::setVelocity(std::uint32_t body, units::Vec2 velocity) {
+  if (impl_->bodies[body] == nullptr) return;
   impl_->bodies[body]->SetLinearVelocity(
       b2Vec2(static_cast<float>(velocity.x), static_cast<float>(velocity.y)));
 }
@@ -151,12 +170,14 @@ void Physics::step(double dt) {
 }
 
 units::Vec2 Physics::position(std::uint32_t body) const {
-  const b2Vec2 p = impl_->bodies[body]->GetPosition();
+  const b2Body* b = impl_->bodies[body];
+  const b2Vec2 p = b != nullptr ? b->GetPosition() : impl_->lastPosition[body];
   return {static_cast<double>(p.x), static_cast<double>(p.y)};
 }
 
 units::Vec2 Physics::velocity(std::uint32_t body) const {
-  const b2Vec2 v = impl_->bodies[body]->GetLinearVelocity();
+  const b2Body* b = impl_->bodies[body];
+  const b2Vec2 v = b != nullptr ? b->GetLinearVelocity() : b2Vec2(0.0f, 0.0f);
   return {static_cast<double>(v.x), static_cast<double>(v.y)};
 }
 

@@ -1,12 +1,15 @@
 #pragma once
 // What a kind of unit is, as plain data: footprint, terrain capability, movement limits and
-// hit points. Catalogues of these are loaded by the engine; nothing here reads files.
+// hit points, armour and weapon. Catalogues of these are loaded by the engine; nothing here reads
+// files.
 
 #include <array>
+#include <optional>
 #include <string>
 
 #include "pathing/annotated_grid.h"
 #include "pathing/terrain.h"
+#include "units/combat.h"
 
 namespace warpath::units {
 
@@ -20,6 +23,8 @@ struct UnitType {
   double turnRate = 6.0;      // [Unit: rad/s] [Limit: > 0] how fast the heading may change
   double radius = 0.4;        // [Unit: cells] body radius [Limit: 0 < radius <= size/2]
   int hp = 100;               // [Limit: >= 1]
+  ArmourClass armour = ArmourClass::Infantry;
+  std::optional<Weapon> weapon;  // unarmed when empty
 
   pathing::Agent agent() const { return {size, capability}; }
   // Top speed on a terrain; 0 on terrains outside the capability.
