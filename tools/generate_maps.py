@@ -98,7 +98,51 @@ def stress():
     return g
 
 
+def ambush():
+    # 96x48: a river (x 44-51) crossed by a bridge (rows 20-27); forests on the east bank on
+    # both sides of the bridge road hide the ambushers; a swamp ford in the south (rows 40-42).
+    rng = random.Random(6)
+    g = blank(96, 48)
+    rect(g, 44, 0, 52, 48, "W")
+    rect(g, 44, 20, 52, 28, ".")
+    rect(g, 44, 40, 52, 43, "S")
+    rect(g, 54, 6, 68, 18, "T")
+    rect(g, 54, 30, 68, 40, "T")
+    for cx, cy in [(20, 10), (26, 38), (78, 12), (80, 36)]:
+        blob(g, cx, cy, 3, "@", rng)
+    return g
+
+
+def forest_battle():
+    # 80x64: a forest (x 16-63) cut by a road (rows 28-35) that opens into a clearing (x 34-45,
+    # rows 22-41) in its middle; rocks scattered in the wood.
+    rng = random.Random(7)
+    g = blank(80, 64)
+    rect(g, 16, 4, 64, 60, "T")
+    rect(g, 1, 28, 79, 36, ".")
+    rect(g, 34, 22, 46, 42, ".")
+    for cx, cy in [(24, 14), (56, 50), (28, 48), (54, 12)]:
+        blob(g, cx, cy, 2, "@", rng)
+    return g
+
+
+def landing():
+    # 96x64: sea in the west (x < 40), a beach (x 40-51) with a strip of dunes (trees, x 52-55)
+    # and swamp, then the hinterland with rocks. Only amphibious units cross the sea.
+    rng = random.Random(8)
+    g = blank(96, 64)
+    rect(g, 1, 1, 40, 63, "W")
+    rect(g, 40, 44, 46, 56, "S")
+    rect(g, 52, 10, 56, 26, "T")
+    rect(g, 52, 38, 56, 54, "T")
+    for cx, cy in [(70, 16), (76, 44), (86, 30)]:
+        blob(g, cx, cy, 3, "@", rng)
+    return g
+
+
 if __name__ == "__main__":
     for name, make in [("river.map", river), ("forest.map", forest), ("pass.map", narrow_pass),
-                       ("swamp.map", swamp), ("demo.map", demo), ("stress512.map", stress)]:
+                       ("swamp.map", swamp), ("demo.map", demo), ("stress512.map", stress),
+                       ("ambush.map", ambush), ("forest_battle.map", forest_battle),
+                       ("landing.map", landing)]:
         save(name, make())
