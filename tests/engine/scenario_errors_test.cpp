@@ -120,5 +120,19 @@ TEST(ScenarioErrors, UnitTypeOverridesAreChecked) {
   EXPECT_NE(r.message.find("radius"), std::string::npos) << r.message;
 }
 
+TEST(ScenarioErrors, OrdersNeedWhatTheirKindTakes) {
+  // Orders are moves unless told otherwise; a move needs somewhere to go.
+  const ScenarioError e = errorOf(scenario("", kGroup + "orders:\n  - {at: 1, group: group1}\n"));
+  EXPECT_EQ(e.line, 16);
+  EXPECT_NE(e.message.find("order 'move' needs 'move_to'"), std::string::npos) << e.message;
+  const ScenarioError k = errorOf(scenario("", kGroup + "orders:\n  - {at: 1, group: group1, "
+                                                        "order: retreat}\n"));
+  EXPECT_NE(k.message.find("unknown order 'retreat'"), std::string::npos) << k.message;
+  const ScenarioResult<Scenario> hold = parseScenario(
+      scenario("", kGroup + "orders:\n  - {at: 1, group: group1, order: hold}\n"), kFile);
+  ASSERT_TRUE(hold.ok()) << hold.error.describe();
+  EXPECT_EQ(hold.value->triggers.at(0).actions.at(0).order, OrderKind::Hold);
+}
+
 }  // namespace
 }  // namespace warpath::engine

@@ -4,6 +4,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
@@ -103,6 +104,13 @@ class Parser {
       fail(node, what + " must be between " + std::to_string(lo) + " and " + std::to_string(hi));
     return v;
   }
+  bool boolean(const YAML::Node& node, const std::string& what) const {
+    if (!node.IsScalar()) fail(node, what + " must be a single value");
+    bool v = false;
+    if (!YAML::convert<bool>::decode(node, v))
+      fail(node, what + " must be true or false, not '" + node.Scalar() + "'");
+    return v;
+  }
   std::string text(const YAML::Node& node, const std::string& what) const {
     if (!node.IsScalar()) fail(node, what + " must be a single value");
     return node.Scalar();
@@ -133,12 +141,109 @@ Capability parseCapabilityNode(const Parser& p, const YAML::Node& node) {
   return *c;
 }
 
+std::string armourList() {
+  std::string list;
+  for (int a = 0; a < units::kArmourClasses; ++a)
+    list += (list.empty() ? "" : ", ") +
+            std::string(units::armourClassName(static_cast<units::ArmourClass>(a)));
+  return list;
+}
+
+std::string damageKindList() {
+  std::string list;
+  for (int k = 0; k < units::kDamageKinds; ++k)
+    list += (list.empty() ? "" : ", ") +
+            std::string(units::damageKindName(static_cast<units::DamageKind>(k)));
+  return list;
+}
+
+units::ArmourClass parseArmourClass(const Parser& p, const YAML::Node& node,
+                                    const std::string& what) {
+  const std::string name = p.text(node, what);
+  const std::optional<units::ArmourClass> a = units::armourClassFromName(name);
+  if (!a) p.fail(node, "unknown armour class '" + name + "' (" + armourList() + ")");
+  return *a;
+}
+
+units::DamageKind parseDamageKind(const Parser& p, const YAML::Node& node,
+                                  const std::string& what) {
+  const std::string name = p.text(node, what);
+  const std::optional<units::DamageKind> k = units::damageKindFromName(name);
+  if (!k) p.fail(node, "unknown damage kind '" + name + "' (" + damageKindList() + ")");
+  return *k;
+}
+
+// `weapon:` of a unit type: `none`, or the fields to set. A type that already has a weapon
+// keeps the fields not given; a new weapon needs kind, damage, range and cooldown.
+void parseWeapon(const Parser& p, const YAML::Node& node, units::UnitType& type,
+                 const std::string& owner) {
+  const std::string what = owner + " weapon";
+  if (node.IsScalar()) {
+    if (node.Scalar() != "none")
+      p.fail(node, what +
+                       " must be 'none' or a mapping {name, kind, damage, range, cooldown, "
+                       "projectile_speed, targets, priority}");
+    type.weapon.reset();
+    return;
+  }
+  p.checkKeys(
+      node, what,
+      {"name", "kind", "damage", "range", "cooldown", "projectile_speed", "targets", "priority"});
+  units::Weapon w;
+  if (type.weapon) {
+    w = *type.weapon;
+  } else {
+    for (const char* key : {"kind", "damage", "range", "cooldown"})
+      p.need(node, key, "a new " + what);
+  }
+  if (node["kind"]) {
+    w.kind = parseDamageKind(p, node["kind"], what + " kind");
+    if (!type.weapon && !node["name"]) w.name = std::string(units::damageKindName(w.kind));
+  }
+  if (node["name"]) w.name = p.text(node["name"], what + " name");
+  if (node["damage"]) w.damage = p.integer(node["damage"], what + " damage", 0, 1000000);
+  const auto positive = [&](const char* key, double hi) {
+    const YAML::Node v = node[key];
+    const double x = p.number(v, what + " " + key, 0.0, hi);
+    if (!(x > 0.0)) p.fail(v, what + " " + key + " must be greater than 0");
+    return x;
+  };
+  if (node["range"]) w.range = positive("range", 4096.0);
+  if (node["cooldown"]) w.cooldown = positive("cooldown", 3600.0);
+  if (node["projectile_speed"])
+    w.projectileSpeed = p.number(node["projectile_speed"], what + " projectile_speed", 0.0, 1e6);
+  if (const YAML::Node targets = node["targets"]) {
+    units::TargetMask mask;
+    if (targets.IsSequence()) {
+      for (const auto& item : targets)
+        mask.bits = static_cast<std::uint8_t>(
+            mask.bits | units::TargetMask::of({parseArmourClass(p, item, what + " targets")}).bits);
+    } else {
+      mask = units::TargetMask::of({parseArmourClass(p, targets, what + " targets")});
+    }
+    if (mask.bits == 0) p.fail(targets, what + " targets must name at least one armour class");
+    w.targets = mask;
+  }
+  if (const YAML::Node priority = node["priority"]) {
+    p.expectMap(priority, what + " priority");
+    for (const auto& entry : priority) {
+      const units::ArmourClass a = parseArmourClass(p, entry.first, what + " priority");
+      w.priority[static_cast<std::size_t>(a)] =
+          static_cast<std::uint8_t>(p.integer(entry.second, what + " priority rank", 0, 255));
+    }
+  }
+  const std::string problem = units::problemWith(w);
+  if (!problem.empty()) p.fail(node, what + ": " + problem);
+  type.weapon = std::move(w);
+}
+
 // Applies the fields present in `node` to `type` (a catalogue entry being overridden, or a
 // new type).
 void applyUnitFields(const Parser& p, const YAML::Node& node, units::UnitType& type) {
   const std::string what = "unit type '" + type.name + "'";
   p.checkKeys(node, what,
-              {"size", "capability", "speed", "acceleration", "turn_rate", "radius", "hp"});
+              {"size", "capability", "speed", "acceleration", "turn_rate", "radius", "hp", "armour",
+               "weapon"});
   if (node["size"]) type.size = p.integer(node["size"], what + " size", 1, 255);
   if (node["capability"]) type.capability = parseCapabilityNode(p, node["capability"]);
   if (const YAML::Node speed = node["speed"]) {
@@ -161,10 +266,13 @@ void applyUnitFields(const Parser& p, const YAML::Node& node, units::UnitType& t
         p.number(node["turn_rate"], what + " turn_rate", 0.0, 36000.0) * std::numbers::pi / 180.0;
   if (node["radius"]) type.radius = p.number(node["radius"], what + " radius", 0.0, 128.0);
   if (node["hp"]) type.hp = p.integer(node["hp"], what + " hp", 1, 1000000);
+  if (node["armour"]) type.armour = parseArmourClass(p, node["armour"], what + " armour");
+  if (node["weapon"]) parseWeapon(p, node["weapon"], type, what);
 }
 
 // Reads `unit_types:` into `catalogue`: known names are overridden field by field, new ones
-// need size, capability and speed.
+// need size, capability and speed (armour defaults by name, see units::defaultArmourFor, else
+// infantry; no weapon unless given).
 void parseUnitTypes(const Parser& p, const YAML::Node& node,
                     std::vector<units::UnitType>& catalogue) {
   p.expectMap(node, "unit_types");
@@ -180,6 +288,7 @@ void parseUnitTypes(const Parser& p, const YAML::Node& node,
       catalogue.push_back({});
       type = &catalogue.back();
       type->name = name;
+      type->armour = units::defaultArmourFor(name).value_or(units::ArmourClass::Infantry);
     }
     applyUnitFields(p, entry.second, *type);
     const std::string problem = units::problemWith(*type);
@@ -275,11 +384,41 @@ void checkReachable(const Parser& p, const YAML::Node& where, const Scenario& s,
   }
 }
 
+std::vector<std::string> groupNamesOf(const Scenario& s) {
+  std::vector<std::string> names;
+  for (const GroupSpec& g : s.groups)
+    names.push_back(g.name);
+  return names;
+}
+
+// A team name, or `none` (-1): the winner expectation and the end_battle action.
+int teamOrNone(const Parser& p, const YAML::Node& node, const Scenario& s,
+               const std::string& what) {
+  if (p.text(node, what) == "none") return -1;
+  const std::string name = node.Scalar();
+  for (std::size_t i = 0; i < s.teams.size(); ++i) {
+    if (s.teams[i] == name) return static_cast<int>(i);
+  }
+  std::string list;
+  for (const std::string& n : s.teams)
+    list += (list.empty() ? "" : ", ") + n;
+  p.fail(node, "unknown team '" + name + "' in " + what + " (known: " + list + "; or none)");
+}
+
+std::optional<StatKind> statKindFromName(std::string_view name) {
+  for (int k = 0; k <= static_cast<int>(StatKind::Alive); ++k) {
+    if (toString(static_cast<StatKind>(k)) == name) return static_cast<StatKind>(k);
+  }
+  return std::nullopt;
+}
+
+constexpr const char* kExpectationKinds =
+    "arrival_rate, arrival_time, max_stuck, winner, kills, losses, damage_dealt, damage_taken, "
+    "shots_fired or alive";
+
 Expectation parseExpectation(const Parser& p, const YAML::Node& node, const Scenario& s) {
   if (!node.IsMap() || node.size() != 1)
-    p.fail(node,
-           "an expectation is one of: arrival_rate: {...}, max_stuck: N, "
-           "arrival_time: {...}");
+    p.fail(node, std::string("an expectation is one key, one of: ") + kExpectationKinds);
   const auto entry = *node.begin();
   const std::string kind = p.text(entry.first, "expectation");
   const YAML::Node body = entry.second;
@@ -311,11 +450,221 @@ Expectation parseExpectation(const Parser& p, const YAML::Node& node, const Scen
     e.threshold = p.number(p.need(body, "at_most", "arrival_time"), "at_most", 0.0, 1e6);
     e.text = who("arrival_time") + " p" + Parser::fmtNumber(e.percentile) +
              " <= " + Parser::fmtNumber(e.threshold) + "s";
+  } else if (kind == "winner") {
+    e.kind = ExpectationKind::Winner;
+    e.team = teamOrNone(p, body, s, "winner");
+    e.text = "winner == " +
+             (e.team < 0 ? std::string("none") : s.teams[static_cast<std::size_t>(e.team)]);
+  } else if (const std::optional<StatKind> stat = statKindFromName(kind)) {
+    p.checkKeys(body, kind, {"team", "type", "at_most", "at_least"});
+    e.kind = ExpectationKind::Stat;
+    e.stat = *stat;
+    if (static_cast<bool>(body["at_most"]) == static_cast<bool>(body["at_least"]))
+      p.fail(body, kind + " needs exactly one of 'at_most' and 'at_least'");
+    e.atMost = static_cast<bool>(body["at_most"]);
+    const char* bound = e.atMost ? "at_most" : "at_least";
+    e.threshold = p.number(body[bound], bound, 0.0, 1e12);
+    e.text = who(kind) + (e.atMost ? " <= " : " >= ") + Parser::fmtNumber(e.threshold);
   } else {
-    p.fail(entry.first,
-           "unknown expectation '" + kind + "' (expected arrival_rate, max_stuck or arrival_time)");
+    p.fail(entry.first, "unknown expectation '" + kind + "' (expected " + kExpectationKinds + ")");
   }
   return e;
+}
+
+// `GROUP` or `[GROUP, ...]`: at least one, none twice.
+std::vector<int> parseGroupList(const Parser& p, const YAML::Node& node,
+                                const std::vector<std::string>& names, const std::string& what) {
+  std::vector<int> out;
+  const auto add = [&](const YAML::Node& item) {
+    const int g = indexOf(p, item, names, "group");
+    if (std::find(out.begin(), out.end(), g) != out.end())
+      p.fail(item, "group '" + names[static_cast<std::size_t>(g)] + "' named twice in " + what);
+    out.push_back(g);
+  };
+  if (node.IsSequence()) {
+    if (node.size() == 0) p.fail(node, what + " needs at least one group");
+    for (const auto& item : node)
+      add(item);
+  } else {
+    add(node);
+  }
+  return out;
+}
+
+// An Order action from the keys `order` (default move), `group`, `move_to` and `target` of
+// `node` (the caller has checked that no other key is there).
+ActionSpec parseOrderAction(const Parser& p, const YAML::Node& node, const Scenario& s,
+                            const std::string& what) {
+  const std::vector<std::string> groupNames = groupNamesOf(s);
+  ActionSpec a;
+  a.kind = ActionKind::Order;
+  if (const YAML::Node order = node["order"]) {
+    const std::string name = p.text(order, "order");
+    const std::optional<OrderKind> kind = orderKindFromName(name);
+    if (!kind)
+      p.fail(order,
+             "unknown order '" + name + "' (expected stop, move, attack_move, attack or hold)");
+    a.order = *kind;
+  }
+  a.groups = parseGroupList(p, p.need(node, "group", what), groupNames, "'group'");
+  const std::string kindText = "order '" + std::string(toString(a.order)) + "'";
+  if (a.order == OrderKind::Move || a.order == OrderKind::AttackMove) {
+    if (node["target"]) p.fail(node["target"], kindText + " takes 'move_to', not 'target'");
+    const YAML::Node moveTo = p.need(node, "move_to", kindText);
+    a.area = parseArea(p, moveTo, s.grid->map(), "move_to");
+    for (int g : a.groups)
+      checkReachable(p, moveTo, s, s.groups[static_cast<std::size_t>(g)], a.area);
+  } else if (a.order == OrderKind::Attack) {
+    if (node["move_to"]) p.fail(node["move_to"], kindText + " takes 'target', not 'move_to'");
+    const YAML::Node target = p.need(node, "target", kindText);
+    a.targetGroups = parseGroupList(p, target, groupNames, "'target'");
+    for (std::size_t i = 0; i < a.targetGroups.size(); ++i) {
+      const GroupSpec& enemy = s.groups[static_cast<std::size_t>(a.targetGroups[i])];
+      for (int g : a.groups) {
+        const GroupSpec& own = s.groups[static_cast<std::size_t>(g)];
+        if (own.team == enemy.team)
+          p.fail(target.IsSequence() ? target[i] : target,
+                 "attack target '" + enemy.name + "' is on team '" +
+                     s.teams[static_cast<std::size_t>(enemy.team)] +
+                     "', the team of ordered group '" + own.name + "': targets must be enemies");
+      }
+    }
+  } else {
+    for (const char* key : {"move_to", "target"}) {
+      if (node[key]) p.fail(node[key], kindText + " takes neither 'move_to' nor 'target'");
+    }
+  }
+  return a;
+}
+
+// A trigger's `when:`: exactly one condition.
+void parseCondition(const Parser& p, const YAML::Node& when, const Scenario& s, TriggerSpec& t) {
+  const std::string one =
+      "exactly one of: at: SECONDS, arrived: {group, fraction}, team_below: {team, count}, "
+      "enters: {group, area, count}, dies: {group, count}";
+  if (!when.IsMap() || when.size() == 0) p.fail(when, "a trigger's 'when' is " + one);
+  if (when.size() > 1)
+    p.fail(when, "a trigger's 'when' has " + std::to_string(when.size()) + " conditions; give " +
+                     one + " (use two triggers for either of two)");
+  const std::vector<std::string> groupNames = groupNamesOf(s);
+  const auto entry = *when.begin();
+  const std::string kind = p.text(entry.first, "condition");
+  const YAML::Node body = entry.second;
+  // `count` of a group's units: 1 by default, at most the group's size.
+  const auto groupCount = [&](const char* what) {
+    if (!body["count"]) return 1;
+    const GroupSpec& g = s.groups[static_cast<std::size_t>(t.group)];
+    return p.integer(body["count"], std::string(what) + " count (group '" + g.name + "')", 1,
+                     g.count);
+  };
+  if (kind == "at") {
+    t.kind = TriggerKind::At;
+    t.at = p.number(body, "at", 0.0, 1e6);
+  } else if (kind == "arrived") {
+    p.checkKeys(body, "arrived", {"group", "fraction"});
+    t.kind = TriggerKind::Arrived;
+    t.group = indexOf(p, p.need(body, "group", "arrived"), groupNames, "group");
+    if (body["fraction"]) t.fraction = p.number(body["fraction"], "fraction", 0.0, 1.0);
+  } else if (kind == "team_below") {
+    p.checkKeys(body, "team_below", {"team", "count"});
+    t.kind = TriggerKind::TeamBelow;
+    t.team = indexOf(p, p.need(body, "team", "team_below"), s.teams, "team");
+    t.count = p.integer(p.need(body, "count", "team_below"), "team_below count", 1, 100000000);
+  } else if (kind == "enters") {
+    p.checkKeys(body, "enters", {"group", "area", "count"});
+    t.kind = TriggerKind::Enters;
+    t.group = indexOf(p, p.need(body, "group", "enters"), groupNames, "group");
+    t.area = parseArea(p, p.need(body, "area", "enters"), s.grid->map(), "enters area");
+    t.count = groupCount("enters");
+  } else if (kind == "dies") {
+    p.checkKeys(body, "dies", {"group", "count"});
+    t.kind = TriggerKind::Dies;
+    t.group = indexOf(p, p.need(body, "group", "dies"), groupNames, "group");
+    t.count = groupCount("dies");
+  } else {
+    p.fail(entry.first, "unknown trigger condition '" + kind +
+                            "' (expected at, arrived, team_below, enters or dies)");
+  }
+}
+
+// One entry of a trigger's `do:`. `reinforcedBy` holds, per group, the trigger that already
+// brings it in (empty when none).
+ActionSpec parseAction(const Parser& p, const YAML::Node& node, const Scenario& s,
+                       const std::string& trigger, std::vector<std::string>& reinforcedBy) {
+  const std::string one =
+      "an action is exactly one of: {order: KIND, group, move_to or target}, "
+      "{reinforce: GROUP}, {end_battle: TEAM or none}";
+  if (!node.IsMap()) p.fail(node, one);
+  const int kinds =
+      (node["order"] ? 1 : 0) + (node["reinforce"] ? 1 : 0) + (node["end_battle"] ? 1 : 0);
+  if (kinds != 1) p.fail(node, one);
+  if (node["order"]) {
+    p.checkKeys(node, "an order action", {"order", "group", "move_to", "target"});
+    return parseOrderAction(p, node, s, "an order action");
+  }
+  ActionSpec a;
+  if (const YAML::Node reinforce = node["reinforce"]) {
+    p.checkKeys(node, "a reinforce action", {"reinforce"});
+    a.kind = ActionKind::Reinforce;
+    a.group = indexOf(p, reinforce, groupNamesOf(s), "group");
+    const GroupSpec& g = s.groups[static_cast<std::size_t>(a.group)];
+    if (!g.reinforcement)
+      p.fail(reinforce, "group '" + g.name +
+                            "' is not a reinforcement group (it spawns at the start; give it "
+                            "'reinforcement: true')");
+    std::string& by = reinforcedBy[static_cast<std::size_t>(a.group)];
+    if (!by.empty())
+      p.fail(reinforce, "group '" + g.name + "' is already brought in by trigger '" + by + "'");
+    by = trigger;
+    return a;
+  }
+  p.checkKeys(node, "an end_battle action", {"end_battle"});
+  a.kind = ActionKind::EndBattle;
+  a.team = teamOrNone(p, node["end_battle"], s, "end_battle");
+  return a;
+}
+
+VictorySpec parseVictory(const Parser& p, const YAML::Node& node, const Scenario& s) {
+  const std::string one =
+      "a victory condition is exactly one of: eliminate: TEAM, hold: {team, area, seconds}, "
+      "exit: {team, area, count}";
+  if (!node.IsMap() || node.size() != 1) p.fail(node, one);
+  const auto entry = *node.begin();
+  const std::string kind = p.text(entry.first, "victory condition");
+  const YAML::Node body = entry.second;
+  VictorySpec v;
+  if (kind == "eliminate") {
+    v.kind = VictoryKind::Eliminate;
+    v.team = indexOf(p, body, s.teams, "team");
+    v.text = s.teams[static_cast<std::size_t>(v.team)] + " eliminates the others";
+  } else if (kind == "hold") {
+    p.checkKeys(body, "hold", {"team", "area", "seconds"});
+    v.kind = VictoryKind::HoldArea;
+    v.team = indexOf(p, p.need(body, "team", "hold"), s.teams, "team");
+    v.area = parseArea(p, p.need(body, "area", "hold"), s.grid->map(), "hold area");
+    v.seconds = p.number(p.need(body, "seconds", "hold"), "hold seconds", 0.0, 1e6);
+    v.text = s.teams[static_cast<std::size_t>(v.team)] + " holds " + describeRect(v.area) +
+             " for " + Parser::fmtNumber(v.seconds) + "s";
+  } else if (kind == "exit") {
+    p.checkKeys(body, "exit", {"team", "area", "count"});
+    v.kind = VictoryKind::Exit;
+    v.team = indexOf(p, p.need(body, "team", "exit"), s.teams, "team");
+    v.area = parseArea(p, p.need(body, "area", "exit"), s.grid->map(), "exit area");
+    int units = 0;
+    for (const GroupSpec& g : s.groups)
+      units += g.team == v.team ? g.count : 0;
+    const std::string& team = s.teams[static_cast<std::size_t>(v.team)];
+    const YAML::Node count = p.need(body, "count", "exit");
+    v.count = p.integer(count, "exit count", 1, 100000000);
+    if (v.count > units)
+      p.fail(count, "exit count " + std::to_string(v.count) + " is more than team '" + team +
+                        "' has (" + std::to_string(units) + " units, reinforcements included)");
+    v.text = std::to_string(v.count) + " of " + team + " exit at " + describeRect(v.area);
+  } else {
+    p.fail(entry.first,
+           "unknown victory condition '" + kind + "' (expected eliminate, hold or exit)");
+  }
+  return v;
 }
 
 ScenarioResult<std::vector<units::UnitType>> parseCatalogue(std::string_view text,
@@ -338,9 +687,10 @@ ScenarioResult<std::vector<units::UnitType>> parseCatalogue(std::string_view tex
 
 Scenario parse(const Parser& p, std::string_view text) {
   const YAML::Node root = loadYaml(p, text);
-  p.checkKeys(root, "the scenario",
-              {"name", "map", "catalogue", "unit_types", "seed", "tick_rate", "duration", "pathing",
-               "stuck", "teams", "groups", "orders", "expectations"});
+  p.checkKeys(
+      root, "the scenario",
+      {"name", "map", "catalogue", "unit_types", "seed", "tick_rate", "duration", "pathing",
+       "stuck", "combat", "teams", "groups", "orders", "triggers", "victory", "expectations"});
   Scenario s;
   s.file = p.file();
   s.name = root["name"] ? p.text(root["name"], "name") : p.file().stem().string();
@@ -392,10 +742,41 @@ Scenario parse(const Parser& p, std::string_view text) {
       s.settings.stuck.flagAfter = p.integer(stuck["flag_after"], "flag_after", 1, 1000000);
   }
 
+  if (const YAML::Node combat = root["combat"]) {
+    p.checkKeys(combat, "combat",
+                {"enabled", "wreck_seconds", "sight_through_trees", "scan_every", "armour"});
+    CombatSettings& c = s.settings.combat;
+    if (combat["enabled"]) c.enabled = p.boolean(combat["enabled"], "combat enabled");
+    if (combat["wreck_seconds"])
+      c.wreckSeconds = p.number(combat["wreck_seconds"], "wreck_seconds", 0.0, 1e6);
+    if (combat["sight_through_trees"])
+      c.sight.maxTreeCells =
+          p.integer(combat["sight_through_trees"], "sight_through_trees", -1, 1000000);
+    if (combat["scan_every"])
+      c.scanEveryTicks = p.integer(combat["scan_every"], "scan_every", 1, 1000000);
+    if (const YAML::Node armour = combat["armour"]) {
+      p.expectMap(armour, "combat armour");
+      for (const auto& row : armour) {
+        const units::DamageKind kind = parseDamageKind(p, row.first, "combat armour");
+        const std::string kindName(units::damageKindName(kind));
+        p.expectMap(row.second, "combat armour " + kindName);
+        for (const auto& cell : row.second) {
+          const units::ArmourClass a = parseArmourClass(p, cell.first, "combat armour");
+          c.armour[static_cast<std::size_t>(kind)][static_cast<std::size_t>(a)] = p.integer(
+              cell.second,
+              "armour percent " + kindName + " vs " + std::string(units::armourClassName(a)), 0,
+              1000);
+        }
+      }
+    }
+  }
+
   const YAML::Node teams = p.need(root, "teams", "the scenario");
   if (!teams.IsSequence() || teams.size() == 0) p.fail(teams, "teams must be a non-empty list");
   for (const auto& team : teams) {
     s.teams.push_back(p.text(team, "team"));
+    if (s.teams.back() == "none")
+      p.fail(team, "'none' cannot name a team (it means no team in winner and end_battle)");
     for (std::size_t i = 0; i + 1 < s.teams.size(); ++i) {
       if (s.teams[i] == s.teams.back()) p.fail(team, "team '" + s.teams.back() + "' given twice");
     }
@@ -407,7 +788,8 @@ Scenario parse(const Parser& p, std::string_view text) {
   std::vector<std::string> groupNames;
   std::vector<YAML::Node> goalNodes;
   for (const auto& node : groups) {
-    p.checkKeys(node, "a group", {"name", "team", "type", "count", "spawn", "goal"});
+    p.checkKeys(node, "a group",
+                {"name", "team", "type", "count", "spawn", "goal", "reinforcement"});
     GroupSpec g;
     g.name = node["name"] ? p.text(node["name"], "group name")
                           : "group" + std::to_string(s.groups.size() + 1);
@@ -426,6 +808,7 @@ Scenario parse(const Parser& p, std::string_view text) {
                         std::to_string(g.anchors.size()) + " of " + std::to_string(g.count) + " " +
                         type.name + " (size " + std::to_string(type.size) + ", " +
                         type.capability.toString() + ") on terrain it can stand on");
+    if (node["reinforcement"]) g.reinforcement = p.boolean(node["reinforcement"], "reinforcement");
     if (node["goal"]) {
       g.goal = parseArea(p, node["goal"], map, "goal");
       checkReachable(p, node["goal"], s, g, *g.goal);
@@ -437,30 +820,53 @@ Scenario parse(const Parser& p, std::string_view text) {
   if (const YAML::Node orders = root["orders"]) {
     if (!orders.IsSequence()) p.fail(orders, "orders must be a list");
     for (const auto& node : orders) {
-      p.checkKeys(node, "an order", {"at", "when", "group", "move_to"});
-      OrderSpec o;
+      p.checkKeys(node, "an order", {"at", "when", "group", "order", "move_to", "target"});
+      TriggerSpec o;
+      o.name = "order " + std::to_string(s.triggers.size() + 1);
       if (node["at"] && node["when"]) p.fail(node, "an order has either 'at' or 'when', not both");
       if (node["at"]) {
+        o.kind = TriggerKind::At;
         o.at = p.number(node["at"], "at", 0.0, 1e6);
       } else {
         const YAML::Node when = p.need(node, "when", "an order (or 'at')");
         p.checkKeys(when, "when", {"arrived", "fraction"});
-        o.whenArrived = indexOf(p, p.need(when, "arrived", "when"), groupNames, "group");
+        o.kind = TriggerKind::Arrived;
+        o.group = indexOf(p, p.need(when, "arrived", "when"), groupNames, "group");
         if (when["fraction"]) o.fraction = p.number(when["fraction"], "fraction", 0.0, 1.0);
       }
-      const YAML::Node group = p.need(node, "group", "an order");
-      if (group.IsSequence()) {
-        for (const auto& g : group)
-          o.groups.push_back(indexOf(p, g, groupNames, "group"));
-      } else {
-        o.groups.push_back(indexOf(p, group, groupNames, "group"));
-      }
-      const YAML::Node moveTo = p.need(node, "move_to", "an order");
-      o.moveTo = parseArea(p, moveTo, map, "move_to");
-      for (int g : o.groups)
-        checkReachable(p, moveTo, s, s.groups[static_cast<std::size_t>(g)], o.moveTo);
-      s.orders.push_back(std::move(o));
+      o.actions.push_back(parseOrderAction(p, node, s, "an order"));
+      s.triggers.push_back(std::move(o));
     }
+  }
+
+  if (const YAML::Node triggers = root["triggers"]) {
+    if (!triggers.IsSequence()) p.fail(triggers, "triggers must be a list");
+    std::vector<std::string> reinforcedBy(s.groups.size());
+    int number = 0;
+    for (const auto& node : triggers) {
+      ++number;
+      p.checkKeys(node, "a trigger", {"name", "when", "do"});
+      TriggerSpec t;
+      t.name =
+          node["name"] ? p.text(node["name"], "trigger name") : "trigger " + std::to_string(number);
+      for (const TriggerSpec& other : s.triggers) {
+        if (other.name == t.name)
+          p.fail(node["name"] ? node["name"] : node, "trigger name '" + t.name + "' used twice");
+      }
+      parseCondition(p, p.need(node, "when", "a trigger"), s, t);
+      const YAML::Node actions = p.need(node, "do", "a trigger");
+      if (!actions.IsSequence() || actions.size() == 0)
+        p.fail(actions, "a trigger's 'do' must be a non-empty list of actions");
+      for (const auto& action : actions)
+        t.actions.push_back(parseAction(p, action, s, t.name, reinforcedBy));
+      s.triggers.push_back(std::move(t));
+    }
+  }
+
+  if (const YAML::Node victory = root["victory"]) {
+    if (!victory.IsSequence()) p.fail(victory, "victory must be a list");
+    for (const auto& node : victory)
+      s.victory.push_back(parseVictory(p, node, s));
   }
 
   if (const YAML::Node expectations = root["expectations"]) {
@@ -472,6 +878,24 @@ Scenario parse(const Parser& p, std::string_view text) {
 }
 
 }  // namespace
+
+std::string_view toString(StatKind kind) {
+  switch (kind) {
+    case StatKind::Kills:
+      return "kills";
+    case StatKind::Losses:
+      return "losses";
+    case StatKind::DamageDealt:
+      return "damage_dealt";
+    case StatKind::DamageTaken:
+      return "damage_taken";
+    case StatKind::ShotsFired:
+      return "shots_fired";
+    case StatKind::Alive:
+      return "alive";
+  }
+  return "?";
+}
 
 std::vector<Cell> placeUnits(const AnnotatedGrid& grid, Agent agent, CellRect area, int count,
                              std::vector<std::uint8_t>& occupied) {
