@@ -278,8 +278,10 @@ TEST(World, AnUnreachableGoalIsReportedOnceAndNotRetried) {
 }
 
 TEST(World, UnitsMeetingHeadOnInACorridorPushPast) {
+  // Two teams for the two directions, not a fight: weapons stay silent.
   const Scenario s = load(
       "catalogue: ../assets/units.yaml\nteams: [blue, red]\nduration: 40\n"
+      "combat: {enabled: false}\n"
       "map:\n  rows:\n"
       "    - '@@@@@@@@@@@@@@@@@@@@@@@@@@@@@@'\n"
       "    - '..............................'\n"

@@ -29,16 +29,24 @@ enum class ExpectationKind : std::uint8_t {
   ArrivalRate,  // fraction of units (team, type) inside their goal area by `by` >= threshold
   MaxStuck,     // units ever flagged stuck <= threshold
   ArrivalTime,  // the `percentile` of time-to-arrive (team, type) <= threshold seconds
+  Winner,       // the report's winner is `team` (-1: no winner)
+  Stat,         // a battle statistic of (team, type) compared with threshold
 };
+
+// Battle statistics summed per (team, type) in the report.
+enum class StatKind : std::uint8_t { Kills, Losses, DamageDealt, DamageTaken, ShotsFired, Alive };
+std::string_view toString(StatKind kind);  // "kills", "losses", "damage_dealt", …
 
 struct Expectation {
   ExpectationKind kind = ExpectationKind::ArrivalRate;
-  int team = -1;  // index into Scenario::teams; -1: every team
+  int team = -1;  // index into Scenario::teams; -1: every team (Winner: no winner)
   int type = -1;  // index into Scenario::catalogue; -1: every type
   double threshold = 0.0;
   double by = 0.0;          // [Unit: s] ArrivalRate
   double percentile = 0.0;  // [Limit: 0..100] ArrivalTime
-  std::string text;         // as printed, e.g. "arrival_rate(blue, tank) >= 0.9 by 120s"
+  StatKind stat = StatKind::Kills;
+  bool atMost = true;  // Stat: actual <= threshold; else actual >= threshold
+  std::string text;    // as printed, e.g. "arrival_rate(blue, tank) >= 0.9 by 120s"
 };
 
 struct GroupSpec {
@@ -47,16 +55,65 @@ struct GroupSpec {
   int type = 0;
   int count = 0;
   pathing::CellRect spawn;
-  std::optional<pathing::CellRect> goal;
-  std::vector<pathing::Cell> anchors;  // spawn cells, one per unit, chosen at load
+  std::optional<pathing::CellRect> goal;  // a Move order given when the group spawns
+  std::vector<pathing::Cell> anchors;     // spawn cells, one per unit, chosen at load
+  // Reinforcements do not spawn at the start: a trigger's `reinforce` action brings them in.
+  bool reinforcement = false;
 };
 
-struct OrderSpec {
-  double at = -1.0;         // [Unit: s] when >= 0, the order is due at this time
-  int whenArrived = -1;     // else: group whose arrivals trigger the order
-  double fraction = 1.0;    // share of that group that must have arrived
-  std::vector<int> groups;  // groups ordered
-  pathing::CellRect moveTo;
+// What a trigger waits for. A trigger fires once, at the start of the first step whose
+// preceding state meets its condition.
+enum class TriggerKind : std::uint8_t {
+  At,         // the battle clock reached `at` seconds
+  Arrived,    // `fraction` of group `group` has arrived at its goal area
+  TeamBelow,  // team `team` has fewer than `count` living units
+  Enters,     // at least `count` living units of group `group` are inside `area`
+  Dies,       // at least `count` units of group `group` have died
+};
+
+enum class ActionKind : std::uint8_t {
+  Order,      // order `groups` (their living units): `order` with `area` or `targetGroups`
+  Reinforce,  // spawn the reinforcement group `group`
+  EndBattle,  // stop the run; `team` (-1: none) is the winner unless a victory came first
+};
+
+struct ActionSpec {
+  ActionKind kind = ActionKind::Order;
+  OrderKind order = OrderKind::Move;
+  std::vector<int> groups;        // Order
+  pathing::CellRect area;         // Order: Move, AttackMove
+  std::vector<int> targetGroups;  // Order: Attack, the enemies' groups
+  int group = -1;                 // Reinforce
+  int team = -1;                  // EndBattle
+};
+
+struct TriggerSpec {
+  std::string name;  // for reports and errors; "trigger N" when not given
+  TriggerKind kind = TriggerKind::At;
+  double at = 0.0;  // [Unit: s] At
+  int group = -1;   // Arrived, Enters, Dies
+  int team = -1;    // TeamBelow
+  int count = 1;    // TeamBelow, Enters, Dies
+  double fraction = 1.0;  // Arrived
+  pathing::CellRect area;  // Enters
+  std::vector<ActionSpec> actions;  // run in the order written
+};
+
+// How a team wins. The first condition met (in the order written) decides the winner and ends
+// the battle.
+enum class VictoryKind : std::uint8_t {
+  Eliminate,  // every other team has no living unit (and `team` has one)
+  HoldArea,   // `team` alone has living units inside `area` for `seconds` without a break
+  Exit,       // `count` living units of `team` have stood inside `area` (each counts once)
+};
+
+struct VictorySpec {
+  VictoryKind kind = VictoryKind::Eliminate;
+  int team = 0;
+  pathing::CellRect area;  // HoldArea, Exit
+  double seconds = 0.0;    // [Unit: s] HoldArea
+  int count = 1;           // Exit
+  std::string text;        // as printed, e.g. "blue holds 40,20 8x8 for 30s"
 };
 
 struct Scenario {
@@ -68,7 +125,10 @@ struct Scenario {
   WorldSettings settings;
   double duration = 60.0;  // [Unit: s]
   std::vector<GroupSpec> groups;
-  std::vector<OrderSpec> orders;
+  // Scripted orders (`orders:`) and `triggers:`, in the order written: an order is a trigger
+  // with one Order action.
+  std::vector<TriggerSpec> triggers;
+  std::vector<VictorySpec> victory;
   std::vector<Expectation> expectations;
 
   std::int64_t durationTicks() const;

@@ -1,0 +1,107 @@
+// The three bundled battles: their expectations hold, each run is deterministic, and each has
+// a variant in which an expectation fails, so the expectations are not vacuous.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "engine/scenario.h"
+#include "engine/scenario_run.h"
+
+namespace warpath::engine {
+namespace {
+
+const std::string kDir = std::string(WARPATH_SOURCE_DIR) + "/scenarios/";
+
+std::string readScenario(const std::string& name) {
+  std::ifstream in(kDir + name + ".yaml");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// `text` with the first `from` replaced by `to` (which must be there).
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+Report play(const std::string& text, const std::string& name) {
+  ScenarioResult<Scenario> s = parseScenario(text, kDir + name + ".yaml");
+  EXPECT_TRUE(s.ok()) << s.error.describe();
+  if (!s.ok()) return {};
+  ScenarioRun run(*s.value);
+  while (!run.done())
+    run.step();
+  return run.report();
+}
+
+const ExpectationResult* find(const Report& report, const std::string& text) {
+  for (const ExpectationResult& e : report.expectations)
+    if (e.text == text) return &e;
+  ADD_FAILURE() << "no expectation '" << text << "'";
+  return nullptr;
+}
+
+class BundledBattle : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(BundledBattle, HoldsItsExpectationsAndReplaysIdentically) {
+  const std::string text = readScenario(GetParam());
+  const Report first = play(text, GetParam());
+  for (const ExpectationResult& e : first.expectations)
+    EXPECT_TRUE(e.pass) << e.text << " (actual " << e.actual << ")";
+  EXPECT_EQ(first.winner, "blue");
+  EXPECT_GE(first.endTick, 0);  // decided before the time ran out
+  int redLosses = 0;
+  for (const BattleStats& b : first.battle)
+    redLosses += b.team == "red" ? b.losses : 0;
+  EXPECT_GT(redLosses, 0);
+  const Report second = play(text, GetParam());
+  EXPECT_EQ(first.stateHash, second.stateHash);
+  EXPECT_EQ(first, second);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenarios, BundledBattle,
+                         ::testing::Values("river_ambush", "forest_battle", "amphibious_landing"));
+
+// Without the tanks' guns the convoy bleeds riflemen in the ambush and never gets 20 units out.
+TEST(BattleVariants, AmbushWithoutTankGunsFails) {
+  const std::string text =
+      replaced(readScenario("river_ambush"), "catalogue: ../assets/units.yaml\n",
+               "catalogue: ../assets/units.yaml\n"
+               "unit_types: {tank: {weapon: none}}\n");
+  const Report r = play(text, "river_ambush");
+  const ExpectationResult* winner = find(r, "winner == blue");
+  const ExpectationResult* losses = find(r, "losses(blue, infantry) <= 6");
+  ASSERT_TRUE(winner && losses);
+  EXPECT_FALSE(winner->pass);
+  EXPECT_FALSE(losses->pass);
+}
+
+// Unarmed tanks cannot clear the woods: the rocket teams destroy more than three of them.
+TEST(BattleVariants, ForestWithoutTankGunsFails) {
+  const std::string text = replaced(readScenario("forest_battle"), "  rocket_team:\n",
+                                    "  tank: {weapon: none}\n  rocket_team:\n");
+  const Report r = play(text, "forest_battle");
+  const ExpectationResult* losses = find(r, "losses(blue, tank) <= 3");
+  ASSERT_TRUE(losses);
+  EXPECT_FALSE(losses->pass);
+}
+
+// The first wave alone is sunk on the beach: red wins.
+TEST(BattleVariants, LandingWithoutTheSecondWaveFails) {
+  const std::string text =
+      replaced(readScenario("amphibious_landing"), "      - {reinforce: wave2}\n", "");
+  const Report r = play(text, "amphibious_landing");
+  EXPECT_EQ(r.winner, "red");
+  const ExpectationResult* winner = find(r, "winner == blue");
+  ASSERT_TRUE(winner);
+  EXPECT_FALSE(winner->pass);
+}
+
+}  // namespace
+}  // namespace warpath::engine
