@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace warpath::engine {
@@ -24,89 +25,316 @@ WorldSettings ScenarioRun::settingsFor(const Scenario& scenario,
   return settings;
 }
 
+namespace {
+
+bool insideArea(const Unit& u, const pathing::CellRect& area, const World& world) {
+  const int size = world.catalogue()[static_cast<std::size_t>(u.type)].size;
+  return area.contains(units::centreToAnchor(u.position, size));
+}
+
+// For conditions built in code without a text; as the scenario parser writes them.
+std::string defaultVictoryText(const VictorySpec& v, const Scenario& s) {
+  const std::string& team = s.teams[static_cast<std::size_t>(v.team)];
+  const auto area = [](const pathing::CellRect& a) {
+    return std::to_string(a.x) + "," + std::to_string(a.y) + " " + std::to_string(a.width) + "x" +
+           std::to_string(a.height);
+  };
+  switch (v.kind) {
+    case VictoryKind::Eliminate:
+      return team + " eliminates the others";
+    case VictoryKind::HoldArea: {
+      char seconds[32];
+      std::snprintf(seconds, sizeof seconds, "%g", v.seconds);
+      return team + " holds " + area(v.area) + " for " + seconds + "s";
+    }
+    case VictoryKind::Exit:
+      return std::to_string(v.count) + " of " + team + " exit at " + area(v.area);
+  }
+  return team + " wins";
+}
+
+// One unit's share of a battle statistic.
+double statOf(const Unit& u, StatKind stat) {
+  switch (stat) {
+    case StatKind::Kills:
+      return u.combat.kills;
+    case StatKind::Losses:
+      return u.alive() ? 0.0 : 1.0;
+    case StatKind::DamageDealt:
+      return u.combat.damageDealt;
+    case StatKind::DamageTaken:
+      return u.combat.damageTaken;
+    case StatKind::ShotsFired:
+      return u.combat.shotsFired;
+    case StatKind::Alive:
+      return u.alive() ? 1.0 : 0.0;
+  }
+  return 0.0;
+}
+
+}  // namespace
+
 ScenarioRun::ScenarioRun(const Scenario& scenario, std::optional<std::uint64_t> seed)
     : scenario_(scenario),
+      seed_(settingsFor(scenario, seed).seed),
       world_(scenario.grid, scenario.catalogue, settingsFor(scenario, seed)),
       members_(scenario.groups.size()),
-      fired_(scenario.orders.size(), false) {
+      spawned_(scenario.groups.size(), false),
+      fired_(scenario.triggers.size(), false),
+      exited_(scenario.victory.size()),
+      exitedCount_(scenario.victory.size(), 0),
+      holdSince_(scenario.victory.size(), -1) {
   for (std::size_t g = 0; g < scenario.groups.size(); ++g) {
-    const GroupSpec& group = scenario.groups[g];
-    for (pathing::Cell anchor : group.anchors)
-      members_[g].push_back(world_.spawn(group.type, group.team, static_cast<int>(g), anchor));
-    if (group.goal) issue({static_cast<int>(g)}, *group.goal);
+    if (!scenario.groups[g].reinforcement) spawnGroup(static_cast<int>(g), true);
   }
+  fireTriggers();  // those whose condition holds at the start (`at: 0`, ...)
 }
 
 ScenarioRun::ScenarioRun(const Scenario& scenario, std::optional<std::uint64_t> seed,
                          std::vector<IssuedOrder> script)
     : scenario_(scenario),
+      seed_(settingsFor(scenario, seed).seed),
       world_(scenario.grid, scenario.catalogue, settingsFor(scenario, seed)),
       members_(scenario.groups.size()),
-      script_(std::move(script)) {
-  // Spawning draws nothing from the RNG and orders wait in the world until its next step, so
-  // giving the tick-0 orders in step() rather than between spawns changes nothing.
+      spawned_(scenario.groups.size(), false),
+      script_(std::move(script)),
+      exited_(scenario.victory.size()),
+      exitedCount_(scenario.victory.size(), 0),
+      holdSince_(scenario.victory.size(), -1) {
+  // The live run's group goals are the script's first entries: spawning draws nothing from the
+  // RNG and orders wait in the world until its next step, so spawning every group before the
+  // tick-0 entries changes nothing.
   for (std::size_t g = 0; g < scenario.groups.size(); ++g) {
-    for (pathing::Cell anchor : scenario.groups[g].anchors)
-      members_[g].push_back(world_.spawn(scenario.groups[g].type, scenario.groups[g].team,
-                                         static_cast<int>(g), anchor));
+    if (!scenario.groups[g].reinforcement) spawnGroup(static_cast<int>(g), false);
   }
+  playScript();
 }
 
-void ScenarioRun::issue(const std::vector<int>& groups, const pathing::CellRect& area) {
+// Spawns a group at its anchors and, with `orderGoal` and a goal, orders it there (in playback
+// that order is the script's next entry). A group spawns once.
+void ScenarioRun::spawnGroup(int g, bool orderGoal) {
+  const auto gi = static_cast<std::size_t>(g);
+  if (g < 0 || gi >= members_.size() || spawned_[gi]) return;
+  const GroupSpec& group = scenario_.groups[gi];
+  for (pathing::Cell anchor : group.anchors)
+    members_[gi].push_back(world_.spawn(group.type, group.team, g, anchor));
+  spawned_[gi] = true;
+  if (orderGoal && group.goal) give({OrderKind::Move, members_[gi], *group.goal, {}});
+}
+
+std::vector<UnitId> ScenarioRun::living(const std::vector<int>& groups) const {
   std::vector<UnitId> ids;
   for (int g : groups) {
-    const auto& m = members_[static_cast<std::size_t>(g)];
-    ids.insert(ids.end(), m.begin(), m.end());
+    if (g < 0 || static_cast<std::size_t>(g) >= members_.size()) continue;
+    for (UnitId id : members_[static_cast<std::size_t>(g)]) {
+      const Unit* unit = world_.find(id);
+      if (unit != nullptr && unit->alive()) ids.push_back(id);
+    }
   }
   std::sort(ids.begin(), ids.end(), [](UnitId a, UnitId b) { return a.index < b.index; });
-  give(std::move(ids), area);
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  return ids;
 }
 
-void ScenarioRun::give(std::vector<UnitId> units, const pathing::CellRect& area) {
-  issued_.push_back({world_.tick(), units, area});
-  world_.orderMove(std::move(units), area);
+void ScenarioRun::give(Command command) {
+  issued_.push_back({world_.tick(), IssuedKind::Order, command, -1});
+  world_.order(std::move(command));
 }
 
-void ScenarioRun::step() {
-  if (script_) {
-    for (; scriptNext_ < script_->size() && (*script_)[scriptNext_].tick <= world_.tick();
-         ++scriptNext_)
-      give((*script_)[scriptNext_].units, (*script_)[scriptNext_].area);
-    world_.step();
-    return;
+void ScenarioRun::endBattle(int team, std::string how) {
+  if (ended_) return;
+  ended_ = true;
+  winner_ = team;
+  victory_ = std::move(how);
+  endTick_ = world_.tick();
+}
+
+// The script's entries due by the current tick, in order.
+void ScenarioRun::playScript() {
+  const std::vector<IssuedOrder>& script = *script_;
+  for (; scriptNext_ < script.size() && script[scriptNext_].tick <= world_.tick() && !ended_;
+       ++scriptNext_) {
+    const IssuedOrder& entry = script[scriptNext_];
+    switch (entry.kind) {
+      case IssuedKind::Order:
+        give(entry.command);
+        break;
+      case IssuedKind::Reinforce:
+        if (entry.group < 0 || static_cast<std::size_t>(entry.group) >= members_.size() ||
+            spawned_[static_cast<std::size_t>(entry.group)])
+          break;
+        issued_.push_back({world_.tick(), IssuedKind::Reinforce, {}, entry.group});
+        spawnGroup(entry.group, false);
+        break;
+      case IssuedKind::EndBattle: {
+        const int team =
+            entry.group >= 0 && static_cast<std::size_t>(entry.group) < scenario_.teams.size()
+                ? entry.group
+                : -1;
+        issued_.push_back({world_.tick(), IssuedKind::EndBattle, {}, team});
+        endBattle(team, "end_battle (played from the script)");
+        break;
+      }
+    }
   }
-  for (std::size_t i = 0; i < scenario_.orders.size(); ++i) {
-    if (fired_[i]) continue;
-    const OrderSpec& order = scenario_.orders[i];
-    bool due = false;
-    if (order.at >= 0.0) {
-      due = world_.tick() >= std::llround(order.at * world_.tickRate());
-    } else {
-      const auto& group = members_[static_cast<std::size_t>(order.whenArrived)];
+}
+
+bool ScenarioRun::triggerDue(const TriggerSpec& trigger) const {
+  const auto groupOf = [&]() -> const std::vector<UnitId>* {
+    if (trigger.group < 0 || static_cast<std::size_t>(trigger.group) >= members_.size())
+      return nullptr;
+    return &members_[static_cast<std::size_t>(trigger.group)];
+  };
+  switch (trigger.kind) {
+    case TriggerKind::At:
+      return world_.tick() >= std::llround(trigger.at * world_.tickRate());
+    case TriggerKind::Arrived: {
+      const std::vector<UnitId>* group = groupOf();
+      if (group == nullptr || group->empty()) return false;
       int arrived = 0;
-      for (UnitId id : group) {
+      for (UnitId id : *group) {
         const Unit* unit = world_.find(id);
         arrived += unit != nullptr && unit->arrivalTick >= 0 ? 1 : 0;
       }
-      due = !group.empty() &&
-            static_cast<double>(arrived) >= order.fraction * static_cast<double>(group.size());
+      return static_cast<double>(arrived) >= trigger.fraction * static_cast<double>(group->size());
     }
-    if (due) {
-      fired_[i] = true;
-      issue(order.groups, order.moveTo);
+    case TriggerKind::TeamBelow:
+      return world_.aliveCount(trigger.team) < trigger.count;
+    case TriggerKind::Enters: {
+      const std::vector<UnitId>* group = groupOf();
+      if (group == nullptr) return false;
+      int inside = 0;
+      for (UnitId id : *group) {
+        const Unit* unit = world_.find(id);
+        if (unit != nullptr && unit->alive() && insideArea(*unit, trigger.area, world_)) ++inside;
+      }
+      return inside >= trigger.count;
+    }
+    case TriggerKind::Dies: {
+      const std::vector<UnitId>* group = groupOf();
+      if (group == nullptr) return false;
+      int dead = 0;
+      for (UnitId id : *group) {
+        const Unit* unit = world_.find(id);
+        dead += unit != nullptr && !unit->alive() ? 1 : 0;
+      }
+      return dead >= trigger.count;
     }
   }
+  return false;
+}
+
+void ScenarioRun::runAction(const TriggerSpec& trigger, const ActionSpec& action) {
+  switch (action.kind) {
+    case ActionKind::Order: {
+      Command command;
+      command.kind = action.order;
+      command.units = living(action.groups);
+      if (action.order == OrderKind::Move || action.order == OrderKind::AttackMove)
+        command.area = action.area;
+      if (action.order == OrderKind::Attack) command.targets = living(action.targetGroups);
+      give(std::move(command));
+      break;
+    }
+    case ActionKind::Reinforce:
+      if (action.group < 0 || static_cast<std::size_t>(action.group) >= members_.size() ||
+          spawned_[static_cast<std::size_t>(action.group)])
+        break;  // a group comes in once
+      issued_.push_back({world_.tick(), IssuedKind::Reinforce, {}, action.group});
+      spawnGroup(action.group, true);  // its goal order is recorded after the reinforcement
+      break;
+    case ActionKind::EndBattle:
+      issued_.push_back({world_.tick(), IssuedKind::EndBattle, {}, action.team});
+      endBattle(action.team, "end_battle by trigger " + trigger.name);
+      break;
+  }
+}
+
+void ScenarioRun::fireTriggers() {
+  for (std::size_t i = 0; i < scenario_.triggers.size() && !ended_; ++i) {
+    if (fired_[i]) continue;
+    const TriggerSpec& trigger = scenario_.triggers[i];
+    if (!triggerDue(trigger)) continue;
+    fired_[i] = true;
+    triggersFired_.push_back(trigger.name);
+    for (const ActionSpec& action : trigger.actions) {
+      if (ended_) break;  // nothing is done after the end of the battle
+      runAction(trigger, action);
+    }
+  }
+}
+
+void ScenarioRun::judgeVictory() {
+  const std::vector<Unit>& units = world_.units();
+  for (std::size_t v = 0; v < scenario_.victory.size() && !ended_; ++v) {
+    const VictorySpec& spec = scenario_.victory[v];
+    bool met = false;
+    switch (spec.kind) {
+      case VictoryKind::Eliminate: {
+        met = world_.aliveCount(spec.team) > 0;
+        for (std::size_t t = 0; t < scenario_.teams.size() && met; ++t) {
+          if (static_cast<int>(t) != spec.team && world_.aliveCount(static_cast<int>(t)) > 0)
+            met = false;
+        }
+        break;
+      }
+      case VictoryKind::Exit: {
+        std::vector<bool>& exited = exited_[v];
+        exited.resize(units.size(), false);
+        for (const Unit& u : units) {
+          if (u.team != spec.team || !u.alive() || exited[u.id.index]) continue;
+          if (insideArea(u, spec.area, world_)) {
+            exited[u.id.index] = true;
+            ++exitedCount_[v];
+          }
+        }
+        met = exitedCount_[v] >= spec.count;
+        break;
+      }
+      case VictoryKind::HoldArea: {
+        bool ours = false;
+        bool theirs = false;
+        for (const Unit& u : units) {
+          if (!u.alive() || !insideArea(u, spec.area, world_)) continue;
+          (u.team == spec.team ? ours : theirs) = true;
+        }
+        if (!ours || theirs) {
+          holdSince_[v] = -1;
+          break;
+        }
+        if (holdSince_[v] < 0) holdSince_[v] = world_.tick();
+        met = world_.tick() - holdSince_[v] >= std::llround(spec.seconds * world_.tickRate());
+        break;
+      }
+    }
+    if (met)
+      endBattle(spec.team, spec.text.empty() ? defaultVictoryText(spec, scenario_) : spec.text);
+  }
+}
+
+void ScenarioRun::step() {
+  if (ended_) return;
   world_.step();
+  judgeVictory();
+  if (script_) {
+    playScript();
+  } else {
+    fireTriggers();
+  }
 }
 
 Report ScenarioRun::report() const {
   Report r;
   r.scenario = scenario_.name;
-  r.seed = settingsFor(scenario_, std::nullopt).seed;
+  r.seed = seed_;
   r.ticks = world_.tick();
   r.simSeconds = world_.seconds();
   r.stateHash = world_.stateHash();
   r.complete = done();
+  if (winner_ >= 0) r.winner = scenario_.teams[static_cast<std::size_t>(winner_)];
+  r.victory = victory_;
+  r.endTick = endTick_;
+  r.triggersFired = triggersFired_;
   r.pathing = world_.pathService().metrics();
   const double rate = world_.tickRate();
   const std::vector<Unit>& units = world_.units();
@@ -149,6 +377,24 @@ Report ScenarioRun::report() const {
       r.arrivals.push_back(s);
     }
   }
+  for (std::size_t team = 0; team < scenario_.teams.size(); ++team) {
+    for (std::size_t type = 0; type < scenario_.catalogue.size(); ++type) {
+      BattleStats s;
+      s.team = scenario_.teams[team];
+      s.type = scenario_.catalogue[type].name;
+      for (const Unit& u : units) {
+        if (!matches(u, static_cast<int>(team), static_cast<int>(type))) continue;
+        ++s.units;
+        (u.alive() ? s.alive : s.losses) += 1;
+        s.kills += u.combat.kills;
+        s.shotsFired += u.combat.shotsFired;
+        s.hits += u.combat.hits;
+        s.damageDealt += u.combat.damageDealt;
+        s.damageTaken += u.combat.damageTaken;
+      }
+      if (s.units > 0) r.battle.push_back(s);
+    }
+  }
   for (const Unit& u : units) {
     if (u.everStuck) r.stuckUnits.push_back(u.id.index);
     r.noPath += u.state == UnitState::NoPath ? 1 : 0;
@@ -181,6 +427,19 @@ Report ScenarioRun::report() const {
         result.actual = times.empty() ? std::numeric_limits<double>::infinity()
                                       : percentile(times, e.percentile);
         result.pass = result.actual <= e.threshold;
+        break;
+      }
+      case ExpectationKind::Winner:
+        result.actual = winner_;
+        result.pass = winner_ == e.team;
+        break;
+      case ExpectationKind::Stat: {
+        double sum = 0.0;
+        for (const Unit& u : units) {
+          if (matches(u, e.team, e.type)) sum += statOf(u, e.stat);
+        }
+        result.actual = sum;
+        result.pass = e.atMost ? sum <= e.threshold : sum >= e.threshold;
         break;
       }
     }

@@ -1,6 +1,7 @@
 #pragma once
-// Runs a loaded scenario: spawns its groups, issues its orders when due (at a time or when a
-// group has arrived), steps the world and judges the expectations into a report.
+// Runs a loaded scenario: spawns its groups, fires its triggers (orders, reinforcements, the
+// end of the battle), steps the world, judges the victory conditions and, in the report, the
+// expectations.
 
 #include <cstdint>
 #include <optional>
@@ -27,6 +28,21 @@ struct ArrivalStats {
   bool operator==(const ArrivalStats&) const = default;
 };
 
+// Battle statistics per (team, type): sums of the units' CombatStats; losses are deaths.
+struct BattleStats {
+  std::string team;
+  std::string type;
+  int units = 0;  // spawned so far
+  int alive = 0;
+  int losses = 0;
+  int kills = 0;
+  int shotsFired = 0;
+  int hits = 0;
+  int damageDealt = 0;
+  int damageTaken = 0;
+  bool operator==(const BattleStats&) const = default;
+};
+
 struct ExpectationResult {
   std::string text;
   double actual = 0.0;  // rate, count or seconds; +inf when a percentile has not arrived
@@ -41,24 +57,39 @@ struct Report {
   std::int64_t ticks = 0;
   double simSeconds = 0.0;
   std::uint64_t stateHash = 0;
-  bool complete = false;  // ran the whole duration
+  bool complete = false;  // ran to its end: the whole duration, or until the battle ended
   std::vector<ArrivalStats> arrivals;
   std::vector<std::uint32_t> stuckUnits;  // ids of units ever flagged stuck
   int noPath = 0;                         // units whose goal could not be reached
   int repaths = 0;
   PathServiceMetrics pathing;
+  std::vector<BattleStats> battle;  // per (team, type) with units, team-major
+  std::string winner;               // team name; empty when no team has won (yet)
+  std::string victory;              // the condition (or trigger) that decided it
+  // The tick a victory condition or an end_battle ended the battle; -1 when none has (the
+  // battle goes on, or the duration ran out undecided).
+  std::int64_t endTick = -1;
+  std::vector<std::string> triggersFired;  // trigger names, in firing order
   std::vector<ExpectationResult> expectations;
 
   bool passed() const;
   bool operator==(const Report&) const = default;
 };
 
-// A move order as the world received it: given before step `tick` + 1 ran (the world applies
-// it at the start of that step). What a replay records as the command stream.
+// What the run did to the world between steps: given before step `tick` + 1 ran (orders are
+// applied at the start of that step). What a replay records as the command stream.
+enum class IssuedKind : std::uint8_t {
+  Order,      // `command` given to the world
+  Reinforce,  // the reinforcement group `group` spawned
+  EndBattle,  // the battle ended; `group` holds the winner's team index, -1 for none
+};
+
 struct IssuedOrder {
   std::int64_t tick = 0;
-  std::vector<UnitId> units;  // ascending index
-  pathing::CellRect area;
+  IssuedKind kind = IssuedKind::Order;
+  Command command;
+  int group = -1;
+  bool operator==(const IssuedOrder&) const = default;
 };
 
 // Nearest-rank percentile of ascending `sorted`; [Limit: !sorted.empty(), p in 0..100]
@@ -66,34 +97,65 @@ double percentile(const std::vector<double>& sorted, double p);
 
 class ScenarioRun {
  public:
-  // `seed` replaces the scenario's seed when given. The scenario must outlive the run.
+  // Spawns every group that is not a reinforcement, gives each group with a goal its Move
+  // order and fires the triggers whose condition already holds. `seed` replaces the scenario's
+  // seed when given. The scenario must outlive the run.
   explicit ScenarioRun(const Scenario& scenario, std::optional<std::uint64_t> seed = {});
-  // Plays `script` (ascending tick) instead of the scenario's own orders: its group goals and
-  // its timed and triggered orders are not evaluated, so playback never re-derives a trigger.
-  // The caller checks that the script names units the scenario spawns.
+  // Plays `script` (ascending tick) instead of the scenario's group goals and triggers: each
+  // entry is played at its tick (orders given, reinforcements spawned, the battle ended), so
+  // playback never re-derives a trigger. The victory conditions are judged as in a live run:
+  // they follow from the state. The caller checks that the script names units and groups the
+  // scenario has (ReplayPlayback::open does); entries that do not are ignored.
   ScenarioRun(const Scenario& scenario, std::optional<std::uint64_t> seed,
               std::vector<IssuedOrder> script);
 
+  // One tick: the world steps, then the victory conditions are judged on the new state and, if
+  // none ended the battle, the triggers are evaluated on it (their orders reach the world at
+  // the start of the next step). Nothing happens once the battle has ended.
   void step();
-  bool done() const { return world_.tick() >= scenario_.durationTicks(); }
+  // The whole duration has run, or the battle ended (a victory condition or an end_battle).
+  bool done() const { return ended_ || world_.tick() >= scenario_.durationTicks(); }
+  // A victory condition or an end_battle action ended the battle.
+  bool ended() const { return ended_; }
   const World& world() const { return world_; }
   const Scenario& scenario() const { return scenario_; }
   Report report() const;
-  // Every order given to the world so far, in the order given.
+  // Everything done to the world so far (orders, reinforcements, the end), in the order done.
   const std::vector<IssuedOrder>& issued() const { return issued_; }
 
  private:
   static WorldSettings settingsFor(const Scenario& scenario, std::optional<std::uint64_t> seed);
-  void issue(const std::vector<int>& groups, const pathing::CellRect& area);
-  void give(std::vector<UnitId> units, const pathing::CellRect& area);
+  void spawnGroup(int group, bool orderGoal);
+  // The living members of `groups`, ascending index.
+  std::vector<UnitId> living(const std::vector<int>& groups) const;
+  void give(Command command);
+  void playScript();
+  void fireTriggers();
+  bool triggerDue(const TriggerSpec& trigger) const;
+  void runAction(const TriggerSpec& trigger, const ActionSpec& action);
+  void judgeVictory();
+  void endBattle(int team, std::string how);
 
   const Scenario& scenario_;
+  std::uint64_t seed_ = 0;
   World world_;
-  std::vector<std::vector<UnitId>> members_;  // per group
-  std::vector<bool> fired_;                   // per order
+  std::vector<std::vector<UnitId>> members_;  // per group, in spawn order
+  std::vector<bool> spawned_;                 // per group
+  std::vector<bool> fired_;                   // per trigger
   std::optional<std::vector<IssuedOrder>> script_;
-  std::size_t scriptNext_ = 0;  // first order of script_ not yet given
+  std::size_t scriptNext_ = 0;  // first entry of script_ not yet played
   std::vector<IssuedOrder> issued_;
+  // The battle's outcome.
+  bool ended_ = false;
+  int winner_ = -1;  // team index
+  std::string victory_;
+  std::int64_t endTick_ = -1;
+  std::vector<std::string> triggersFired_;
+  // Per victory condition. Exit: per unit index, whether it has stood inside the area alive,
+  // and how many have. HoldArea: the first tick of the current unbroken hold, -1 when none.
+  std::vector<std::vector<bool>> exited_;
+  std::vector<int> exitedCount_;
+  std::vector<std::int64_t> holdSince_;
 };
 
 }  // namespace warpath::engine
