@@ -128,32 +128,57 @@ ReplaySource decodeSource(Decoder& d) {
   return s;
 }
 
-std::string orderPayload(const IssuedOrder& o) {
-  Encoder e;
-  e.i64(o.tick);
-  e.i32(o.area.x);
-  e.i32(o.area.y);
-  e.i32(o.area.width);
-  e.i32(o.area.height);
-  e.u32(static_cast<std::uint32_t>(o.units.size()));
-  for (UnitId id : o.units) {
+void putUnits(Encoder& e, const std::vector<UnitId>& ids) {
+  e.u32(static_cast<std::uint32_t>(ids.size()));
+  for (UnitId id : ids) {
     e.u32(id.index);
     e.u32(id.generation);
   }
+}
+
+std::vector<UnitId> getUnits(Decoder& d, const char* what) {
+  const std::uint32_t n = d.u32();
+  if (n > d.left() / 8)
+    throw Malformed{std::string("an order lists more ") + what + " than it holds"};
+  std::vector<UnitId> ids;
+  ids.reserve(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t index = d.u32();
+    ids.push_back({index, d.u32()});
+  }
+  return ids;
+}
+
+std::string orderPayload(const IssuedOrder& o) {
+  Encoder e;
+  e.i64(o.tick);
+  e.u8(static_cast<std::uint8_t>(o.kind));
+  e.i32(o.group);
+  e.u8(static_cast<std::uint8_t>(o.command.kind));
+  e.i32(o.command.area.x);
+  e.i32(o.command.area.y);
+  e.i32(o.command.area.width);
+  e.i32(o.command.area.height);
+  putUnits(e, o.command.units);
+  putUnits(e, o.command.targets);
   return e.bytes();
 }
 
 IssuedOrder decodeOrder(Decoder& d) {
   IssuedOrder o;
   o.tick = d.i64();
-  o.area = {d.i32(), d.i32(), d.i32(), d.i32()};
-  const std::uint32_t n = d.u32();
-  if (n > d.left() / 8) throw Malformed{"an order lists more units than it holds"};
-  o.units.reserve(n);
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const std::uint32_t index = d.u32();
-    o.units.push_back({index, d.u32()});
-  }
+  const std::uint8_t kind = d.u8();
+  if (kind > static_cast<std::uint8_t>(IssuedKind::EndBattle))
+    throw Malformed{"unknown order kind " + std::to_string(kind)};
+  o.kind = static_cast<IssuedKind>(kind);
+  o.group = d.i32();
+  const std::uint8_t command = d.u8();
+  if (command > static_cast<std::uint8_t>(OrderKind::Hold))
+    throw Malformed{"unknown command kind " + std::to_string(command)};
+  o.command.kind = static_cast<OrderKind>(command);
+  o.command.area = {d.i32(), d.i32(), d.i32(), d.i32()};
+  o.command.units = getUnits(d, "units");
+  o.command.targets = getUnits(d, "targets");
   return o;
 }
 
@@ -259,9 +284,14 @@ ScenarioResult<Replay> readReplay(const fs::path& file) {
   Replay replay;
   replay.version = Decoder(std::string_view(bytes).substr(kMagic.size(), 4)).u32();
   if (replay.version != kReplayVersion) {
-    return fail("replay format version " + std::to_string(replay.version) +
-                " is not supported (this build reads version " + std::to_string(kReplayVersion) +
-                ")");
+    std::string problem = "replay format version " + std::to_string(replay.version) +
+                          " is not supported (this build reads version " +
+                          std::to_string(kReplayVersion) + ")";
+    if (replay.version < kReplayVersion)
+      problem +=
+          "; it was written before battles were recorded: record it again with rts run "
+          "--replay";
+    return fail(problem);
   }
   bool haveSource = false;
   std::size_t at = kFileHeader;
@@ -371,31 +401,70 @@ ReplayPlayback::ReplayPlayback(const Replay& replay, std::unique_ptr<Scenario> s
   restart();
 }
 
+namespace {
+
+// Empty when `replay`'s command stream fits `scenario`, else the first entry that does not:
+// units and targets the scenario has spawned by then (its groups in order, then each
+// reinforcement as it comes), areas inside the map, reinforcement groups that exist and come
+// in once, winners that are teams.
+std::string scriptProblem(const Replay& replay, const Scenario& scenario) {
+  std::uint32_t spawned = 0;
+  std::vector<bool> in(scenario.groups.size(), false);
+  for (std::size_t g = 0; g < scenario.groups.size(); ++g) {
+    if (scenario.groups[g].reinforcement) continue;
+    spawned += static_cast<std::uint32_t>(scenario.groups[g].anchors.size());
+    in[g] = true;
+  }
+  const pathing::GridMap& map = scenario.grid->map();
+  const auto known = [&](const std::vector<UnitId>& ids) {
+    return std::all_of(ids.begin(), ids.end(),
+                       [&](UnitId id) { return id.index < spawned && id.generation == 0; });
+  };
+  for (const IssuedOrder& o : replay.orders) {
+    const std::string at = "the order at tick " + std::to_string(o.tick);
+    switch (o.kind) {
+      case IssuedKind::Order: {
+        const pathing::CellRect& a = o.command.area;
+        const bool inside = a.width >= 1 && a.height >= 1 && a.x >= 0 && a.y >= 0 &&
+                            a.x <= map.width() - a.width && a.y <= map.height() - a.height;
+        const bool needsArea =
+            o.command.kind == OrderKind::Move || o.command.kind == OrderKind::AttackMove;
+        if (needsArea && !inside) return at + " moves to an area outside the map";
+        if (!known(o.command.units)) return at + " names a unit the scenario never spawns";
+        if (!known(o.command.targets)) return at + " targets a unit the scenario never spawns";
+        break;
+      }
+      case IssuedKind::Reinforce: {
+        if (o.group < 0 || static_cast<std::size_t>(o.group) >= scenario.groups.size())
+          return at + " reinforces group " + std::to_string(o.group) +
+                 ", which the scenario does not have";
+        const GroupSpec& g = scenario.groups[static_cast<std::size_t>(o.group)];
+        if (!g.reinforcement || in[static_cast<std::size_t>(o.group)])
+          return at + " brings in group '" + g.name + "' a second time";
+        in[static_cast<std::size_t>(o.group)] = true;
+        spawned += static_cast<std::uint32_t>(g.anchors.size());
+        break;
+      }
+      case IssuedKind::EndBattle:
+        if (o.group < -1 || o.group >= static_cast<int>(scenario.teams.size()))
+          return at + " ends the battle with team " + std::to_string(o.group) +
+                 ", which the scenario does not have";
+        break;
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
 ScenarioResult<ReplayPlayback> ReplayPlayback::open(const Replay& replay, const std::string& file) {
   ScenarioResult<Scenario> loaded = replayScenario(replay);
   if (!loaded.ok()) {
     return {std::nullopt,
             {file, 0, 0, "the embedded scenario does not load: " + loaded.error.describe()}};
   }
-  std::size_t spawned = 0;
-  for (const GroupSpec& g : loaded.value->groups)
-    spawned += g.anchors.size();
-  const pathing::GridMap& map = loaded.value->grid->map();
-  for (const IssuedOrder& o : replay.orders) {
-    const pathing::CellRect& a = o.area;
-    const bool inside = a.width >= 1 && a.height >= 1 && a.x >= 0 && a.y >= 0 &&
-                        a.x <= map.width() - a.width && a.y <= map.height() - a.height;
-    const bool known = std::all_of(o.units.begin(), o.units.end(), [&](UnitId id) {
-      return id.index < spawned && id.generation == 0;
-    });
-    if (!inside || !known) {
-      return {std::nullopt,
-              {file, 0, 0,
-               "the order at tick " + std::to_string(o.tick) +
-                   (inside ? " names a unit the scenario never spawns"
-                           : " moves to an area outside the map")}};
-    }
-  }
+  if (const std::string problem = scriptProblem(replay, *loaded.value); !problem.empty())
+    return {std::nullopt, {file, 0, 0, problem}};
   return {ReplayPlayback(replay, std::make_unique<Scenario>(std::move(*loaded.value))), {}};
 }
 
@@ -404,11 +473,31 @@ void ReplayPlayback::restart() {
   nextHash_ = 0;
 }
 
+bool ReplayPlayback::done() const {
+  return run_->world().tick() >= replay_->lastTick() || run_->ended();
+}
+
 std::optional<HashMismatch> ReplayPlayback::step() {
+  const std::vector<TickHash>& hashes = replay_->hashes;
+  if (run_->ended()) {
+    // The battle ended before the replay's last tick: the recording run went on, so playback
+    // has departed from it. Named at the next tick the replay vouches for.
+    const std::int64_t tick = run_->world().tick();
+    while (nextHash_ < hashes.size() && hashes[nextHash_].tick <= tick)
+      ++nextHash_;
+    HashMismatch m{tick, 0, run_->world().stateHash(), true};
+    if (nextHash_ < hashes.size()) {
+      m.tick = hashes[nextHash_].tick;
+      m.expected = hashes[nextHash_].hash;
+    } else if (replay_->end) {
+      m.tick = replay_->end->last.tick;
+      m.expected = replay_->end->last.hash;
+    }
+    return m;
+  }
   run_->step();
   const std::int64_t tick = run_->world().tick();
   const std::uint64_t actual = run_->world().stateHash();
-  const std::vector<TickHash>& hashes = replay_->hashes;
   while (nextHash_ < hashes.size() && hashes[nextHash_].tick < tick)
     ++nextHash_;
   if (nextHash_ < hashes.size() && hashes[nextHash_].tick == tick &&
@@ -424,9 +513,9 @@ VerifyOutcome verifyReplay(ReplayPlayback& playback) {
   playback.restart();
   VerifyOutcome outcome;
   const Replay& replay = playback.replay();
-  while (!playback.done()) {
+  while (playback.run().world().tick() < replay.lastTick()) {
     outcome.mismatch = playback.step();
-    ++outcome.ticks;
+    outcome.ticks = playback.run().world().tick();
     if (outcome.mismatch) return outcome;
   }
   outcome.hashes = static_cast<std::int64_t>(

@@ -49,6 +49,60 @@ std::vector<std::size_t> recordOffsets(const std::string& bytes) {
   return at;
 }
 
+std::string idsText(const std::vector<UnitId>& ids) {
+  std::string t;
+  for (UnitId id : ids)
+    t += (t.empty() ? "" : ",") + std::to_string(id.index) + "." + std::to_string(id.generation);
+  return t;
+}
+
+// The command stream as text, for whole-entry comparisons with readable failures.
+std::vector<std::string> describe(const std::vector<IssuedOrder>& orders) {
+  std::vector<std::string> out;
+  for (const IssuedOrder& o : orders) {
+    const warpath::pathing::CellRect& a = o.command.area;
+    out.push_back("tick " + std::to_string(o.tick) + " kind " +
+                  std::to_string(static_cast<int>(o.kind)) + " group " + std::to_string(o.group) +
+                  " " + std::string(toString(o.command.kind)) + " units [" +
+                  idsText(o.command.units) + "] area " + std::to_string(a.x) + "," +
+                  std::to_string(a.y) + " " + std::to_string(a.width) + "x" +
+                  std::to_string(a.height) + " targets [" + idsText(o.command.targets) + "]");
+  }
+  return out;
+}
+
+// Four recruits a side attack-moving through each other on an open field; two red vets come in
+// (a reinforcement with an attack order on blue) when red is down to two. `extra` is added to
+// the triggers.
+std::string battleScenario(const std::string& extra = "") {
+  std::string rows;
+  for (int y = 0; y < 12; ++y)
+    rows += std::string(y == 0 ? "" : ", ") + "'" + std::string(24, '.') + "'";
+  return "name: skirmish\nmap: {rows: [" + rows +
+         "]}\n"
+         "unit_types:\n"
+         "  vet: {size: 1, capability: [ground], speed: 2, hp: 40,\n"
+         "        weapon: {kind: rifle, damage: 10, range: 5, cooldown: 1}}\n"
+         "  recruit: {size: 1, capability: [ground], speed: 2, hp: 30,\n"
+         "            weapon: {kind: rifle, damage: 10, range: 5, cooldown: 1}}\n"
+         "duration: 60\n"
+         "teams: [blue, red]\n"
+         "groups:\n"
+         "  - {name: b, team: blue, type: recruit, count: 4, spawn: {x: 0, y: 3, w: 2, h: 6}}\n"
+         "  - {name: r, team: red, type: recruit, count: 4, spawn: {x: 22, y: 3, w: 2, h: 6}}\n"
+         "  - {name: r2, team: red, type: vet, count: 2, spawn: {x: 22, y: 0, w: 2, h: 1},\n"
+         "     reinforcement: true}\n"
+         "orders:\n"
+         "  - {at: 0, group: b, order: attack_move, move_to: {x: 20, y: 3, w: 4, h: 6}}\n"
+         "  - {at: 0, group: r, order: attack_move, move_to: {x: 0, y: 3, w: 3, h: 6}}\n"
+         "triggers:\n"
+         "  - {name: help, when: {team_below: {team: red, count: 3}},\n"
+         "     do: [{reinforce: r2}, {order: attack, group: r2, target: b}]}\n" +
+         extra +
+         "victory:\n  - eliminate: blue\n  - eliminate: red\n"
+         "expectations:\n  - winner: red\n";
+}
+
 class Replays : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -85,8 +139,11 @@ class Replays : public ::testing::Test {
 
   // Records a replay in-process with hash interval `every`, stopping after `until` ticks.
   fs::path record(std::int64_t every, std::int64_t until = -1) {
+    return recordFile(scenario(), every, until);
+  }
+  fs::path recordFile(const fs::path& scenarioFile, std::int64_t every, std::int64_t until = -1) {
     ReplaySource source;
-    ScenarioResult<Scenario> loaded = loadRecordedScenario(scenario(), source);
+    ScenarioResult<Scenario> loaded = loadRecordedScenario(scenarioFile, source);
     EXPECT_TRUE(loaded.ok()) << loaded.error.describe();
     source.seed = loaded.value->settings.seed;
     source.hashEvery = every;
@@ -102,6 +159,8 @@ class Replays : public ::testing::Test {
     EXPECT_FALSE(writer.value->finish(run, run.done() ? ReplayEnd::Complete : ReplayEnd::Stopped));
     finalHash_ = run.world().stateHash();
     issued_ = run.issued().size();
+    issuedOrders_ = run.issued();
+    finalReport_ = run.report();
     return file;
   }
 
@@ -114,6 +173,8 @@ class Replays : public ::testing::Test {
   fs::path dir_;
   std::uint64_t finalHash_ = 0;
   std::size_t issued_ = 0;
+  std::vector<IssuedOrder> issuedOrders_;
+  Report finalReport_;
 };
 
 TEST_F(Replays, RecordReadVerify) {
@@ -233,14 +294,26 @@ TEST_F(Replays, TruncationBetweenRecordsVerifiesUpToTheLastTick) {
 TEST_F(Replays, AnotherVersionIsRefused) {
   const fs::path file = record(1);
   std::string bytes = slurp(file);
-  bytes[8] = 2;
+  // Version 1 (move orders only, before battles): refused, saying what to do.
+  bytes[8] = 1;
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
-                                 ": replay format version 2 is not supported (this build reads "
-                                 "version 1)");
-  const Result r = rts("replay info " + file.string());
+                                 ": replay format version 1 is not supported (this build reads "
+                                 "version 2); it was written before battles were recorded: "
+                                 "record it again with rts run --replay");
+  Result r = rts("replay verify " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_NE(r.out.find("version 2 is not supported"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(file.string() + ": replay format version 1 is not supported"),
+            std::string::npos)
+      << r.out;
+  bytes[8] = 3;
+  spit(file, bytes);
+  EXPECT_EQ(readError(file), file.string() +
+                                 ": replay format version 3 is not supported (this build reads "
+                                 "version 2)");
+  r = rts("replay info " + file.string());
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("version 3 is not supported"), std::string::npos) << r.out;
   EXPECT_EQ(rts("replay verify " + (dir_ / "none.rpl").string()).status, 2);
 }
 
@@ -313,6 +386,149 @@ TEST_F(Replays, RecordingDoesNotChangeTheRun) {
   while (!run.done())
     run.step();
   EXPECT_EQ(run.world().stateHash(), finalHash_);
+}
+
+// A battle: attack-move and attack orders (with targets), a reinforcement; the run ends when red
+// has eliminated blue. Everything round-trips through the file and plays back to the same
+// hashes, winner and statistics.
+TEST_F(Replays, ABattleRecordsAndVerifies) {
+  std::ofstream(dir_ / "battle.yaml") << battleScenario();
+  const fs::path file = recordFile(dir_ / "battle.yaml", 1);
+  EXPECT_EQ(finalReport_.winner, "red");
+  EXPECT_GT(finalReport_.endTick, 0);
+  ScenarioResult<Replay> replay = readReplay(file);
+  ASSERT_TRUE(replay.ok()) << replay.error.describe();
+  EXPECT_EQ(replay.value->version, 2u);
+  EXPECT_EQ(describe(replay.value->orders), describe(issuedOrders_));
+  ASSERT_EQ(replay.value->orders.size(), 4u);
+  EXPECT_EQ(replay.value->orders[2].kind, IssuedKind::Reinforce);
+  EXPECT_EQ(replay.value->orders[2].group, 2);
+  EXPECT_EQ(replay.value->orders[3].command.kind, OrderKind::Attack);
+  EXPECT_FALSE(replay.value->orders[3].command.targets.empty());  // blue's living units
+  ASSERT_TRUE(replay.value->end);
+  EXPECT_EQ(replay.value->end->reason, ReplayEnd::Complete);  // the battle ended
+  EXPECT_EQ(replay.value->end->last.tick, finalReport_.endTick);
+
+  ScenarioResult<ReplayPlayback> playback = ReplayPlayback::open(*replay.value, file.string());
+  ASSERT_TRUE(playback.ok()) << playback.error.describe();
+  const VerifyOutcome outcome = verifyReplay(*playback.value);
+  EXPECT_FALSE(outcome.mismatch);
+  EXPECT_EQ(outcome.ticks, finalReport_.endTick);
+  const Report played = playback.value->run().report();
+  EXPECT_EQ(played.winner, "red");
+  EXPECT_EQ(played.victory, finalReport_.victory);
+  EXPECT_EQ(played.endTick, finalReport_.endTick);
+  EXPECT_EQ(played.battle, finalReport_.battle);
+  EXPECT_TRUE(playback.value->done());
+
+  const Result info = rts("replay info " + file.string());
+  EXPECT_EQ(info.status, 0) << info.out;
+  EXPECT_NE(info.out.find("format version: 2\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("orders: 4 (2 attack_move, 1 attack, 1 reinforce)\n"), std::string::npos)
+      << info.out;
+  const Result verify = rts("replay verify " + file.string());
+  EXPECT_EQ(verify.status, 0) << verify.out;
+}
+
+// An end_battle is recorded, played back (the run stops at its tick) and shown by info; the CLI
+// run ends there and its replay verifies.
+TEST_F(Replays, AnEndBattleIsRecordedAndPlayedBack) {
+  std::ofstream(dir_ / "end.yaml")
+      << battleScenario("  - {name: stop, when: {at: 5}, do: [{end_battle: blue}]}\n");
+  const fs::path file = dir_ / "end.rpl";
+  Result r = rts("run " + (dir_ / "end.yaml").string() + " --replay " + file.string());
+  EXPECT_EQ(r.status, 1) << r.out;  // winner == red fails: the trigger gave it to blue
+  EXPECT_NE(r.out.find("winner: blue (end_battle by trigger stop) at tick 150"), std::string::npos)
+      << r.out;
+  ScenarioResult<Replay> replay = readReplay(file);
+  ASSERT_TRUE(replay.ok()) << replay.error.describe();
+  ASSERT_FALSE(replay.value->orders.empty());
+  EXPECT_EQ(describe({replay.value->orders.back()}),
+            describe({IssuedOrder{150, IssuedKind::EndBattle, {}, 0}}));
+  EXPECT_EQ(replay.value->lastTick(), 150);
+  ScenarioResult<ReplayPlayback> playback = ReplayPlayback::open(*replay.value, file.string());
+  ASSERT_TRUE(playback.ok()) << playback.error.describe();
+  EXPECT_FALSE(verifyReplay(*playback.value).mismatch);
+  EXPECT_TRUE(playback.value->run().ended());
+  EXPECT_EQ(playback.value->run().report().winner, "blue");
+  r = rts("replay info " + file.string());
+  EXPECT_NE(r.out.find("battle ended at tick 150 by the script, winner: blue"), std::string::npos)
+      << r.out;
+  r = rts("replay verify " + file.string());
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("verified 150 ticks"), std::string::npos) << r.out;
+}
+
+// Command streams that do not fit the scenario are refused before any re-simulation; a battle
+// that ends in playback short of the replay's last tick is a mismatch, never a hang.
+TEST_F(Replays, BattleCommandStreamsAreChecked) {
+  std::ofstream(dir_ / "battle.yaml") << battleScenario();
+  const fs::path file = recordFile(dir_ / "battle.yaml", 1);
+  ScenarioResult<Replay> read = readReplay(file);
+  ASSERT_TRUE(read.ok()) << read.error.describe();
+  const Replay good = *read.value;
+  ASSERT_EQ(good.orders.size(), 4u);
+  const std::int64_t t = good.orders[2].tick;
+  const auto openError = [&](const Replay& bad) {
+    ScenarioResult<ReplayPlayback> p = ReplayPlayback::open(bad, file.string());
+    EXPECT_FALSE(p.ok());
+    return p.ok() ? std::string() : p.error.describe();
+  };
+  const std::string at = file.string() + ": the order at tick " + std::to_string(t);
+
+  Replay bad = good;  // the reinforcements ordered before they came
+  std::swap(bad.orders[2], bad.orders[3]);
+  EXPECT_EQ(openError(bad), at + " names a unit the scenario never spawns");
+  bad = good;  // blue's units attacking a unit that never comes
+  bad.orders[0].command.kind = OrderKind::Attack;
+  bad.orders[0].command.targets = {{99, 0}};
+  EXPECT_EQ(openError(bad), file.string() +
+                                ": the order at tick 0 targets a unit the scenario "
+                                "never spawns");
+  bad = good;  // a move needs an area on the map; a stop does not
+  bad.orders[0].command.kind = OrderKind::Stop;
+  bad.orders[0].command.area = {};
+  EXPECT_TRUE(ReplayPlayback::open(bad, file.string()).ok());
+  bad.orders[0].command.kind = OrderKind::Move;
+  EXPECT_EQ(openError(bad),
+            file.string() + ": the order at tick 0 moves to an area outside the map");
+  bad = good;
+  bad.orders[2].group = 0;
+  EXPECT_EQ(openError(bad), at + " brings in group 'b' a second time");
+  bad.orders[2].group = 7;
+  EXPECT_EQ(openError(bad), at + " reinforces group 7, which the scenario does not have");
+  bad = good;
+  bad.orders.push_back({good.orders.back().tick, IssuedKind::EndBattle, {}, 2});
+  EXPECT_EQ(openError(bad), file.string() + ": the order at tick " +
+                                std::to_string(good.orders.back().tick) +
+                                " ends the battle with team 2, which the scenario does not have");
+
+  // An end at tick 100 that the recording run never had: playback stops there.
+  bad = good;
+  bad.orders.insert(bad.orders.begin() + 2, IssuedOrder{100, IssuedKind::EndBattle, {}, -1});
+  ScenarioResult<ReplayPlayback> playback = ReplayPlayback::open(bad, file.string());
+  ASSERT_TRUE(playback.ok()) << playback.error.describe();
+  const VerifyOutcome outcome = verifyReplay(*playback.value);
+  ASSERT_TRUE(outcome.mismatch);
+  EXPECT_TRUE(outcome.mismatch->battleEnded);
+  EXPECT_EQ(outcome.mismatch->tick, 101);
+  EXPECT_EQ(outcome.ticks, 100);
+  EXPECT_TRUE(playback.value->done());
+
+  // Damaged kinds in the file are refused when read.
+  std::string bytes = slurp(file);
+  const std::vector<std::size_t> records = recordOffsets(bytes);
+  const std::size_t o = records[1];  // the first order
+  ASSERT_EQ(bytes[o], 'O');
+  bytes[o + 9 + 8] = 9;  // the entry's kind, after its tick
+  const std::uint32_t length = static_cast<std::uint32_t>(records[2] - o - 13);
+  const std::uint32_t c = static_cast<std::uint32_t>(
+      crc32(0L, reinterpret_cast<const Bytef*>(bytes.data() + o + 9), length));
+  for (int b = 0; b < 4; ++b)
+    bytes[o + 9 + length + static_cast<std::size_t>(b)] = static_cast<char>(c >> (8 * b));
+  spit(file, bytes);
+  EXPECT_EQ(readError(file), file.string() + ": record at byte " + std::to_string(o) +
+                                 " is malformed: unknown order kind 9");
 }
 
 }  // namespace

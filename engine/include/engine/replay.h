@@ -1,6 +1,7 @@
 #pragma once
 // Self-contained replays (format in docs/replays.md): the scenario text and every file it
-// read, the seed, the orders the world received and the state hash every N ticks. Written
+// read, the seed, the command stream (orders the world received, reinforcements, the end of
+// the battle) and the state hash every N ticks. Written
 // record by record and flushed after every tick, so a run that stops early still leaves a
 // replay that verifies up to its last recorded tick. Every record carries CRC-32s; reading a
 // truncated, corrupted or foreign file gives an error naming the file and the problem.
@@ -18,7 +19,9 @@
 
 namespace warpath::engine {
 
-inline constexpr std::uint32_t kReplayVersion = 1;
+// 2: orders of every kind (move, attack-move, attack, hold, stop), reinforcements and the end of
+// the battle. Version-1 files (move orders only) are refused with a message saying so.
+inline constexpr std::uint32_t kReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.
 struct ReplayFile {
@@ -41,7 +44,7 @@ struct TickHash {
 };
 
 enum class ReplayEnd : std::uint8_t {
-  Complete,     // ran the scenario's whole duration
+  Complete,     // ran to its end: the scenario's whole duration, or until the battle ended
   Stopped,      // stopped at a tick limit (--until)
   Interrupted,  // stopped by SIGINT/SIGTERM between ticks
 };
@@ -105,6 +108,9 @@ struct HashMismatch {
   std::int64_t tick = 0;
   std::uint64_t expected = 0;
   std::uint64_t actual = 0;
+  // The battle ended in playback before the replay's last tick (so it never reached `tick`,
+  // the next tick the replay vouches for); `actual` is the hash where it stopped.
+  bool battleEnded = false;
 };
 
 // Re-simulates a replay: its embedded scenario, recorded seed and recorded orders. Movable.
@@ -114,11 +120,13 @@ class ReplayPlayback {
   // that no longer loads, an order naming a unit the scenario never spawns).
   static ScenarioResult<ReplayPlayback> open(const Replay& replay, const std::string& file);
 
-  // Steps once; a mismatch when the new tick has a recorded hash that differs.
+  // Steps once; a mismatch when the new tick has a recorded hash that differs, or when the
+  // battle has already ended short of the replay's last tick (the world cannot step on).
   std::optional<HashMismatch> step();
   // Starts again from tick 0 (scrubbing back: worlds cannot be copied, so re-simulate).
   void restart();
-  bool done() const { return run_->world().tick() >= replay_->lastTick(); }
+  // At the replay's last tick, or the battle ended.
+  bool done() const;
   const ScenarioRun& run() const { return *run_; }
   const Scenario& scenario() const { return *scenario_; }
   const Replay& replay() const { return *replay_; }
