@@ -7,6 +7,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "support/rts_process.h"
 #include "support/scratch_dir.h"
@@ -109,6 +111,101 @@ TEST_F(RunCli, TestCommandCountsPassesAndFailures) {
   EXPECT_NE(r.out.find("PASS " + (dir_ / "a.yaml").string()), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("FAIL " + (dir_ / "b.yaml").string()), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("1 passed, 1 failed\n"), std::string::npos) << r.out;
+}
+
+// A battle: the run ends when the victory condition is met; the report holds the statistics
+// per (team, type), the winner, the condition, the tick and the triggers fired; the console
+// names the winner and each team's losses.
+TEST_F(RunCli, ABattleEndsAtItsVictoryAndReportsTheOutcome) {
+  const fs::path file = dir_ / "duel.yaml";
+  std::ofstream(file) << "map: {rows: ['............', '............', '............']}\n"
+                         "unit_types:\n"
+                         "  vet: {size: 1, capability: [ground], speed: 2, hp: 40,\n"
+                         "        weapon: {kind: rifle, damage: 10, range: 5, cooldown: 1}}\n"
+                         "  recruit: {size: 1, capability: [ground], speed: 2, hp: 30,\n"
+                         "            weapon: {kind: rifle, damage: 10, range: 5, cooldown: 1}}\n"
+                         "duration: 20\n"
+                         "teams: [blue, red]\n"
+                         "groups:\n"
+                         "  - {name: b, team: blue, type: vet, count: 1,"
+                         " spawn: {x: 2, y: 1, w: 1, h: 1}}\n"
+                         "  - {name: r, team: red, type: recruit, count: 1,"
+                         " spawn: {x: 5, y: 1, w: 1, h: 1}}\n"
+                         "triggers:\n"
+                         "  - {name: dig in, when: {at: 1}, do: [{order: hold, group: b}]}\n"
+                         "victory:\n  - eliminate: blue\n"
+                         "expectations:\n"
+                         "  - winner: blue\n"
+                         "  - losses: {team: blue, at_most: 0}\n";
+  const std::string report = (dir_ / "report.json").string();
+  const Result r = rts("run " + file.string() + " --report " + report);
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("winner: blue (blue eliminates the others) at tick 91 (3.0 s)\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("  blue: lost 0 of 1; 1 kills, 3 shots, 3 hits\n"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("  red: lost 1 of 1 (recruit 1); 0 kills, 3 shots, 3 hits\n"),
+            std::string::npos)
+      << r.out;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(report));
+  EXPECT_EQ(j["ticks"], 91);
+  EXPECT_EQ(j["complete"], true);
+  EXPECT_EQ(j["winner"], "blue");
+  EXPECT_EQ(j["victory"], "blue eliminates the others");
+  EXPECT_EQ(j["end_tick"], 91);
+  EXPECT_EQ(j["triggers_fired"], nlohmann::json::array({"dig in"}));
+  ASSERT_EQ(j["battle"].size(), 2u);
+  const nlohmann::json& vet = j["battle"][0];
+  EXPECT_EQ(vet["team"], "blue");
+  EXPECT_EQ(vet["type"], "vet");
+  for (const auto& [key, value] : std::vector<std::pair<std::string, int>>{{"units", 1},
+                                                                           {"alive", 1},
+                                                                           {"losses", 0},
+                                                                           {"kills", 1},
+                                                                           {"shots_fired", 3},
+                                                                           {"hits", 3},
+                                                                           {"damage_dealt", 30},
+                                                                           {"damage_taken", 30}})
+    EXPECT_EQ(vet[key], value) << key;
+  EXPECT_EQ(j["battle"][1]["losses"], 1);
+  EXPECT_EQ(j["expectations"][0]["actual"], 0);  // the winner's team index
+  EXPECT_EQ(j["expectations"][1]["pass"], true);
+  EXPECT_TRUE(j["timing"].contains("combat_ms"));
+
+  // Stopped before the end: a partial report, no winner yet.
+  const Result early = rts("run " + file.string() + " --until 40 --quiet --report " + report);
+  EXPECT_EQ(early.status, 1) << early.out;  // winner == blue does not hold yet
+  const nlohmann::json p = nlohmann::json::parse(std::ifstream(report));
+  EXPECT_EQ(p["ticks"], 40);
+  EXPECT_EQ(p["complete"], false);
+  EXPECT_TRUE(p["winner"].is_null());
+  EXPECT_TRUE(p["victory"].is_null());
+  EXPECT_TRUE(p["end_tick"].is_null());
+  EXPECT_EQ(p["triggers_fired"], nlohmann::json::array({"dig in"}));  // at tick 30
+  EXPECT_EQ(p["battle"][0]["shots_fired"], 1);
+
+  // rts test names the winner.
+  const Result t = rts("test " + dir_.string());
+  EXPECT_NE(t.out.find("PASS " + file.string() + " (2 units, 91 ticks, winner blue,"),
+            std::string::npos)
+      << t.out;
+}
+
+// A travel-only run (one team) prints no battle summary; its report has no winner.
+TEST_F(RunCli, ATravelRunHasNoBattleSummary) {
+  const std::string file = write("ok.yaml", "  - max_stuck: 0\n");
+  const std::string report = (dir_ / "report.json").string();
+  const Result r = rts("run " + file + " --report " + report);
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out.find("winner:"), std::string::npos) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(report));
+  EXPECT_TRUE(j["winner"].is_null());
+  EXPECT_TRUE(j["end_tick"].is_null());
+  EXPECT_EQ(j["ticks"], 600);
+  ASSERT_EQ(j["battle"].size(), 1u);
+  EXPECT_EQ(j["battle"][0]["units"], 3);
+  EXPECT_EQ(j["battle"][0]["alive"], 3);
 }
 
 }  // namespace

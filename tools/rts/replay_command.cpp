@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <map>
 #include <string>
 
 #include "engine/replay.h"
@@ -27,6 +28,13 @@ struct InfoOptions {
 };
 
 void printMismatch(const std::string& file, const engine::HashMismatch& m) {
+  if (m.battleEnded) {
+    fmt::print(stderr,
+               "{}: the battle ended in playback before tick {}, which the replay records "
+               "(expected {:016x}, state hash where it ended {:016x})\n",
+               file, m.tick, m.expected, m.actual);
+    return;
+  }
   fmt::print(stderr, "{}: tick {}: state hash differs: expected {:016x}, actual {:016x}\n", file,
              m.tick, m.expected, m.actual);
 }
@@ -80,7 +88,37 @@ int runInfo(const InfoOptions& options) {
   fmt::print("seed: {}\n", s.seed);
   fmt::print("ticks recorded: {}\n", replay.lastTick());
   fmt::print("hash every: {} ticks ({} hashes)\n", s.hashEvery, replay.hashes.size());
-  fmt::print("orders: {}\n", replay.orders.size());
+  // The command stream by kind: orders by what they tell, then reinforcements and the end.
+  std::map<std::string, int> kinds;
+  for (const engine::IssuedOrder& o : replay.orders) {
+    switch (o.kind) {
+      case engine::IssuedKind::Order:
+        ++kinds[std::string(engine::toString(o.command.kind))];
+        break;
+      case engine::IssuedKind::Reinforce:
+        ++kinds["reinforce"];
+        break;
+      case engine::IssuedKind::EndBattle:
+        ++kinds["end_battle"];
+        break;
+    }
+  }
+  std::string byKind;
+  for (const char* k :
+       {"move", "attack_move", "attack", "hold", "stop", "reinforce", "end_battle"}) {
+    if (const auto it = kinds.find(k); it != kinds.end())
+      byKind += fmt::format("{}{} {}", byKind.empty() ? "" : ", ", it->second, k);
+  }
+  fmt::print("orders: {}{}\n", replay.orders.size(), byKind.empty() ? "" : " (" + byKind + ")");
+  for (const engine::IssuedOrder& o : replay.orders) {
+    if (o.kind == engine::IssuedKind::EndBattle) {
+      fmt::print("battle ended at tick {} by the script, winner: {}\n", o.tick,
+                 o.group < 0 || !scenario.ok() ||
+                         static_cast<std::size_t>(o.group) >= scenario.value->teams.size()
+                     ? std::string("none")
+                     : scenario.value->teams[static_cast<std::size_t>(o.group)]);
+    }
+  }
   fmt::print("embedded files:\n  {} ({} bytes, the scenario)\n", s.scenarioPath,
              s.scenarioText.size());
   for (const engine::ReplayFile& f : s.files)

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -42,7 +43,15 @@ int stuckCount(const engine::World& world) {
   return n;
 }
 
-// A bar redrawn in place on a terminal; on a pipe, a plain line every tenth of the run.
+int deadCount(const engine::World& world) {
+  int n = 0;
+  for (const engine::Unit& u : world.units())
+    n += u.alive() ? 0 : 1;
+  return n;
+}
+
+// A bar redrawn in place on a terminal; on a pipe, a plain line every tenth of the run (and at
+// the tick the battle ended, when it ends early).
 class Progress {
  public:
   Progress(std::int64_t total, bool tty) : total_(std::max<std::int64_t>(total, 1)), tty_(tty) {}
@@ -50,15 +59,18 @@ class Progress {
   void update(const engine::ScenarioRun& run) {
     const std::int64_t tick = run.world().tick();
     const auto tenth = std::max<std::int64_t>(total_ / 10, 1);
-    if (tty_ ? tick % 10 != 0 && tick != total_ : tick % tenth != 0 && tick != total_) return;
+    if (!run.ended() &&
+        (tty_ ? tick % 10 != 0 && tick != total_ : tick % tenth != 0 && tick != total_))
+      return;
     constexpr int kWidth = 20;
     const auto done = static_cast<int>(std::min<std::int64_t>(tick * kWidth / total_, kWidth));
     const std::string line =
-        fmt::format("tick {}/{} [{}{}] {:3d}%  units {}  arrived {}  stuck {}", tick, total_,
-                    std::string(static_cast<std::size_t>(done), '#'),
+        fmt::format("tick {}/{} [{}{}] {:3d}%  units {}  arrived {}  stuck {}  dead {}{}", tick,
+                    total_, std::string(static_cast<std::size_t>(done), '#'),
                     std::string(static_cast<std::size_t>(kWidth - done), ' '),
                     static_cast<int>(std::min<std::int64_t>(tick * 100 / total_, 100)),
-                    run.world().units().size(), arrivedCount(run.world()), stuckCount(run.world()));
+                    run.world().units().size(), arrivedCount(run.world()), stuckCount(run.world()),
+                    deadCount(run.world()), run.ended() ? "  battle over" : "");
     if (tty_) {
       fmt::print(stderr, "\r  {}", line);
       drawn_ = true;
@@ -86,6 +98,48 @@ void prepareOutputPath(const std::string& file, const std::string& option) {
   if (error) {
     throw BadInput{option + ": cannot create the folder '" + parent.string() +
                    "': " + error.message()};
+  }
+}
+
+// Whether the run is a battle: the scenario has victory conditions or an end_battle, or combat
+// is on with two teams or more and an armed unit type. Travel-only runs print no battle summary.
+bool isBattle(const engine::Scenario& scenario) {
+  if (!scenario.victory.empty()) return true;
+  for (const engine::TriggerSpec& t : scenario.triggers) {
+    for (const engine::ActionSpec& a : t.actions)
+      if (a.kind == engine::ActionKind::EndBattle) return true;
+  }
+  if (!scenario.settings.combat.enabled || scenario.teams.size() < 2) return false;
+  return std::any_of(scenario.catalogue.begin(), scenario.catalogue.end(),
+                     [](const units::UnitType& t) { return t.weapon.has_value(); });
+}
+
+// The winner and, per team, its losses by type, kills and shots.
+void printBattle(const engine::Scenario& scenario, const engine::Report& report, double tickRate) {
+  if (!report.winner.empty()) {
+    fmt::print("winner: {} ({}) at tick {} ({:.1f} s)\n", report.winner, report.victory,
+               report.endTick, static_cast<double>(report.endTick) / tickRate);
+  } else if (report.endTick >= 0) {
+    fmt::print("winner: none ({}) at tick {} ({:.1f} s)\n", report.victory, report.endTick,
+               static_cast<double>(report.endTick) / tickRate);
+  } else {
+    fmt::print("winner: none (no victory condition met)\n");
+  }
+  for (const std::string& team : scenario.teams) {
+    int units = 0, losses = 0, kills = 0, shots = 0, hits = 0;
+    std::string byType;
+    for (const engine::BattleStats& s : report.battle) {
+      if (s.team != team) continue;
+      units += s.units;
+      losses += s.losses;
+      kills += s.kills;
+      shots += s.shotsFired;
+      hits += s.hits;
+      if (s.losses > 0)
+        byType += fmt::format("{}{} {}", byType.empty() ? "" : ", ", s.type, s.losses);
+    }
+    fmt::print("  {}: lost {} of {}{}; {} kills, {} shots, {} hits\n", team, losses, units,
+               byType.empty() ? "" : " (" + byType + ")", kills, shots, hits);
   }
 }
 
@@ -153,16 +207,19 @@ int runRun(const RunOptions& options) {
 
   const engine::Report& report = outcome.report;
   if (!options.quiet) {
+    if (isBattle(scenario)) printBattle(scenario, report, run.world().tickRate());
     for (const engine::ExpectationResult& e : report.expectations)
       fmt::print("expectation \"{}\": {} ({:.4g})\n", e.text, e.pass ? "PASS" : "FAIL", e.actual);
     const engine::TickTiming t = run.world().meanTiming();
     fmt::print(
-        "{} ticks, {:.1f} s simulated in {:.2f} s; {:.3f} ms/tick (pathing {:.3f}, steering "
-        "{:.3f}, physics {:.3f}, bookkeeping {:.3f}); state hash {:016x}\n",
+        "{} ticks, {:.1f} s simulated in {:.2f} s; {:.3f} ms/tick (pathing {:.3f}, combat {:.3f}, "
+        "steering {:.3f}, physics {:.3f}, bookkeeping {:.3f}); state hash {:016x}\n",
         report.ticks, report.simSeconds, outcome.wallSeconds,
-        (t.pathingMicros + t.steeringMicros + t.physicsMicros + t.bookkeepingMicros) / 1000.0,
-        t.pathingMicros / 1000.0, t.steeringMicros / 1000.0, t.physicsMicros / 1000.0,
-        t.bookkeepingMicros / 1000.0, report.stateHash);
+        (t.pathingMicros + t.combatMicros + t.steeringMicros + t.physicsMicros +
+         t.bookkeepingMicros) /
+            1000.0,
+        t.pathingMicros / 1000.0, t.combatMicros / 1000.0, t.steeringMicros / 1000.0,
+        t.physicsMicros / 1000.0, t.bookkeepingMicros / 1000.0, report.stateHash);
   }
   if (!options.report.empty()) {
     std::ofstream out(options.report);

@@ -118,6 +118,25 @@ nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& 
                   {"search_us", m.microseconds},
                   {"preprocess_ms", m.preprocessMilliseconds}};
 
+  json battle = json::array();
+  for (const engine::BattleStats& s : r.battle) {
+    battle.push_back({{"team", s.team},
+                      {"type", s.type},
+                      {"units", s.units},
+                      {"alive", s.alive},
+                      {"losses", s.losses},
+                      {"kills", s.kills},
+                      {"shots_fired", s.shotsFired},
+                      {"hits", s.hits},
+                      {"damage_dealt", s.damageDealt},
+                      {"damage_taken", s.damageTaken}});
+  }
+  j["battle"] = battle;
+  j["winner"] = r.winner.empty() ? json(nullptr) : json(r.winner);
+  j["victory"] = r.victory.empty() ? json(nullptr) : json(r.victory);
+  j["end_tick"] = r.endTick < 0 ? json(nullptr) : json(r.endTick);
+  j["triggers_fired"] = r.triggersFired;
+
   json expectations = json::array();
   for (const engine::ExpectationResult& e : r.expectations)
     expectations.push_back(
@@ -127,9 +146,11 @@ nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& 
 
   // Wall time per tick, by phase: a measurement, never an input to the simulation.
   const engine::TickTiming t = run.world().meanTiming();
-  const double total = t.pathingMicros + t.steeringMicros + t.physicsMicros + t.bookkeepingMicros;
+  const double total =
+      t.pathingMicros + t.combatMicros + t.steeringMicros + t.physicsMicros + t.bookkeepingMicros;
   j["timing"] = {{"ms_per_tick", total / 1000.0},
                  {"pathing_ms", t.pathingMicros / 1000.0},
+                 {"combat_ms", t.combatMicros / 1000.0},
                  {"steering_ms", t.steeringMicros / 1000.0},
                  {"physics_ms", t.physicsMicros / 1000.0},
                  {"bookkeeping_ms", t.bookkeepingMicros / 1000.0},

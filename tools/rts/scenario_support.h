@@ -34,7 +34,8 @@ struct RunOutcome {
   bool interrupted = false;
 };
 
-// Steps `run` until its duration, the tick limit or an interrupt.
+// Steps `run` until it is done (its duration ran out or the battle ended), the tick limit or
+// an interrupt.
 RunOutcome runToEnd(engine::ScenarioRun& run, const RunLimits& limits);
 
 nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& run);

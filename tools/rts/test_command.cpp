@@ -46,8 +46,10 @@ int runTest(const TestOptions& options) {
     engine::ScenarioRun run(*loaded.value);
     const RunOutcome outcome = runToEnd(run, {});
     const bool ok = !outcome.interrupted && outcome.report.passed();
-    fmt::print("{} {} ({} units, {} ticks, {:.2f} s)\n", ok ? "PASS" : "FAIL", file.string(),
-               run.world().units().size(), outcome.report.ticks, outcome.wallSeconds);
+    fmt::print("{} {} ({} units, {} ticks{}, {:.2f} s)\n", ok ? "PASS" : "FAIL", file.string(),
+               run.world().units().size(), outcome.report.ticks,
+               outcome.report.winner.empty() ? "" : ", winner " + outcome.report.winner,
+               outcome.wallSeconds);
     for (const engine::ExpectationResult& e : outcome.report.expectations) {
       if (!e.pass) fmt::print("  expectation \"{}\" failed: actual {:.4g}\n", e.text, e.actual);
     }
