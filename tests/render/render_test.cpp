@@ -207,6 +207,47 @@ TEST(Renderer, EachOverlayChangesTheImage) {
   EXPECT_EQ(renderOnce(renderer, scene), base);
 }
 
+// Pixels of exactly `colour` inside the pixel rectangle [x0, x1) x [y0, y1).
+int pixelsOf(const Image& image, Rgba colour, int x0, int y0, int x1, int y1) {
+  int n = 0;
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      const Rgba p = image.at(x, y);
+      n += p.r == colour.r && p.g == colour.g && p.b == colour.b ? 1 : 0;
+    }
+  }
+  return n;
+}
+
+TEST(Renderer, ShotsAreDrawnAsTracersAndStreaks) {
+  const GridMap map = tinyMap();  // 24x16 cells at 10 pixels a cell
+  Renderer renderer =
+      makeRenderer(map, {.width = 240, .height = 160, .overlays = {.stuck = false, .hud = false}});
+  FrameScene scene;
+  const Image plain = renderOnce(renderer, scene);
+  // An instant shot along row 14 (ground) in red's colour; a shell over row 0 in blue's.
+  scene.shots = {{{2.5f, 14.55f}, {9.5f, 14.55f}, 1, false},
+                 {{12.5f, 0.55f}, {18.5f, 0.55f}, 0, true}};
+  const Image shot = renderOnce(renderer, scene);
+  const Rgba red = palette::teamColour(1);
+  const Rgba blue = palette::teamColour(0);
+  EXPECT_EQ(pixelsOf(plain, red, 0, 130, 240, 160), 0);
+  EXPECT_GE(pixelsOf(shot, red, 25, 140, 95, 151), 60);            // a line about 70 pixels long
+  EXPECT_GE(pixelsOf(shot, blue, 125, 0, 180, 12), 40);            // the streak ...
+  EXPECT_GT(pixelsOf(shot, palette::kWhite, 180, 0, 192, 12), 0);  // ... and its head
+  // Nothing changed outside the two shots' bands.
+  int outside = 0;
+  for (int y = 0; y < 160; ++y) {
+    for (int x = 0; x < 240; ++x) {
+      const bool band = (y < 15 && x >= 115 && x < 200) || (y >= 135 && x >= 15 && x < 105);
+      outside += !band && !(plain.at(x, y) == shot.at(x, y)) ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(outside, 0);
+  scene.shots.clear();
+  EXPECT_EQ(renderOnce(renderer, scene), plain);
+}
+
 TEST(Renderer, RejectsBadDefinitionsWithAMessage) {
   const GridMap map = tinyMap();
   auto tooSmall = Renderer::create(map, {.width = 0, .height = 10});

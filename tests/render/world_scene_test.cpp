@@ -15,8 +15,10 @@ namespace {
 using pathing::Terrain;
 
 TEST(WorldScene, ShowsUnitsTheirOrdersAndCounts) {
-  units::UnitType tank{
-      .name = "tank", .size = 2, .capability = pathing::Capability::of({Terrain::Ground})};
+  units::UnitType tank;
+  tank.name = "tank";
+  tank.size = 2;
+  tank.capability = pathing::Capability::of({Terrain::Ground});
   tank.setSpeed(3.0);
   tank.radius = 0.9;
   auto grid = std::make_shared<const pathing::AnnotatedGrid>(pathing::GridMap(24, 24));
@@ -51,6 +53,93 @@ TEST(WorldScene, ShowsUnitsTheirOrdersAndCounts) {
   // Heading south-east, towards the goal.
   EXPECT_GT(std::cos(unit.facing), 0.0f);
   EXPECT_GT(std::sin(unit.facing), 0.0f);
+}
+
+// A gunner that kills in one shot, fired one cooldown (1 s) after spawning.
+units::UnitType gunner(double projectileSpeed) {
+  units::UnitType t;
+  t.name = "gunner";
+  t.capability = pathing::Capability::of({Terrain::Ground});
+  t.setSpeed(2.0);
+  t.hp = 10;
+  units::Weapon w;
+  w.name = "gun";
+  w.damage = 10;
+  w.range = 6.0;
+  w.cooldown = 1.0;
+  w.projectileSpeed = projectileSpeed;
+  t.weapon = w;
+  return t;
+}
+
+units::UnitType sandbag() {
+  units::UnitType t;
+  t.name = "sandbag";
+  t.capability = pathing::Capability::of({Terrain::Ground});
+  t.setSpeed(1.0);
+  t.hp = 10;
+  return t;
+}
+
+// An instant shot is a tracer from shooter to target in the frame after it was fired; the dead
+// unit is a wreck while its wreck stands (1 s here) and gone from the picture afterwards, still
+// counted dead.
+TEST(WorldScene, TracersAndWrecksThatClear) {
+  auto grid = std::make_shared<const pathing::AnnotatedGrid>(pathing::GridMap(24, 24));
+  engine::WorldSettings settings;
+  settings.combat.wreckSeconds = 1.0;
+  engine::World world(grid, {gunner(0.0), sandbag()}, settings);
+  world.spawn(0, 0, 0, {3, 3});
+  world.spawn(1, 1, 1, {6, 3});
+  while (world.tick() < 31)
+    world.step();
+  const engine::Unit& dead = world.units()[1];
+  ASSERT_FALSE(dead.alive());
+  ASSERT_EQ(dead.deathTick, 30);
+  ASSERT_EQ(dead.wreckUntilTick, 60);
+
+  FrameScene scene = sceneOf(world, 2);
+  ASSERT_EQ(scene.shots.size(), 1u);
+  EXPECT_EQ(scene.shots[0], (Tracer{{3.5f, 3.5f}, {6.5f, 3.5f}, 0, false}));
+  ASSERT_EQ(scene.units.size(), 2u);
+  EXPECT_EQ(scene.units[1].state, UnitState::Wreck);
+  EXPECT_EQ(scene.teams[1].dead, 1);
+  EXPECT_EQ(scene.teams[1].alive, 0);
+
+  world.step();  // nothing fires at tick 31: no tracer
+  EXPECT_TRUE(sceneOf(world, 2).shots.empty());
+  while (world.tick() < 59)
+    world.step();
+  EXPECT_EQ(sceneOf(world, 2).units.size(), 2u);  // the wreck stands until tick 60
+  world.step();
+  scene = sceneOf(world, 2);
+  EXPECT_EQ(world.units()[1].wreckUntilTick, -1);
+  ASSERT_EQ(scene.units.size(), 1u);  // cleared: not drawn
+  EXPECT_EQ(scene.units[0].team, 0);
+  EXPECT_EQ(scene.teams[1].dead, 1);
+}
+
+// A shell in flight is a streak at most a cell long ending where the shell is.
+TEST(WorldScene, ShellsInFlightAreStreaks) {
+  auto grid = std::make_shared<const pathing::AnnotatedGrid>(pathing::GridMap(24, 24));
+  engine::World world(grid, {gunner(3.0), sandbag()}, engine::WorldSettings{});
+  world.spawn(0, 0, 0, {3, 3});
+  world.spawn(1, 1, 1, {8, 3});  // a gap of 4 cells: 40 ticks of flight at 3 cells/s
+  while (world.tick() < 50)
+    world.step();
+  ASSERT_EQ(world.shotsInFlight().size(), 1u);
+  const engine::Shot& shell = world.shotsInFlight()[0];
+  ASSERT_EQ(shell.firedTick, 30);
+  ASSERT_EQ(shell.landTick, 70);
+  const FrameScene scene = sceneOf(world);
+  ASSERT_EQ(scene.shots.size(), 1u);
+  const Tracer& t = scene.shots[0];
+  EXPECT_TRUE(t.projectile);
+  EXPECT_EQ(t.team, 0);
+  EXPECT_FLOAT_EQ(t.to.x, 3.5f + 5.0f * 0.5f);  // half way at tick 50
+  EXPECT_FLOAT_EQ(t.from.x, t.to.x - 1.0f);
+  EXPECT_FLOAT_EQ(t.to.y, 3.5f);
+  EXPECT_TRUE(world.units()[1].alive());
 }
 
 }  // namespace

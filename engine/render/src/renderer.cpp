@@ -273,6 +273,18 @@ struct Renderer::Impl {
       tris.rect(x0, y1 - h, u.centre.x + halfW, y1, palette::kHpLost);
       tris.rect(x0, y1 - h, x0 + 2.0f * halfW * std::clamp(u.hp, 0.0f, 1.0f), y1, palette::kHpGood);
     }
+    // Shots over the units: instant tracers as thin lines, shells as short streaks.
+    for (const Tracer& t : scene.shots) {
+      const Rgba colour = palette::teamColour(t.team);
+      if (!t.projectile) {
+        tris.thickLine(t.from, t.to, std::max(pixel * 0.5f, 0.05f), colour);
+        continue;
+      }
+      const float hw = std::max(pixel, 0.1f);
+      tris.thickLine(t.from, t.to, hw, colour);
+      tris.rect(t.to.x - hw * 1.5f, t.to.y - hw * 1.5f, t.to.x + hw * 1.5f, t.to.y + hw * 1.5f,
+                palette::kWhite);
+    }
     if (def.overlays.stuck) {
       for (const UnitView& u : scene.units) {
         if (!u.stuck || u.state == UnitState::Wreck) continue;

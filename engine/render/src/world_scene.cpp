@@ -18,13 +18,19 @@ FrameScene sceneOf(const engine::World& world, int teamCount) {
   scene.units.reserve(world.units().size());
   for (const engine::Unit& u : world.units()) {
     const units::UnitType& type = catalogue[static_cast<std::size_t>(u.type)];
+    TeamCounts& counts = scene.teams[static_cast<std::size_t>(u.team)];
+    if (!u.alive()) {
+      ++counts.dead;
+      // A wreck is drawn while it stands; once cleared the unit is gone from the picture.
+      if (u.wreckUntilTick <= world.tick()) continue;
+    }
     UnitView view;
     view.centre = {static_cast<float>(u.position.x), static_cast<float>(u.position.y)};
     view.size = type.size;
     view.team = u.team;
     view.type = u.type;
     view.hp = static_cast<float>(u.hp) / static_cast<float>(std::max(type.hp, 1));
-    view.state = u.hp <= 0            ? UnitState::Wreck
+    view.state = !u.alive()           ? UnitState::Wreck
                  : u.arrivalTick >= 0 ? UnitState::Arrived
                                       : UnitState::Alive;
     view.stuck = u.progress.stuckWindows() > 0;
@@ -43,14 +49,12 @@ FrameScene sceneOf(const engine::World& world, int teamCount) {
     }
     if (dx != 0.0 || dy != 0.0) view.facing = static_cast<float>(std::atan2(dy, dx));
 
-    TeamCounts& counts = scene.teams[static_cast<std::size_t>(u.team)];
-    if (view.state == UnitState::Wreck) {
-      ++counts.dead;
-    } else {
+    if (view.state != UnitState::Wreck) {
       ++counts.alive;
       if (view.state == UnitState::Arrived) ++counts.arrived;
     }
-    if (u.orderTick >= 0 && u.goalArea.width > 0 && u.goalArea.height > 0) {
+    if (view.state != UnitState::Wreck && u.orderTick >= 0 && u.goalArea.width > 0 &&
+        u.goalArea.height > 0) {
       const bool known = std::any_of(
           scene.arrivalZones.begin(), scene.arrivalZones.end(), [&](const ArrivalZone& z) {
             return z.team == u.team && z.area.x == u.goalArea.x && z.area.y == u.goalArea.y &&
@@ -59,6 +63,32 @@ FrameScene sceneOf(const engine::World& world, int teamCount) {
       if (!known) scene.arrivalZones.push_back({u.goalArea, u.team});
     }
     scene.units.push_back(std::move(view));
+  }
+
+  const auto teamOf = [&](engine::UnitId shooter) {
+    const engine::Unit* u = world.find(shooter);
+    return u != nullptr ? u->team : 0;
+  };
+  const auto point = [](units::Vec2 v) {
+    return Point{static_cast<float>(v.x), static_cast<float>(v.y)};
+  };
+  // Instant shots of the last step: the whole line.
+  for (const engine::Shot& shot : world.shotsLastTick()) {
+    if (shot.landTick != shot.firedTick) continue;
+    scene.shots.push_back({point(shot.from), point(shot.to), teamOf(shot.shooter), false});
+  }
+  // Shells in flight: a streak of at most a cell ending where the shell is now.
+  for (const engine::Shot& shot : world.shotsInFlight()) {
+    if (shot.landTick <= shot.firedTick) continue;
+    const double t = std::clamp(static_cast<double>(world.tick() - shot.firedTick) /
+                                    static_cast<double>(shot.landTick - shot.firedTick),
+                                0.0, 1.0);
+    const units::Vec2 d = shot.to - shot.from;
+    const double length = d.length();
+    if (length <= 0.0) continue;
+    const units::Vec2 head = shot.from + d * t;
+    const units::Vec2 tail = head - d * (std::min(1.0, length * t) / length);
+    scene.shots.push_back({point(tail), point(head), teamOf(shot.shooter), true});
   }
   return scene;
 }

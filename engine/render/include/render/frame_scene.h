@@ -22,7 +22,7 @@ struct Point {
 enum class UnitState : std::uint8_t {
   Alive,
   Arrived,  // reached its goal; drawn like Alive
-  Wreck,    // dead: drawn as a wreck
+  Wreck,    // dead, its wreck still on the map: drawn as a wreck
 };
 
 struct UnitView {
@@ -35,6 +35,17 @@ struct UnitView {
   UnitState state = UnitState::Alive;
   bool stuck = false;         // drawn by the stuck overlay
   std::vector<Point> path{};  // remaining waypoints (centres), drawn by the path overlays
+};
+
+// A shot drawn as a line in its shooter's team colour. Instant shots: the whole line from the
+// shooter to the target, in the frame after they were fired. Projectiles in flight: a short
+// streak ending at the shell's position, with a white head.
+struct Tracer {
+  Point from{};  // [Unit: cells] the shooter's centre (instant) or the streak's tail
+  Point to{};    // [Unit: cells] the target's centre (instant) or the shell's position
+  int team = 0;  // [Limit: >= 0] the shooter's team
+  bool projectile = false;
+  constexpr bool operator==(const Tracer&) const = default;
 };
 
 struct ArrivalZone {
@@ -54,6 +65,7 @@ struct FrameScene {
   std::vector<UnitView> units{};    // drawn in order: later units on top
   std::vector<TeamCounts> teams{};  // HUD line per team, indexed by team
   std::vector<ArrivalZone> arrivalZones{};
+  std::vector<Tracer> shots{};  // drawn over the units
   // A line of text along the bottom edge (the viewer's status and keys); empty: none.
   std::string caption{};
 };
