@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds warpath and runs the main job: the bundled demo battle
-# (scenarios/demo.yaml: 64 infantry, jeeps, tanks and amphibious units of two teams crossing a
-# river map), headless, with its report, PNG frames, an animated GIF and a replay (verified);
-# then plans one tank and one infantry route on a small map to show what the planner does with
-# size and terrain.
+# Installs what is missing, builds warpath and runs the main job: a bundled battle
+# (scenarios/river_ambush.yaml: a blue convoy of tanks, jeeps and riflemen ambushed at a river
+# crossing), headless, with its report, PNG frames, an animated GIF and a replay (verified);
+# then the travel demo (scenarios/demo.yaml: 64 units of two armies crossing a river map) with
+# its report; then plans one tank and one infantry route on a small map to show what the
+# planner does with size and terrain.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -13,13 +14,18 @@ cmake --build build -j "$(nproc)" --target rts >/dev/null
 
 out=out/demo
 rm -rf "$out/frames"
-echo "== scenarios/demo.yaml"
+echo "== scenarios/river_ambush.yaml"
 status=0
-build/tools/rts run scenarios/demo.yaml --report "$out/report.json" --replay "$out/demo.replay" \
-  --frames "$out/frames" --frame-every 15 --gif "$out/demo.gif" || status=$?
-build/tools/rts replay verify "$out/demo.replay"
-echo "report: $out/report.json   frames: $out/frames/   animation: $out/demo.gif"
-echo "replay: $out/demo.replay (watch it: build/tools/rts view $out/demo.replay)"
+build/tools/rts run scenarios/river_ambush.yaml --report "$out/report.json" \
+  --replay "$out/battle.replay" --frames "$out/frames" --frame-every 15 --gif "$out/battle.gif" ||
+  status=$?
+build/tools/rts replay verify "$out/battle.replay"
+echo "report: $out/report.json   frames: $out/frames/   animation: $out/battle.gif"
+echo "replay: $out/battle.replay (watch it: build/tools/rts view $out/battle.replay)"
+echo
+echo "== scenarios/demo.yaml (travel only: combat off)"
+build/tools/rts run scenarios/demo.yaml --quiet --report "$out/demo_report.json" || status=$?
+echo "report: $out/demo_report.json"
 echo
 echo "== tank (size 3, ground) on assets/maps/crossing.map: must take the bridge"
 build/tools/rts path assets/maps/crossing.map --size 3 --capability ground \

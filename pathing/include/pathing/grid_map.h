@@ -25,6 +25,7 @@ struct CellRect {
   constexpr bool contains(Cell c) const {
     return c.x >= x && c.y >= y && c.x < x + width && c.y < y + height;
   }
+  constexpr bool operator==(const CellRect&) const = default;
 };
 
 class GridMap {

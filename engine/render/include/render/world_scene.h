@@ -10,7 +10,8 @@ namespace warpath::render {
 
 // Units (centre, size and hp from their type, team, type index, facing along their velocity or
 // else towards their next waypoint, remaining path, currently stuck), per-team counts (a unit
-// whose hp is 0 is dead and drawn as a wreck) and the goal areas of the current orders as
+// whose hp is 0 is dead: drawn as a wreck while its wreck stands, not at all once cleared),
+// shots fired in the last tick as tracers, and the goal areas of the current orders as
 // arrival zones. `teamCount` rows in the HUD at least.
 FrameScene sceneOf(const engine::World& world, int teamCount = 0);
 
