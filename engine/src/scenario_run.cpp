@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 namespace warpath::engine {
@@ -30,27 +29,6 @@ namespace {
 bool insideArea(const Unit& u, const pathing::CellRect& area, const World& world) {
   const int size = world.catalogue()[static_cast<std::size_t>(u.type)].size;
   return area.contains(units::centreToAnchor(u.position, size));
-}
-
-// For conditions built in code without a text; as the scenario parser writes them.
-std::string defaultVictoryText(const VictorySpec& v, const Scenario& s) {
-  const std::string& team = s.teams[static_cast<std::size_t>(v.team)];
-  const auto area = [](const pathing::CellRect& a) {
-    return std::to_string(a.x) + "," + std::to_string(a.y) + " " + std::to_string(a.width) + "x" +
-           std::to_string(a.height);
-  };
-  switch (v.kind) {
-    case VictoryKind::Eliminate:
-      return team + " eliminates the others";
-    case VictoryKind::HoldArea: {
-      char seconds[32];
-      std::snprintf(seconds, sizeof seconds, "%g", v.seconds);
-      return team + " holds " + area(v.area) + " for " + seconds + "s";
-    }
-    case VictoryKind::Exit:
-      return std::to_string(v.count) + " of " + team + " exit at " + area(v.area);
-  }
-  return team + " wins";
 }
 
 // One unit's share of a battle statistic.
@@ -307,8 +285,7 @@ void ScenarioRun::judgeVictory() {
         break;
       }
     }
-    if (met)
-      endBattle(spec.team, spec.text.empty() ? defaultVictoryText(spec, scenario_) : spec.text);
+    if (met) endBattle(spec.team, spec.text.empty() ? describe(spec, scenario_.teams) : spec.text);
   }
 }
 

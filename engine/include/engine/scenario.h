@@ -90,12 +90,12 @@ struct ActionSpec {
 struct TriggerSpec {
   std::string name;  // for reports and errors; "trigger N" when not given
   TriggerKind kind = TriggerKind::At;
-  double at = 0.0;  // [Unit: s] At
-  int group = -1;   // Arrived, Enters, Dies
-  int team = -1;    // TeamBelow
-  int count = 1;    // TeamBelow, Enters, Dies
-  double fraction = 1.0;  // Arrived
-  pathing::CellRect area;  // Enters
+  double at = 0.0;                  // [Unit: s] At
+  int group = -1;                   // Arrived, Enters, Dies
+  int team = -1;                    // TeamBelow
+  int count = 1;                    // TeamBelow, Enters, Dies
+  double fraction = 1.0;            // Arrived
+  pathing::CellRect area;           // Enters
   std::vector<ActionSpec> actions;  // run in the order written
 };
 
@@ -115,6 +115,9 @@ struct VictorySpec {
   int count = 1;           // Exit
   std::string text;        // as printed, e.g. "blue holds 40,20 8x8 for 30s"
 };
+// The text of a victory condition, e.g. "blue holds 40,20 8x8 for 30s". [Limit: v.team indexes
+// teams]
+std::string describe(const VictorySpec& v, const std::vector<std::string>& teams);
 
 struct Scenario {
   std::filesystem::path file;

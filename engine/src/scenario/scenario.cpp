@@ -636,15 +636,12 @@ VictorySpec parseVictory(const Parser& p, const YAML::Node& node, const Scenario
   if (kind == "eliminate") {
     v.kind = VictoryKind::Eliminate;
     v.team = indexOf(p, body, s.teams, "team");
-    v.text = s.teams[static_cast<std::size_t>(v.team)] + " eliminates the others";
   } else if (kind == "hold") {
     p.checkKeys(body, "hold", {"team", "area", "seconds"});
     v.kind = VictoryKind::HoldArea;
     v.team = indexOf(p, p.need(body, "team", "hold"), s.teams, "team");
     v.area = parseArea(p, p.need(body, "area", "hold"), s.grid->map(), "hold area");
     v.seconds = p.number(p.need(body, "seconds", "hold"), "hold seconds", 0.0, 1e6);
-    v.text = s.teams[static_cast<std::size_t>(v.team)] + " holds " + describeRect(v.area) +
-             " for " + Parser::fmtNumber(v.seconds) + "s";
   } else if (kind == "exit") {
     p.checkKeys(body, "exit", {"team", "area", "count"});
     v.kind = VictoryKind::Exit;
@@ -659,11 +656,11 @@ VictorySpec parseVictory(const Parser& p, const YAML::Node& node, const Scenario
     if (v.count > units)
       p.fail(count, "exit count " + std::to_string(v.count) + " is more than team '" + team +
                         "' has (" + std::to_string(units) + " units, reinforcements included)");
-    v.text = std::to_string(v.count) + " of " + team + " exit at " + describeRect(v.area);
   } else {
     p.fail(entry.first,
            "unknown victory condition '" + kind + "' (expected eliminate, hold or exit)");
   }
+  v.text = describe(v, s.teams);
   return v;
 }
 
@@ -895,6 +892,19 @@ std::string_view toString(StatKind kind) {
       return "alive";
   }
   return "?";
+}
+
+std::string describe(const VictorySpec& v, const std::vector<std::string>& teams) {
+  const std::string& team = teams[static_cast<std::size_t>(v.team)];
+  switch (v.kind) {
+    case VictoryKind::Eliminate:
+      return team + " eliminates the others";
+    case VictoryKind::HoldArea:
+      return team + " holds " + describeRect(v.area) + " for " + Parser::fmtNumber(v.seconds) + "s";
+    case VictoryKind::Exit:
+      return std::to_string(v.count) + " of " + team + " exit at " + describeRect(v.area);
+  }
+  return team + " wins";
 }
 
 std::vector<Cell> placeUnits(const AnnotatedGrid& grid, Agent agent, CellRect area, int count,
