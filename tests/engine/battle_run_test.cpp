@@ -11,31 +11,19 @@
 
 #include "engine/scenario.h"
 #include "engine/scenario_run.h"
+#include "support/battle_field.h"
 
 namespace warpath::engine {
 namespace {
 
 const std::string kFile = std::string(WARPATH_SOURCE_DIR) + "/scenarios/battle_run_test.yaml";
 
-// A 24x12 open field; `vet` (40 hp) and `recruit` (30 hp) carry the same rifle (10 damage,
-// range 5, one shot a second, instant); `truck` is unarmed. `rest` holds the groups onwards.
+// The open field with the riflemen and an unarmed `truck`; `rest` holds the groups onwards.
 std::string field(const std::string& rest, double duration = 20) {
-  std::string rows;
-  for (int y = 0; y < 12; ++y)
-    rows += std::string(y == 0 ? "" : ", ") + "'" + std::string(24, '.') + "'";
-  return "map: {rows: [" + rows +
-         "]}\n"
-         "unit_types:\n"
-         "  vet: {size: 1, capability: [ground], speed: 2, hp: 40,\n"
-         "        weapon: {kind: rifle, damage: 10, range: 5, cooldown: 1}}\n"
-         "  recruit: {size: 1, capability: [ground], speed: 2, hp: 30,\n"
-         "            weapon: {kind: rifle, damage: 10, range: 5, cooldown: 1}}\n"
+  return warpath::testing::openFieldMap() + "unit_types:\n" + warpath::testing::kRiflemenTypes +
          "  truck: {size: 1, capability: [ground], speed: 3}\n"
          "duration: " +
-         std::to_string(duration) +
-         "\n"
-         "teams: [blue, red]\n" +
-         rest;
+         std::to_string(duration) + "\nteams: [blue, red]\n" + rest;
 }
 
 Scenario load(const std::string& text) {

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "engine/scenario_run.h"
+#include "support/battle_field.h"
 #include "support/rts_process.h"
 #include "support/scratch_dir.h"
 
@@ -75,16 +76,8 @@ std::vector<std::string> describe(const std::vector<IssuedOrder>& orders) {
 // (a reinforcement with an attack order on blue) when red is down to two. `extra` is added to
 // the triggers.
 std::string battleScenario(const std::string& extra = "") {
-  std::string rows;
-  for (int y = 0; y < 12; ++y)
-    rows += std::string(y == 0 ? "" : ", ") + "'" + std::string(24, '.') + "'";
-  return "name: skirmish\nmap: {rows: [" + rows +
-         "]}\n"
-         "unit_types:\n"
-         "  vet: {size: 1, capability: [ground], speed: 2, hp: 40,\n"
-         "        weapon: {kind: rifle, damage: 10, range: 5, cooldown: 1}}\n"
-         "  recruit: {size: 1, capability: [ground], speed: 2, hp: 30,\n"
-         "            weapon: {kind: rifle, damage: 10, range: 5, cooldown: 1}}\n"
+  return "name: skirmish\n" + warpath::testing::openFieldMap() + "unit_types:\n" +
+         warpath::testing::kRiflemenTypes +
          "duration: 60\n"
          "teams: [blue, red]\n"
          "groups:\n"
