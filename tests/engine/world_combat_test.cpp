@@ -134,6 +134,8 @@ TEST(WorldCombat, ShellsLandAfterTheirFlightTime) {
   ASSERT_EQ(world.shotsInFlight().size(), 1u);
   EXPECT_EQ(world.shotsInFlight()[0].landTick, ready + 6);
   EXPECT_EQ(world.find(jeep)->combat.damageTaken, 0);
+  stepUntil(world, ready + 6);  // not yet: the step at tick ready + 6 lands it
+  EXPECT_EQ(world.find(jeep)->hp, 200);
   stepUntil(world, ready + 7);
   // 150 × 150 % = 225 > 200 hp: one shell destroys the jeep.
   EXPECT_FALSE(world.find(jeep)->alive());
