@@ -18,9 +18,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Exit status of `rts args`, stderr into `err`.
+// Exit status of `rts args`, stderr into `err`. The file is per test: CTest runs the tests of
+// this binary as parallel processes, and a shared file let one test read another's stderr.
 int rts(const std::string& args, std::string* err) {
-  const fs::path errFile = fs::path(::testing::TempDir()) / "rts_render_cli_err";
+  const fs::path errFile = fs::path(::testing::TempDir()) /
+                           (std::string("rts_render_cli_err_") +
+                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
   const std::string command =
       std::string("'") + RTS_BINARY + "' " + args + " >/dev/null 2>'" + errFile.string() + "'";
   const int status = std::system(command.c_str());
