@@ -388,18 +388,7 @@ TEST(BattleRun, HoldVictoryNeedsTheAreaAloneForItsWholeTime) {
 // vets come in when red is down to two (tick 224), and red wins at tick 272. `triggers` are
 // added to the scenario's.
 std::string skirmish(const std::string& triggers = "") {
-  return "groups:\n"
-         "  - {name: b, team: blue, type: recruit, count: 4, spawn: {x: 0, y: 3, w: 2, h: 6}}\n"
-         "  - {name: r, team: red, type: recruit, count: 4, spawn: {x: 22, y: 3, w: 2, h: 6}}\n"
-         "  - {name: r2, team: red, type: vet, count: 2, spawn: {x: 22, y: 0, w: 2, h: 1},\n"
-         "     reinforcement: true}\n"
-         "orders:\n"
-         "  - {at: 0, group: b, order: attack_move, move_to: {x: 20, y: 3, w: 4, h: 6}}\n"
-         "  - {at: 0, group: r, order: attack_move, move_to: {x: 0, y: 3, w: 3, h: 6}}\n"
-         "triggers:\n"
-         "  - {name: help, when: {team_below: {team: red, count: 3}},\n"
-         "     do: [{reinforce: r2}, {order: attack, group: r2, target: b}]}\n" +
-         triggers + "victory:\n  - eliminate: blue\n  - eliminate: red\n";
+  return warpath::testing::skirmishForces(triggers);
 }
 
 TEST(BattleRun, SkirmishIsDeterministicAndItsStatisticsAddUp) {

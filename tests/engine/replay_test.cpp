@@ -79,21 +79,8 @@ std::string battleScenario(const std::string& extra = "") {
   return "name: skirmish\n" + warpath::testing::openFieldMap() + "unit_types:\n" +
          warpath::testing::kRiflemenTypes +
          "duration: 60\n"
-         "teams: [blue, red]\n"
-         "groups:\n"
-         "  - {name: b, team: blue, type: recruit, count: 4, spawn: {x: 0, y: 3, w: 2, h: 6}}\n"
-         "  - {name: r, team: red, type: recruit, count: 4, spawn: {x: 22, y: 3, w: 2, h: 6}}\n"
-         "  - {name: r2, team: red, type: vet, count: 2, spawn: {x: 22, y: 0, w: 2, h: 1},\n"
-         "     reinforcement: true}\n"
-         "orders:\n"
-         "  - {at: 0, group: b, order: attack_move, move_to: {x: 20, y: 3, w: 4, h: 6}}\n"
-         "  - {at: 0, group: r, order: attack_move, move_to: {x: 0, y: 3, w: 3, h: 6}}\n"
-         "triggers:\n"
-         "  - {name: help, when: {team_below: {team: red, count: 3}},\n"
-         "     do: [{reinforce: r2}, {order: attack, group: r2, target: b}]}\n" +
-         extra +
-         "victory:\n  - eliminate: blue\n  - eliminate: red\n"
-         "expectations:\n  - winner: red\n";
+         "teams: [blue, red]\n" +
+         warpath::testing::skirmishForces(extra) + "expectations:\n  - winner: red\n";
 }
 
 class Replays : public ::testing::Test {
