@@ -331,18 +331,27 @@ Report ScenarioRun::report() const {
     return times;
   };
 
+  // Arrivals and battle statistics per (team, type), from one pass over the pair's units.
   for (std::size_t team = 0; team < scenario_.teams.size(); ++team) {
     for (std::size_t type = 0; type < scenario_.catalogue.size(); ++type) {
       ArrivalStats s;
-      s.team = scenario_.teams[team];
-      s.type = scenario_.catalogue[type].name;
+      BattleStats b;
+      s.team = b.team = scenario_.teams[team];
+      s.type = b.type = scenario_.catalogue[type].name;
       for (const Unit& u : units) {
         if (!matches(u, static_cast<int>(team), static_cast<int>(type))) continue;
         ++s.units;
         s.arrived += u.arrivalTick >= 0 ? 1 : 0;
         s.dead += u.hp <= 0 ? 1 : 0;
+        (u.alive() ? b.alive : b.losses) += 1;
+        b.kills += u.combat.kills;
+        b.shotsFired += u.combat.shotsFired;
+        b.hits += u.combat.hits;
+        b.damageDealt += u.combat.damageDealt;
+        b.damageTaken += u.combat.damageTaken;
       }
       if (s.units == 0) continue;
+      b.units = s.units;
       s.rate = static_cast<double>(s.arrived) / static_cast<double>(s.units);
       if (s.arrived > 0) {
         std::vector<double> times = arrivalTimes(static_cast<int>(team), static_cast<int>(type));
@@ -352,24 +361,7 @@ Report ScenarioRun::report() const {
         s.max = times.back();
       }
       r.arrivals.push_back(s);
-    }
-  }
-  for (std::size_t team = 0; team < scenario_.teams.size(); ++team) {
-    for (std::size_t type = 0; type < scenario_.catalogue.size(); ++type) {
-      BattleStats s;
-      s.team = scenario_.teams[team];
-      s.type = scenario_.catalogue[type].name;
-      for (const Unit& u : units) {
-        if (!matches(u, static_cast<int>(team), static_cast<int>(type))) continue;
-        ++s.units;
-        (u.alive() ? s.alive : s.losses) += 1;
-        s.kills += u.combat.kills;
-        s.shotsFired += u.combat.shotsFired;
-        s.hits += u.combat.hits;
-        s.damageDealt += u.combat.damageDealt;
-        s.damageTaken += u.combat.damageTaken;
-      }
-      if (s.units > 0) r.battle.push_back(s);
+      r.battle.push_back(b);
     }
   }
   for (const Unit& u : units) {
