@@ -426,9 +426,9 @@ void World::indexUnits() {
   for (std::size_t b = 0; b < buckets; ++b)
     bucketStart_[b + 1] += bucketStart_[b];
   bucketUnits_.assign(bucketStart_[buckets], 0);
-  std::vector<std::uint32_t> fill(bucketStart_.begin(), bucketStart_.end() - 1);
+  bucketFill_.assign(bucketStart_.begin(), bucketStart_.end() - 1);
   for (const Unit& unit : units_)
-    if (unit.alive()) bucketUnits_[fill[bucketOf(unit)]++] = unit.id.index;
+    if (unit.alive()) bucketUnits_[bucketFill_[bucketOf(unit)]++] = unit.id.index;
 }
 
 std::optional<std::uint32_t> World::scanForTarget(const Unit& unit, const units::Weapon& weapon) {

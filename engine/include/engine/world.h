@@ -258,6 +258,7 @@ class World {
   int maxUnitSize_ = 1;
   std::vector<std::uint32_t> bucketStart_;
   std::vector<std::uint32_t> bucketUnits_;
+  std::vector<std::uint32_t> bucketFill_;     // scratch: next free slot per bucket
   std::vector<units::Combatant> combatants_;  // per unit, this tick
   std::vector<units::Combatant> candidates_;  // scratch
   std::int64_t tick_ = 0;
