@@ -37,26 +37,12 @@ std::string_view toString(EventKind kind) {
   return "?";
 }
 
-namespace {
-constexpr std::array<std::pair<OrderKind, std::string_view>, 5> kOrderNames = {{
-    {OrderKind::Stop, "stop"},
-    {OrderKind::Move, "move"},
-    {OrderKind::AttackMove, "attack_move"},
-    {OrderKind::Attack, "attack"},
-    {OrderKind::Hold, "hold"},
-}};
-}  // namespace
-
 std::string_view toString(OrderKind kind) {
-  for (const auto& [k, name] : kOrderNames)
-    if (k == kind) return name;
-  return "?";
+  return kOrderKindNames.name(kind);
 }
 
 std::optional<OrderKind> orderKindFromName(std::string_view name) {
-  for (const auto& [k, n] : kOrderNames)
-    if (n == name) return k;
-  return std::nullopt;
+  return kOrderKindNames.parse(name);
 }
 
 namespace {

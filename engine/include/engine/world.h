@@ -18,6 +18,7 @@
 #include "engine/path_service.h"
 #include "engine/physics.h"
 #include "pathing/annotated_grid.h"
+#include "pathing/enum_names.h"
 #include "pathing/random.h"
 #include "units/combat.h"
 #include "units/steering.h"
@@ -55,6 +56,13 @@ enum class OrderKind : std::uint8_t {
   Attack,      // close in on a set of enemy units and fire at them until all are dead
   Hold,        // keep the current spot; fire at enemies in range, never move
 };
+inline constexpr EnumNames<OrderKind, 5> kOrderKindNames{{{
+    {OrderKind::Stop, "stop"},
+    {OrderKind::Move, "move"},
+    {OrderKind::AttackMove, "attack_move"},
+    {OrderKind::Attack, "attack"},
+    {OrderKind::Hold, "hold"},
+}}};
 std::string_view toString(OrderKind kind);
 std::optional<OrderKind> orderKindFromName(std::string_view name);  // "move", "attack_move", …
 
