@@ -6,6 +6,19 @@ namespace warpath::engine {
 
 using namespace pathing;
 
+PlannedPath planned(std::vector<Cell> cells) {
+  std::uint64_t h = 0xCBF29CE484222325ull;
+  for (const Cell& c : cells) {
+    for (const int v : {c.x, c.y}) {
+      for (int i = 0; i < 4; ++i) {
+        h ^= (static_cast<std::uint32_t>(v) >> (8 * i)) & 0xFFu;
+        h *= 0x100000001B3ull;
+      }
+    }
+  }
+  return {std::move(cells), h};
+}
+
 std::string problemWith(const PathServiceSettings& settings) {
   if (settings.clusterSize < 2) return "cluster_size must be at least 2";
   if (settings.expansionBudget < 1) return "budget must be at least 1";
@@ -56,9 +69,9 @@ void PathService::serve(std::vector<PathDelivery>& out) {
     if (hit != cache_.end()) {
       ++metrics_.cacheHits;
     } else {
-      auto path = std::make_shared<std::vector<Cell>>();
+      std::vector<Cell> cells;
       const PathResult result =
-          planner_->findPath(request.agent, request.start, request.goal, path.get());
+          planner_->findPath(request.agent, request.start, request.goal, &cells);
       ++metrics_.searches;
       metrics_.expanded += result.metrics.expanded;
       metrics_.microseconds += result.metrics.microseconds;
@@ -71,8 +84,9 @@ void PathService::serve(std::vector<PathDelivery>& out) {
         cache_.erase(cacheOrder_.front());
         cacheOrder_.pop_front();
       }
-      hit = cache_.emplace(key, Answer{result.status, result.found() ? std::move(path) : nullptr})
-                .first;
+      SharedPath path;
+      if (result.found()) path = std::make_shared<const PlannedPath>(planned(std::move(cells)));
+      hit = cache_.emplace(key, Answer{result.status, std::move(path)}).first;
       cacheOrder_.push_back(key);
     }
     out.push_back({request.unit, request.serial, hit->second.status, hit->second.path});

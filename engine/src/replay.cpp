@@ -283,11 +283,12 @@ ScenarioResult<Replay> readReplay(const fs::path& file) {
 
   Replay replay;
   replay.version = Decoder(std::string_view(bytes).substr(kMagic.size(), 4)).u32();
-  if (replay.version != kReplayVersion) {
+  if (replay.version < kOldestReplayVersion || replay.version > kReplayVersion) {
     std::string problem = "replay format version " + std::to_string(replay.version) +
-                          " is not supported (this build reads version " +
+                          " is not supported (this build reads versions " +
+                          std::to_string(kOldestReplayVersion) + " to " +
                           std::to_string(kReplayVersion) + ")";
-    if (replay.version < kReplayVersion)
+    if (replay.version < kOldestReplayVersion)
       problem +=
           "; it was written before battles were recorded: record it again with rts run "
           "--replay";
@@ -380,7 +381,7 @@ std::optional<ScenarioError> ReplayWriter::record(const ScenarioRun& run) {
   }
   const std::int64_t tick = run.world().tick();
   if (tick > lastHashed_ && tick % every_ == 0) {
-    if (auto e = append('H', hashPayload({tick, run.world().stateHash()}))) return e;
+    if (auto e = append('H', hashPayload({tick, run.stateHash()}))) return e;
     lastHashed_ = tick;
   }
   // Flushed every tick: a run killed between ticks leaves whole records behind.
@@ -390,8 +391,7 @@ std::optional<ScenarioError> ReplayWriter::record(const ScenarioRun& run) {
 
 std::optional<ScenarioError> ReplayWriter::finish(const ScenarioRun& run, ReplayEnd reason) {
   if (auto e = record(run)) return e;
-  if (auto e = append('E', endPayload({reason, {run.world().tick(), run.world().stateHash()}})))
-    return e;
+  if (auto e = append('E', endPayload({reason, {run.world().tick(), run.stateHash()}}))) return e;
   if (std::fflush(out_.get()) != 0) return ScenarioError{file_, 0, 0, "cannot write the replay"};
   return std::nullopt;
 }
@@ -477,6 +477,10 @@ bool ReplayPlayback::done() const {
   return run_->world().tick() >= replay_->lastTick() || run_->ended();
 }
 
+std::uint64_t ReplayPlayback::recordedHash() const {
+  return replay_->version >= 3 ? run_->stateHash() : run_->world().legacyStateHash();
+}
+
 std::optional<HashMismatch> ReplayPlayback::step() {
   const std::vector<TickHash>& hashes = replay_->hashes;
   if (run_->ended()) {
@@ -485,7 +489,7 @@ std::optional<HashMismatch> ReplayPlayback::step() {
     const std::int64_t tick = run_->world().tick();
     while (nextHash_ < hashes.size() && hashes[nextHash_].tick <= tick)
       ++nextHash_;
-    HashMismatch m{tick, 0, run_->world().stateHash(), true};
+    HashMismatch m{tick, 0, recordedHash(), true};
     if (nextHash_ < hashes.size()) {
       m.tick = hashes[nextHash_].tick;
       m.expected = hashes[nextHash_].hash;
@@ -497,7 +501,7 @@ std::optional<HashMismatch> ReplayPlayback::step() {
   }
   run_->step();
   const std::int64_t tick = run_->world().tick();
-  const std::uint64_t actual = run_->world().stateHash();
+  const std::uint64_t actual = recordedHash();
   while (nextHash_ < hashes.size() && hashes[nextHash_].tick < tick)
     ++nextHash_;
   if (nextHash_ < hashes.size() && hashes[nextHash_].tick == tick &&

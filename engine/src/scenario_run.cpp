@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/state_description.h"
+
 namespace warpath::engine {
 
 double percentile(const std::vector<double>& sorted, double p) {
@@ -50,18 +52,32 @@ double statOf(const Unit& u, StatKind stat) {
   return 0.0;
 }
 
+RunState initialState(const Scenario& scenario) {
+  RunState s;
+  s.members.resize(scenario.groups.size());
+  s.spawned.assign(scenario.groups.size(), false);
+  s.exited.resize(scenario.victory.size());
+  s.exitedCount.assign(scenario.victory.size(), 0);
+  s.holdSince.assign(scenario.victory.size(), -1);
+  return s;
+}
+
 }  // namespace
+
+std::uint64_t ScenarioRun::stateHash() const {
+  StateHasher h;
+  h.addWord(world_.stateHash());
+  describe(h, state_);
+  h.addWord(issued_.size());
+  return h.value();
+}
 
 ScenarioRun::ScenarioRun(const Scenario& scenario, std::optional<std::uint64_t> seed)
     : scenario_(scenario),
       seed_(settingsFor(scenario, seed).seed),
       world_(scenario.grid, scenario.catalogue, settingsFor(scenario, seed)),
-      members_(scenario.groups.size()),
-      spawned_(scenario.groups.size(), false),
-      fired_(scenario.triggers.size(), false),
-      exited_(scenario.victory.size()),
-      exitedCount_(scenario.victory.size(), 0),
-      holdSince_(scenario.victory.size(), -1) {
+      state_(initialState(scenario)),
+      fired_(scenario.triggers.size(), false) {
   for (std::size_t g = 0; g < scenario.groups.size(); ++g) {
     if (!scenario.groups[g].reinforcement) spawnGroup(static_cast<int>(g), true);
   }
@@ -73,12 +89,8 @@ ScenarioRun::ScenarioRun(const Scenario& scenario, std::optional<std::uint64_t> 
     : scenario_(scenario),
       seed_(settingsFor(scenario, seed).seed),
       world_(scenario.grid, scenario.catalogue, settingsFor(scenario, seed)),
-      members_(scenario.groups.size()),
-      spawned_(scenario.groups.size(), false),
       script_(std::move(script)),
-      exited_(scenario.victory.size()),
-      exitedCount_(scenario.victory.size(), 0),
-      holdSince_(scenario.victory.size(), -1) {
+      state_(initialState(scenario)) {
   // The live run's group goals are the script's first entries: spawning draws nothing from the
   // RNG and orders wait in the world until its next step, so spawning every group before the
   // tick-0 entries changes nothing.
@@ -92,19 +104,19 @@ ScenarioRun::ScenarioRun(const Scenario& scenario, std::optional<std::uint64_t> 
 // that order is the script's next entry). A group spawns once.
 void ScenarioRun::spawnGroup(int g, bool orderGoal) {
   const auto gi = static_cast<std::size_t>(g);
-  if (g < 0 || gi >= members_.size() || spawned_[gi]) return;
+  if (g < 0 || gi >= state_.members.size() || state_.spawned[gi]) return;
   const GroupSpec& group = scenario_.groups[gi];
   for (pathing::Cell anchor : group.anchors)
-    members_[gi].push_back(world_.spawn(group.type, group.team, g, anchor));
-  spawned_[gi] = true;
-  if (orderGoal && group.goal) give({OrderKind::Move, members_[gi], *group.goal, {}});
+    state_.members[gi].push_back(world_.spawn(group.type, group.team, g, anchor));
+  state_.spawned[gi] = true;
+  if (orderGoal && group.goal) give({OrderKind::Move, state_.members[gi], *group.goal, {}});
 }
 
 std::vector<UnitId> ScenarioRun::living(const std::vector<int>& groups) const {
   std::vector<UnitId> ids;
   for (int g : groups) {
-    if (g < 0 || static_cast<std::size_t>(g) >= members_.size()) continue;
-    for (UnitId id : members_[static_cast<std::size_t>(g)]) {
+    if (g < 0 || static_cast<std::size_t>(g) >= state_.members.size()) continue;
+    for (UnitId id : state_.members[static_cast<std::size_t>(g)]) {
       const Unit* unit = world_.find(id);
       if (unit != nullptr && unit->alive()) ids.push_back(id);
     }
@@ -120,17 +132,17 @@ void ScenarioRun::give(Command command) {
 }
 
 void ScenarioRun::endBattle(int team, std::string how) {
-  if (ended_) return;
-  ended_ = true;
-  winner_ = team;
+  if (state_.ended) return;
+  state_.ended = true;
+  state_.winner = team;
   victory_ = std::move(how);
-  endTick_ = world_.tick();
+  state_.endTick = world_.tick();
 }
 
 // The script's entries due by the current tick, in order.
 void ScenarioRun::playScript() {
   const std::vector<IssuedOrder>& script = *script_;
-  for (; scriptNext_ < script.size() && script[scriptNext_].tick <= world_.tick() && !ended_;
+  for (; scriptNext_ < script.size() && script[scriptNext_].tick <= world_.tick() && !state_.ended;
        ++scriptNext_) {
     const IssuedOrder& entry = script[scriptNext_];
     switch (entry.kind) {
@@ -138,8 +150,8 @@ void ScenarioRun::playScript() {
         give(entry.command);
         break;
       case IssuedKind::Reinforce:
-        if (entry.group < 0 || static_cast<std::size_t>(entry.group) >= members_.size() ||
-            spawned_[static_cast<std::size_t>(entry.group)])
+        if (entry.group < 0 || static_cast<std::size_t>(entry.group) >= state_.members.size() ||
+            state_.spawned[static_cast<std::size_t>(entry.group)])
           break;
         issued_.push_back({world_.tick(), IssuedKind::Reinforce, {}, entry.group});
         spawnGroup(entry.group, false);
@@ -159,9 +171,9 @@ void ScenarioRun::playScript() {
 
 bool ScenarioRun::triggerDue(const TriggerSpec& trigger) const {
   const auto groupOf = [&]() -> const std::vector<UnitId>* {
-    if (trigger.group < 0 || static_cast<std::size_t>(trigger.group) >= members_.size())
+    if (trigger.group < 0 || static_cast<std::size_t>(trigger.group) >= state_.members.size())
       return nullptr;
-    return &members_[static_cast<std::size_t>(trigger.group)];
+    return &state_.members[static_cast<std::size_t>(trigger.group)];
   };
   switch (trigger.kind) {
     case TriggerKind::At:
@@ -215,8 +227,8 @@ void ScenarioRun::runAction(const TriggerSpec& trigger, const ActionSpec& action
       break;
     }
     case ActionKind::Reinforce:
-      if (action.group < 0 || static_cast<std::size_t>(action.group) >= members_.size() ||
-          spawned_[static_cast<std::size_t>(action.group)])
+      if (action.group < 0 || static_cast<std::size_t>(action.group) >= state_.members.size() ||
+          state_.spawned[static_cast<std::size_t>(action.group)])
         break;  // a group comes in once
       issued_.push_back({world_.tick(), IssuedKind::Reinforce, {}, action.group});
       spawnGroup(action.group, true);  // its goal order is recorded after the reinforcement
@@ -229,14 +241,14 @@ void ScenarioRun::runAction(const TriggerSpec& trigger, const ActionSpec& action
 }
 
 void ScenarioRun::fireTriggers() {
-  for (std::size_t i = 0; i < scenario_.triggers.size() && !ended_; ++i) {
+  for (std::size_t i = 0; i < scenario_.triggers.size() && !state_.ended; ++i) {
     if (fired_[i]) continue;
     const TriggerSpec& trigger = scenario_.triggers[i];
     if (!triggerDue(trigger)) continue;
     fired_[i] = true;
     triggersFired_.push_back(trigger.name);
     for (const ActionSpec& action : trigger.actions) {
-      if (ended_) break;  // nothing is done after the end of the battle
+      if (state_.ended) break;  // nothing is done after the end of the battle
       runAction(trigger, action);
     }
   }
@@ -244,7 +256,7 @@ void ScenarioRun::fireTriggers() {
 
 void ScenarioRun::judgeVictory() {
   const std::vector<Unit>& units = world_.units();
-  for (std::size_t v = 0; v < scenario_.victory.size() && !ended_; ++v) {
+  for (std::size_t v = 0; v < scenario_.victory.size() && !state_.ended; ++v) {
     const VictorySpec& spec = scenario_.victory[v];
     bool met = false;
     switch (spec.kind) {
@@ -257,16 +269,16 @@ void ScenarioRun::judgeVictory() {
         break;
       }
       case VictoryKind::Exit: {
-        std::vector<bool>& exited = exited_[v];
+        std::vector<bool>& exited = state_.exited[v];
         exited.resize(units.size(), false);
         for (const Unit& u : units) {
           if (u.team != spec.team || !u.alive() || exited[u.id.index]) continue;
           if (insideArea(u, spec.area, world_)) {
             exited[u.id.index] = true;
-            ++exitedCount_[v];
+            ++state_.exitedCount[v];
           }
         }
-        met = exitedCount_[v] >= spec.count;
+        met = state_.exitedCount[v] >= spec.count;
         break;
       }
       case VictoryKind::HoldArea: {
@@ -277,11 +289,11 @@ void ScenarioRun::judgeVictory() {
           (u.team == spec.team ? ours : theirs) = true;
         }
         if (!ours || theirs) {
-          holdSince_[v] = -1;
+          state_.holdSince[v] = -1;
           break;
         }
-        if (holdSince_[v] < 0) holdSince_[v] = world_.tick();
-        met = world_.tick() - holdSince_[v] >= std::llround(spec.seconds * world_.tickRate());
+        if (state_.holdSince[v] < 0) state_.holdSince[v] = world_.tick();
+        met = world_.tick() - state_.holdSince[v] >= std::llround(spec.seconds * world_.tickRate());
         break;
       }
     }
@@ -290,7 +302,7 @@ void ScenarioRun::judgeVictory() {
 }
 
 void ScenarioRun::step() {
-  if (ended_) return;
+  if (state_.ended) return;
   world_.step();
   judgeVictory();
   if (script_) {
@@ -306,11 +318,11 @@ Report ScenarioRun::report() const {
   r.seed = seed_;
   r.ticks = world_.tick();
   r.simSeconds = world_.seconds();
-  r.stateHash = world_.stateHash();
+  r.stateHash = stateHash();
   r.complete = done();
-  if (winner_ >= 0) r.winner = scenario_.teams[static_cast<std::size_t>(winner_)];
+  if (state_.winner >= 0) r.winner = scenario_.teams[static_cast<std::size_t>(state_.winner)];
   r.victory = victory_;
-  r.endTick = endTick_;
+  r.endTick = state_.endTick;
   r.triggersFired = triggersFired_;
   r.pathing = world_.pathService().metrics();
   const double rate = world_.tickRate();
@@ -399,8 +411,8 @@ Report ScenarioRun::report() const {
         break;
       }
       case ExpectationKind::Winner:
-        result.actual = winner_;
-        result.pass = winner_ == e.team;
+        result.actual = state_.winner;
+        result.pass = state_.winner == e.team;
         break;
       case ExpectationKind::Stat: {
         double sum = 0.0;

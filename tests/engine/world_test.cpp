@@ -12,6 +12,7 @@
 #include "engine/scenario.h"
 #include "engine/scenario_run.h"
 #include "pathing/map_io.h"
+#include "support/event_history.h"
 
 namespace warpath::engine {
 namespace {
@@ -195,7 +196,7 @@ TEST(Physics, ABodyCannotBePushedThroughAGapNarrowerThanIt) {
   }
   const pathing::Capability ground = pathing::Capability::of({Terrain::Ground});
   Physics physics(map, std::span<const pathing::Capability>(&ground, 1));
-  const std::uint32_t body = physics.addBody({3.0, 5.0}, 1.4, ground);
+  const BodyId body = physics.addBody({3.0, 5.0}, 1.4, ground);
   double furthest = 0.0;
   for (int i = 0; i < 300; ++i) {
     physics.setVelocity(body, {3.0, 0.0});
@@ -204,7 +205,7 @@ TEST(Physics, ABodyCannotBePushedThroughAGapNarrowerThanIt) {
   }
   EXPECT_LT(furthest, 6.0);  // wedged in the gap's mouth, never through the wall's column
   Physics other(map, std::span<const pathing::Capability>(&ground, 1));
-  const std::uint32_t small = other.addBody({3.0, 5.0}, 0.9, ground);
+  const BodyId small = other.addBody({3.0, 5.0}, 0.9, ground);
   for (int i = 0; i < 300; ++i) {
     other.setVelocity(small, {3.0, 0.0});
     other.step(1.0 / 30.0);
@@ -266,12 +267,10 @@ TEST(World, AnUnreachableGoalIsReportedOnceAndNotRetried) {
   World world(grid, {infantry}, {});
   const UnitId id = world.spawn(0, 0, 0, {1, 1});
   world.orderMove({id}, {12, 2, 2, 2});
-  for (int i = 0; i < 200; ++i)
-    world.step();
+  const std::vector<Event> events = testing::stepKeepingEvents(world, 200);
   EXPECT_EQ(world.find(id)->state, UnitState::NoPath);
-  const auto failures =
-      std::count_if(world.events().begin(), world.events().end(),
-                    [](const Event& e) { return e.kind == EventKind::PathFailed; });
+  const auto failures = std::count_if(
+      events.begin(), events.end(), [](const Event& e) { return e.kind == EventKind::PathFailed; });
   EXPECT_EQ(failures, 1);
   EXPECT_LE(world.pathService().metrics().requests, 1u);
   EXPECT_EQ(world.find({id.index, id.generation + 1}), nullptr);  // a stale handle
@@ -324,15 +323,14 @@ TEST(World, AUnitThatCannotReachItsCellIsRepathedThenFlaggedStuck) {
   const UnitId first = world.spawn(0, 0, 0, {6, 2});
   const UnitId second = world.spawn(0, 0, 0, {1, 2});
   world.orderMove({first, second}, {9, 2, 1, 1});
-  for (int i = 0; i < 30 * 12; ++i)
-    world.step();
+  const std::vector<Event> events = testing::stepKeepingEvents(world, 30 * 12);
   EXPECT_EQ(world.find(first)->state, UnitState::Parked);
   EXPECT_FALSE(world.find(first)->everStuck);
   EXPECT_TRUE(world.find(second)->everStuck);
   EXPECT_GE(world.find(second)->repaths, 2);
-  const auto flagged = std::count_if(
-      world.events().begin(), world.events().end(),
-      [&](const Event& e) { return e.kind == EventKind::StuckFlagged && e.unit == second; });
+  const auto flagged = std::count_if(events.begin(), events.end(), [&](const Event& e) {
+    return e.kind == EventKind::StuckFlagged && e.unit == second;
+  });
   EXPECT_GE(flagged, 1);
   // The parked unit was shoved but holds its cell.
   EXPECT_LT((world.find(first)->position - units::anchorToCentre({9, 2}, 1)).length(), 0.6);

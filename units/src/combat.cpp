@@ -213,11 +213,24 @@ std::optional<std::uint32_t> chooseTarget(const Weapon& weapon, const Combatant&
                                           std::optional<std::uint32_t> current,
                                           std::span<const Combatant> candidates, const GridMap& map,
                                           const SightRules& rules) {
-  if (current) {
-    const Combatant* t = findById(candidates, *current);
-    if (t && canEngage(weapon, shooter, *t, map, rules)) return current;
+  const Combatant* held = current ? findById(candidates, *current) : nullptr;
+  return chooseTarget(
+      weapon, shooter, held, true, [&] { return candidates; }, map, rules);
+}
+
+std::optional<std::uint32_t> nearestEngageable(const Weapon& weapon, const Combatant& shooter,
+                                               std::span<const Combatant> ordered,
+                                               const GridMap& map, const SightRules& rules) {
+  std::optional<std::uint32_t> best;
+  double bestGap = INFINITY;
+  for (const Combatant& target : ordered) {
+    const double gap = gapSquared(shooter, target);
+    if (gap < bestGap && canEngage(weapon, shooter, target, map, rules)) {
+      bestGap = gap;
+      best = target.id;
+    }
   }
-  return acquireTarget(weapon, shooter, candidates, map, rules);
+  return best;
 }
 
 }  // namespace warpath::units

@@ -37,7 +37,14 @@ struct PathRequest {
   pathing::Cell goal;
 };
 
-using SharedPath = std::shared_ptr<const std::vector<pathing::Cell>>;
+// A found path: anchor cells from start to goal, and a digest of them computed once when the
+// path is planned, so that the state hash covers every unit's path without walking it each tick.
+struct PlannedPath {
+  std::vector<pathing::Cell> cells;
+  std::uint64_t digest = 0;  // FNV-1a over the cells
+};
+PlannedPath planned(std::vector<pathing::Cell> cells);
+using SharedPath = std::shared_ptr<const PlannedPath>;
 
 struct PathDelivery {
   UnitId unit;
@@ -79,6 +86,8 @@ class PathService {
   void serve(std::vector<PathDelivery>& out);
 
   std::size_t queued() const { return queue_.size(); }
+  // The requests waiting, in the order they will be served.
+  const std::deque<PathRequest>& queue() const { return queue_; }
   const PathServiceMetrics& metrics() const { return metrics_; }
   const PathServiceSettings& settings() const { return settings_; }
   // The HAA* graph the service plans on (for drawing); null when the algorithm needs none.

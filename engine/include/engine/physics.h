@@ -7,6 +7,7 @@
 #include <memory>
 #include <span>
 
+#include "engine/handle.h"
 #include "pathing/grid_map.h"
 #include "units/steering.h"
 
@@ -38,20 +39,24 @@ class Physics {
   Physics(const Physics&) = delete;
   Physics& operator=(const Physics&) = delete;
 
-  // Adds a dynamic circle; returns its index (indices are never reused).
-  std::uint32_t addBody(units::Vec2 centre, double radius, pathing::Capability capability);
+  // Adds a dynamic circle (handles are never reused). Every other call takes a handle this
+  // Physics returned; any other handle is a bug (an invariant in checked builds, ignored and
+  // read as a body at rest at the origin in Release).
+  BodyId addBody(units::Vec2 centre, double radius, pathing::Capability capability);
   // Turns a body into a fixed obstacle (a wreck): it stops and no longer moves when pushed.
-  void freeze(std::uint32_t body);
+  void freeze(BodyId body);
   // Takes a body out of the simulation. Its last position and a zero velocity stay readable.
-  void removeBody(std::uint32_t body);
-  void setVelocity(std::uint32_t body, units::Vec2 velocity);
+  void removeBody(BodyId body);
+  void setVelocity(BodyId body, units::Vec2 velocity);
   // Advances every body by dt seconds.
   void step(double dt);
-  units::Vec2 position(std::uint32_t body) const;
-  units::Vec2 velocity(std::uint32_t body) const;
+  units::Vec2 position(BodyId body) const;
+  units::Vec2 velocity(BodyId body) const;
   const PhysicsStats& stats() const { return stats_; }
 
  private:
+  // The body behind a handle; null when removed or when the handle is not one of ours.
+  bool known(BodyId body) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
   PhysicsStats stats_;

@@ -20,8 +20,12 @@
 namespace warpath::engine {
 
 // 2: orders of every kind (move, attack-move, attack, hold, stop), reinforcements and the end of
-// the battle. Version-1 files (move orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 2;
+// the battle. 3: the same records; the hashes are ScenarioRun::stateHash (the whole world and
+// run state) instead of format 2's hand-picked field list, which is still computed
+// (World::legacyStateHash) so that format-2 files verify. Version-1 files (move orders only)
+// are refused with a message saying so.
+inline constexpr std::uint32_t kReplayVersion = 3;
+inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.
 struct ReplayFile {
@@ -132,6 +136,8 @@ class ReplayPlayback {
   const Replay& replay() const { return *replay_; }
 
  private:
+  // The hash the replay's format recorded, for the state after the last step.
+  std::uint64_t recordedHash() const;
   ReplayPlayback(const Replay& replay, std::unique_ptr<Scenario> scenario);
 
   const Replay* replay_;

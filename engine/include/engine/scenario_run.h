@@ -95,6 +95,26 @@ struct IssuedOrder {
 // Nearest-rank percentile of ascending `sorted`; [Limit: !sorted.empty(), p in 0..100]
 double percentile(const std::vector<double>& sorted, double p);
 
+// What a run holds besides the world and that a live run and its replay's playback share: the
+// groups, the outcome and the state of the victory conditions. Hashed with the world
+// (ScenarioRun::stateHash) through engine/state_description.h, together with the number of
+// entries issued so far (what the triggers did, or the script played). How each mode decides
+// what to issue (which triggers fired; how far the script has been played) is the mode's own
+// bookkeeping and stays out of it, so that a replay's hashes can match the live run's.
+struct RunState {
+  std::vector<std::vector<UnitId>> members;  // per group, in spawn order
+  std::vector<bool> spawned;                 // per group
+  // The battle's outcome.
+  bool ended = false;
+  int winner = -1;  // team index
+  std::int64_t endTick = -1;
+  // Per victory condition. Exit: per unit index, whether it has stood inside the area alive,
+  // and how many have. HoldArea: the first tick of the current unbroken hold, -1 when none.
+  std::vector<std::vector<bool>> exited;
+  std::vector<int> exitedCount;
+  std::vector<std::int64_t> holdSince;
+};
+
 class ScenarioRun {
  public:
   // Spawns every group that is not a reinforcement, gives each group with a goal its Move
@@ -114,10 +134,14 @@ class ScenarioRun {
   // the start of the next step). Nothing happens once the battle has ended.
   void step();
   // The whole duration has run, or the battle ended (a victory condition or an end_battle).
-  bool done() const { return ended_ || world_.tick() >= scenario_.durationTicks(); }
+  bool done() const { return state_.ended || world_.tick() >= scenario_.durationTicks(); }
   // A victory condition or an end_battle action ended the battle.
-  bool ended() const { return ended_; }
+  bool ended() const { return state_.ended; }
   const World& world() const { return world_; }
+  const RunState& state() const { return state_; }
+  // The world's state hash combined with the run's (triggers, victory, groups): what replays
+  // record and verify, and the report's state_hash.
+  std::uint64_t stateHash() const;
   const Scenario& scenario() const { return scenario_; }
   Report report() const;
   // Everything done to the world so far (orders, reinforcements, the end), in the order done.
@@ -139,23 +163,14 @@ class ScenarioRun {
   const Scenario& scenario_;
   std::uint64_t seed_ = 0;
   World world_;
-  std::vector<std::vector<UnitId>> members_;  // per group, in spawn order
-  std::vector<bool> spawned_;                 // per group
-  std::vector<bool> fired_;                   // per trigger
   std::optional<std::vector<IssuedOrder>> script_;
-  std::size_t scriptNext_ = 0;  // first entry of script_ not yet played
-  std::vector<IssuedOrder> issued_;
-  // The battle's outcome.
-  bool ended_ = false;
-  int winner_ = -1;  // team index
-  std::string victory_;
-  std::int64_t endTick_ = -1;
+  std::vector<IssuedOrder> issued_;  // what was done, in order; hashed by its length
+  RunState state_;
+  // Live runs: per trigger, whether it fired, and the names in firing order.
+  std::vector<bool> fired_;
   std::vector<std::string> triggersFired_;
-  // Per victory condition. Exit: per unit index, whether it has stood inside the area alive,
-  // and how many have. HoldArea: the first tick of the current unbroken hold, -1 when none.
-  std::vector<std::vector<bool>> exited_;
-  std::vector<int> exitedCount_;
-  std::vector<std::int64_t> holdSince_;
+  std::size_t scriptNext_ = 0;  // playback: the first script entry not yet played
+  std::string victory_;         // how the battle was decided, for people
 };
 
 }  // namespace warpath::engine

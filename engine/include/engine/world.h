@@ -5,7 +5,9 @@
 // → state hash. docs/combat.md states the combat rules and the order of fire within a tick.
 // Everything that changes the state is a function of the map, the catalogue, the seed and the
 // commands: the world owns its RNG, iterates units in id order and never reads a clock except to
-// measure itself.
+// measure itself. The state is one value, WorldState; engine/state_description.h describes every
+// field of it, and the state hash is computed through that description. Each phase of a tick
+// lives in engine/src/world/ and has one job.
 
 #include <cstdint>
 #include <memory>
@@ -14,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/goal_board.h"
 #include "engine/handle.h"
 #include "engine/path_service.h"
 #include "engine/physics.h"
@@ -38,6 +41,8 @@ struct CombatSettings {
   // id); a unit with a target checks every tick that it may still engage it.
   int scanEveryTicks = 5;
 };
+// Empty when the settings can be used, else the first field out of its limits and why.
+std::string problemWith(const CombatSettings& settings);
 
 struct WorldSettings {
   double tickRate = 30.0;  // [Unit: ticks/s] [Limit: > 0]
@@ -47,6 +52,10 @@ struct WorldSettings {
   units::SteeringParams steering;
   CombatSettings combat;
 };
+// Empty when every [Limit] of the settings (path service, stuck rule, combat included) holds,
+// else the first that does not, e.g. "tickRate must be > 0 (got 0)". World's constructor
+// throws std::invalid_argument with this message; callers that take user input check first.
+std::string problemWith(const WorldSettings& settings);
 
 // What a unit was told to do (RTS semantics; docs/combat.md).
 enum class OrderKind : std::uint8_t {
@@ -100,7 +109,7 @@ struct Unit {
   int team = 0;   // index into the scenario's teams
   int group = 0;  // index into the scenario's groups
   int hp = 0;
-  std::uint32_t body = 0;
+  BodyId body;
   units::Vec2 position;  // [Unit: cells] body centre
   units::Vec2 velocity;  // [Unit: cells/s]
   // The current order.
@@ -153,6 +162,18 @@ enum class EventKind : std::uint8_t {
   Killed,        // hp reached 0; detail: the killer's index
   WreckCleared,  // the wreck's body was removed
 };
+inline constexpr EnumNames<EventKind, 10> kEventKindNames{{{
+    {EventKind::Spawned, "spawned"},
+    {EventKind::Ordered, "ordered"},
+    {EventKind::PathFound, "path-found"},
+    {EventKind::PathFailed, "path-failed"},
+    {EventKind::Arrived, "arrived"},
+    {EventKind::Parked, "parked"},
+    {EventKind::Repath, "repath"},
+    {EventKind::StuckFlagged, "stuck"},
+    {EventKind::Killed, "killed"},
+    {EventKind::WreckCleared, "wreck-cleared"},
+}}};
 std::string_view toString(EventKind kind);
 
 struct Event {
@@ -160,6 +181,22 @@ struct Event {
   EventKind kind = EventKind::Spawned;
   UnitId unit;
   int detail = 0;
+};
+
+// The whole simulation state: everything a step reads besides the map, the catalogue and the
+// settings, and everything it changes. The state hash covers every field through
+// engine/state_description.h (a test fails when a field is not described). Events are the
+// step's output, not state; scratch memory of the phases is not state either.
+struct WorldState {
+  std::int64_t tick = 0;
+  pathing::SplitMix64 rng{1};
+  std::vector<Unit> units;       // by UnitId::index, in creation order
+  std::vector<Command> pending;  // given, applied at the start of the next step
+  std::vector<Shot> inFlight;    // in firing order
+  std::vector<Shot> lastTickShots;
+  GoalBoard goals;
+  std::unique_ptr<Physics> physics;
+  std::unique_ptr<PathService> paths;
 };
 
 // Mean wall time per phase over the ticks stepped so far: measurement only.
@@ -194,84 +231,44 @@ class World {
 
   void step();
 
-  std::int64_t tick() const { return tick_; }
+  std::int64_t tick() const { return state_.tick; }
   double tickRate() const { return settings_.tickRate; }
-  double seconds() const { return static_cast<double>(tick_) / settings_.tickRate; }
-  const std::vector<Unit>& units() const { return units_; }
+  double seconds() const { return static_cast<double>(state_.tick) / settings_.tickRate; }
+  const std::vector<Unit>& units() const { return state_.units; }
   const Unit* find(UnitId id) const;
   const std::vector<units::UnitType>& catalogue() const { return catalogue_; }
+  const WorldSettings& settings() const { return settings_; }
+  // What happened during the last step (spawns since then included), in order. Cleared at the
+  // start of every step, so the log stays as long as one tick's events: callers that want a
+  // history (reports, recorders, tests) keep what they need after each step.
   const std::vector<Event>& events() const { return events_; }
   // Shots in flight after the last step, and those that were fired or landed during it.
-  const std::vector<Shot>& shotsInFlight() const { return inFlight_; }
-  const std::vector<Shot>& shotsLastTick() const { return lastTickShots_; }
+  const std::vector<Shot>& shotsInFlight() const { return state_.inFlight; }
+  const std::vector<Shot>& shotsLastTick() const { return state_.lastTickShots; }
   int aliveCount(int team) const;
   const pathing::AnnotatedGrid& grid() const { return *grid_; }
-  const PathService& pathService() const { return *paths_; }
-  const Physics& physics() const { return *physics_; }
-  // FNV-1a over the tick, every unit's quantised position, velocity, hp, order and weapon state
-  // in id order, and the shots in flight; updated at the end of every step.
+  const PathService& pathService() const { return *state_.paths; }
+  const Physics& physics() const { return *state_.physics; }
+  const WorldState& state() const { return state_; }
+  // Hash of the whole WorldState (engine/state_description.h), updated at the end of every
+  // step: positions and velocities quantised to 1/1024 cell, everything else exact.
   std::uint64_t stateHash() const { return stateHash_; }
+  // The hash replays of format 2 recorded (a hand-picked subset of the fields), so that those
+  // replays still verify.
+  std::uint64_t legacyStateHash() const;
   TickTiming meanTiming() const;
 
  private:
-  static constexpr int kBucketCells = 8;  // side of a target-scan bucket
-
-  const units::UnitType& typeOf(const Unit& unit) const;
-  void applyCommand(const Command& command);
-  // Undoes what the current order holds: goal claim, parking spot, path, attack targets.
-  void leaveOrder(Unit& unit);
-  std::vector<pathing::Cell> shuffledStandable(pathing::Agent agent, const pathing::CellRect& area);
-  void beginMove(Unit& unit, const pathing::CellRect& area,
-                 const std::vector<pathing::Cell>& candidates, std::size_t& cursor);
-  std::optional<pathing::Cell> approachCell(const Unit& unit, const Unit& target) const;
-  // Attack order: heads for the nearest living target (a new path when it moved, or `force`);
-  // the order ends when every target is dead.
-  void pursue(Unit& unit, bool force);
-  void requestPath(Unit& unit);
-  void deliver(const PathDelivery& delivery);
-  units::Combatant combatantOf(const Unit& unit) const;
-  void indexUnits();
-  std::optional<std::uint32_t> scanForTarget(const Unit& unit, const units::Weapon& weapon);
-  void chooseTargets();
-  void fire();
-  void kill(Unit& unit, UnitId killer);
-  void steerAll();
-  void applyRules();
-  bool reassignGoal(Unit& unit);
-  void claimGoal(const Unit& unit, bool claim);
-  pathing::Cell nearestStandable(const Unit& unit) const;
-  void log(EventKind kind, const Unit& unit, int detail = 0);
-  std::uint64_t computeHash() const;
+  struct Phases;  // the tick's phases and their scratch memory (engine/src/world/)
 
   std::shared_ptr<const pathing::AnnotatedGrid> grid_;
   std::vector<units::UnitType> catalogue_;
   WorldSettings settings_;
-  pathing::SplitMix64 rng_;
-  std::unique_ptr<Physics> physics_;
-  std::unique_ptr<PathService> paths_;
-  std::vector<Unit> units_;
-  std::vector<Command> pending_;
-  std::vector<Shot> inFlight_;  // in firing order
-  std::vector<Shot> lastTickShots_;
-  std::vector<PathDelivery> deliveries_;  // scratch, reused every tick
-  // Unit index + 1 of the parked unit covering each cell, 0 where none.
-  std::vector<std::uint32_t> parkedAt_;
-  // Unit index + 1 of the unit whose goal footprint covers each cell, 0 where none: goal
-  // cells handed out by different orders do not overlap while the area has room.
-  std::vector<std::uint32_t> claimedBy_;
+  WorldState state_;
   std::vector<Event> events_;
-  // Target scans: living units bucketed by position (CSR), rebuilt every tick.
-  int bucketsWide_ = 0;
-  int bucketsHigh_ = 0;
-  int maxUnitSize_ = 1;
-  std::vector<std::uint32_t> bucketStart_;
-  std::vector<std::uint32_t> bucketUnits_;
-  std::vector<std::uint32_t> bucketFill_;     // scratch: next free slot per bucket
-  std::vector<units::Combatant> combatants_;  // per unit, this tick
-  std::vector<units::Combatant> candidates_;  // scratch
-  std::int64_t tick_ = 0;
+  std::unique_ptr<Phases> phases_;
+  std::size_t eventsKept_ = 0;  // events_ entries from before the last step ended
   std::uint64_t stateHash_ = 0;
-  TickTiming timing_;  // sums
 };
 
 }  // namespace warpath::engine

@@ -37,8 +37,8 @@ FrameScene sceneOf(const engine::World& world, int teamCount) {
     // Path cells are anchors; the drawing wants centres (anchor + size/2).
     const float half = static_cast<float>(type.size) / 2.0f;
     if (u.path) {
-      for (std::size_t i = u.next; i < u.path->size(); ++i) {
-        const pathing::Cell c = (*u.path)[i];
+      for (std::size_t i = u.next; i < u.path->cells.size(); ++i) {
+        const pathing::Cell c = u.path->cells[i];
         view.path.push_back({static_cast<float>(c.x) + half, static_cast<float>(c.y) + half});
       }
     }

@@ -5,6 +5,8 @@
 
 #include <vector>
 
+#include "pathing/invariant.h"
+
 namespace warpath::engine {
 
 using pathing::Capability;
@@ -120,7 +122,7 @@ Physics::Physics(const GridMap& map, std::span<const Capability> capabilities)
 
 Physics::~Physics() = default;
 
-std::uint32_t Physics::addBody(units::Vec2 centre, double radius, Capability capability) {
+BodyId Physics::addBody(units::Vec2 centre, double radius, Capability capability) {
   b2BodyDef def;
   def.type = b2_dynamicBody;
   def.position.Set(static_cast<float>(centre.x), static_cast<float>(centre.y));
@@ -138,28 +140,36 @@ std::uint32_t Physics::addBody(units::Vec2 centre, double radius, Capability cap
   impl_->bodies.push_back(body);
   impl_->lastPosition.push_back(def.position);
   ++stats_.bodies;
-  return static_cast<std::uint32_t>(impl_->bodies.size() - 1);
+  return BodyId{static_cast<std::uint32_t>(impl_->bodies.size() - 1)};
 }
 
-void Physics::freeze(std::uint32_t body) {
-  b2Body* b = impl_->bodies[body];
+bool Physics::known(BodyId body) const {
+  const bool ok = body.valid() && body.index < impl_->bodies.size();
+  WARPATH_INVARIANT(ok, "a body handle this Physics never gave out");
+  return ok;
+}
+
+void Physics::freeze(BodyId body) {
+  if (!known(body)) return;
+  b2Body* b = impl_->bodies[body.index];
   if (b == nullptr) return;
   b->SetLinearVelocity(b2Vec2(0.0f, 0.0f));
   b->SetType(b2_staticBody);
 }
 
-void Physics::removeBody(std::uint32_t body) {
-  b2Body*& b = impl_->bodies[body];
+void Physics::removeBody(BodyId body) {
+  if (!known(body)) return;
+  b2Body*& b = impl_->bodies[body.index];
   if (b == nullptr) return;
-  impl_->lastPosition[body] = b->GetPosition();
+  impl_->lastPosition[body.index] = b->GetPosition();
   impl_->world.DestroyBody(b);
   b = nullptr;
   --stats_.bodies;
 }
 
-void Physics::setVelocity(std::uint32_t body, units::Vec2 velocity) {
-  if (impl_->bodies[body] == nullptr) return;
-  impl_->bodies[body]->SetLinearVelocity(
+void Physics::setVelocity(BodyId body, units::Vec2 velocity) {
+  if (!known(body) || impl_->bodies[body.index] == nullptr) return;
+  impl_->bodies[body.index]->SetLinearVelocity(
       b2Vec2(static_cast<float>(velocity.x), static_cast<float>(velocity.y)));
 }
 
@@ -169,14 +179,16 @@ void Physics::step(double dt) {
   impl_->world.Step(static_cast<float>(dt), kVelocityIterations, kPositionIterations);
 }
 
-units::Vec2 Physics::position(std::uint32_t body) const {
-  const b2Body* b = impl_->bodies[body];
-  const b2Vec2 p = b != nullptr ? b->GetPosition() : impl_->lastPosition[body];
+units::Vec2 Physics::position(BodyId body) const {
+  if (!known(body)) return {};
+  const b2Body* b = impl_->bodies[body.index];
+  const b2Vec2 p = b != nullptr ? b->GetPosition() : impl_->lastPosition[body.index];
   return {static_cast<double>(p.x), static_cast<double>(p.y)};
 }
 
-units::Vec2 Physics::velocity(std::uint32_t body) const {
-  const b2Body* b = impl_->bodies[body];
+units::Vec2 Physics::velocity(BodyId body) const {
+  if (!known(body)) return {};
+  const b2Body* b = impl_->bodies[body.index];
   const b2Vec2 v = b != nullptr ? b->GetLinearVelocity() : b2Vec2(0.0f, 0.0f);
   return {static_cast<double>(v.x), static_cast<double>(v.y)};
 }

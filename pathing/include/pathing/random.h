@@ -24,6 +24,8 @@ class SplitMix64 {
   constexpr int between(int lo, int hi) {
     return lo + static_cast<int>(below(static_cast<std::uint32_t>(hi - lo + 1)));
   }
+  // The whole generator state, for the world's state hash.
+  constexpr std::uint64_t state() const { return state_; }
   // Uniform in [0, 1).
   constexpr double unit() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
 

@@ -156,13 +156,36 @@ std::optional<std::uint32_t> acquireTarget(const Weapon& weapon, const Combatant
                                            const pathing::GridMap& map,
                                            const SightRules& rules = {});
 
-// Keeps `current` while it may still be engaged (targets are sticky: a nearer enemy walking up
-// does not make a gunner swap mid-fight); retargets with acquireTarget when the current target
-// died, left range or sight, or there was none.
+// Sticky targeting, the rule the world runs for every armed unit each tick (orders other than
+// Attack): keeps `current` (null when the unit has no target, or its target left the world)
+// while it may still be engaged, so a nearer enemy walking up does not make a gunner swap
+// mid-fight. Otherwise it looks for the best target with acquireTarget among `candidates()`,
+// but only when `mayScan`: a unit that lost its target scans at once, one that had none scans
+// every few ticks (staggered by id) to spread the cost. `candidates` (a callable returning a
+// range of Combatant) is called only when a scan runs. nullopt: no target.
+template <class CandidatesFn>
+std::optional<std::uint32_t> chooseTarget(const Weapon& weapon, const Combatant& shooter,
+                                          const Combatant* current, bool mayScan,
+                                          CandidatesFn&& candidates, const pathing::GridMap& map,
+                                          const SightRules& rules = {}) {
+  if (current != nullptr && canEngage(weapon, shooter, *current, map, rules)) return current->id;
+  if (!mayScan) return std::nullopt;
+  return acquireTarget(weapon, shooter, candidates(), map, rules);
+}
+
+// The same rule when the current target is known by id among `candidates` and a scan may
+// always run: keeps `current` while it may be engaged, else acquireTarget.
 std::optional<std::uint32_t> chooseTarget(const Weapon& weapon, const Combatant& shooter,
                                           std::optional<std::uint32_t> current,
                                           std::span<const Combatant> candidates,
                                           const pathing::GridMap& map,
                                           const SightRules& rules = {});
+
+// An Attack order's rule: among the ordered targets (in the order given), the one with the
+// smallest gap that may be engaged now; the earlier one on equal gaps. nullopt when none may.
+std::optional<std::uint32_t> nearestEngageable(const Weapon& weapon, const Combatant& shooter,
+                                               std::span<const Combatant> ordered,
+                                               const pathing::GridMap& map,
+                                               const SightRules& rules = {});
 
 }  // namespace warpath::units

@@ -15,30 +15,29 @@ struct StuckRule {
   int flagAfter = 3;           // [Limit: >= 1] consecutive stuck windows before a unit is flagged
 };
 
-// Tracks one unit's progress; plain data so that it can be hashed and copied with the unit.
-class ProgressMonitor {
- public:
+// Tracks one unit's progress; plain data (an aggregate, so the engine's state description can
+// be checked field by field) that is changed through its methods only.
+struct ProgressMonitor {
   // Starts afresh at `position` (a new order).
   void reset(Vec2 position, std::int64_t tick) {
     restartWindow(position, tick);
-    stuckWindows_ = 0;
+    stuckInARow = 0;
   }
   // Starts a new window at `position` but keeps the count of stuck windows in a row (a new
   // path for the same order: a repath that does not help still ends in a flag).
   void restartWindow(Vec2 position, std::int64_t tick) {
-    origin_ = position;
-    originTick_ = tick;
+    origin = position;
+    originTick = tick;
   }
   // Call once a tick while the unit is moving somewhere. True when this tick closes a window
   // without progress; stuckWindows() then tells how many such windows came in a row.
   bool update(Vec2 position, std::int64_t tick, double ticksPerSecond, const StuckRule& rule);
 
-  int stuckWindows() const { return stuckWindows_; }
+  int stuckWindows() const { return stuckInARow; }
 
- private:
-  Vec2 origin_;
-  std::int64_t originTick_ = 0;
-  int stuckWindows_ = 0;
+  Vec2 origin;                  // [Unit: cells] where the current window started
+  std::int64_t originTick = 0;  // [Unit: ticks] when it started
+  int stuckInARow = 0;          // windows without progress in a row
 };
 
 }  // namespace warpath::units

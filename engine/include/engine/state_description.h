@@ -1,0 +1,234 @@
+#pragma once
+// One description per type of the simulation state: describe(v, x) calls v(name, field) for
+// every field of x, in declaration order. The state hash walks these descriptions (so it covers
+// every field), and tests/engine/state_description_test.cpp checks that each description names
+// as many fields as its struct has: a field added to a struct and not here fails that test.
+// Types with private state (GoalBoard, SplitMix64, Physics, PathService)
+// describe what they expose for it.
+
+#include <cmath>
+#include <cstdint>
+#include <type_traits>
+
+#include "engine/scenario_run.h"
+#include "engine/world.h"
+
+namespace warpath::engine {
+
+template <class V>
+void describe(V& v, const pathing::Cell& c) {
+  v("x", c.x);
+  v("y", c.y);
+}
+template <class V>
+void describe(V& v, const pathing::CellRect& r) {
+  v("x", r.x);
+  v("y", r.y);
+  v("width", r.width);
+  v("height", r.height);
+}
+template <class V>
+void describe(V& v, const pathing::Agent& a) {
+  v("size", a.size);
+  v("capability", a.capability.mask());
+}
+template <class V>
+void describe(V& v, const units::Vec2& p) {
+  v("x", p.x);
+  v("y", p.y);
+}
+template <class V>
+void describe(V& v, const UnitId& id) {
+  v("index", id.index);
+  v("generation", id.generation);
+}
+template <class V>
+void describe(V& v, const BodyId& id) {
+  v("index", id.index);
+}
+template <class V>
+void describe(V& v, const units::ProgressMonitor& m) {
+  v("origin", m.origin);
+  v("originTick", m.originTick);
+  v("stuckInARow", m.stuckInARow);
+}
+template <class V>
+void describe(V& v, const pathing::SplitMix64& rng) {
+  v("state", rng.state());
+}
+template <class V>
+void describe(V& v, const GoalBoard& board) {
+  v("digest", board.digest());
+}
+template <class V>
+void describe(V& v, const PlannedPath& p) {
+  v("cells", p.cells.size());  // the cells themselves through their digest
+  v("digest", p.digest);
+}
+template <class V>
+void describe(V& v, const CombatStats& c) {
+  v("shotsFired", c.shotsFired);
+  v("hits", c.hits);
+  v("damageDealt", c.damageDealt);
+  v("damageTaken", c.damageTaken);
+  v("kills", c.kills);
+}
+template <class V>
+void describe(V& v, const Unit& u) {
+  v("id", u.id);
+  v("type", u.type);
+  v("team", u.team);
+  v("group", u.group);
+  v("hp", u.hp);
+  v("body", u.body);
+  v("position", u.position);
+  v("velocity", u.velocity);
+  v("state", u.state);
+  v("goalArea", u.goalArea);
+  v("goalCell", u.goalCell);
+  v("orderTick", u.orderTick);
+  v("arrivalTick", u.arrivalTick);
+  v("pathSerial", u.pathSerial);
+  v("path", u.path);
+  v("next", u.next);
+  v("progress", u.progress);
+  v("everStuck", u.everStuck);
+  v("repaths", u.repaths);
+  v("order", u.order);
+  v("attackTargets", u.attackTargets);
+  v("target", u.target);
+  v("readyTick", u.readyTick);
+  v("engaged", u.engaged);
+  v("deathTick", u.deathTick);
+  v("wreckUntilTick", u.wreckUntilTick);
+  v("killedBy", u.killedBy);
+  v("combat", u.combat);
+}
+template <class V>
+void describe(V& v, const Shot& s) {
+  v("shooter", s.shooter);
+  v("target", s.target);
+  v("damage", s.damage);
+  v("firedTick", s.firedTick);
+  v("landTick", s.landTick);
+  v("from", s.from);
+  v("to", s.to);
+}
+template <class V>
+void describe(V& v, const Command& c) {
+  v("kind", c.kind);
+  v("units", c.units);
+  v("area", c.area);
+  v("targets", c.targets);
+}
+template <class V>
+void describe(V& v, const PathRequest& r) {
+  v("unit", r.unit);
+  v("serial", r.serial);
+  v("agent", r.agent);
+  v("start", r.start);
+  v("goal", r.goal);
+}
+// Box2D's own state (contacts, warm starts) is not reachable; the bodies' positions and
+// velocities are, through the units they move (read back every step), and so is the count.
+template <class V>
+void describe(V& v, const Physics& physics) {
+  v("bodies", physics.stats().bodies);
+}
+// The queue decides future answers; the answer cache does not (a cached answer equals a fresh
+// search), and its hits are counted in the metrics. Wall-clock metrics are left out.
+template <class V>
+void describe(V& v, const PathService& paths) {
+  v("queue", paths.queue());
+  const PathServiceMetrics& m = paths.metrics();
+  v("requests", m.requests);
+  v("cacheHits", m.cacheHits);
+  v("searches", m.searches);
+  v("found", m.found);
+  v("failed", m.failed);
+  v("expanded", m.expanded);
+  v("maxQueue", m.maxQueue);
+}
+template <class V>
+void describe(V& v, const WorldState& s) {
+  v("tick", s.tick);
+  v("rng", s.rng);
+  v("units", s.units);
+  v("pending", s.pending);
+  v("inFlight", s.inFlight);
+  v("lastTickShots", s.lastTickShots);
+  v("goals", s.goals);
+  v("physics", s.physics);
+  v("paths", s.paths);
+}
+template <class V>
+void describe(V& v, const RunState& s) {
+  v("members", s.members);
+  v("spawned", s.spawned);
+  v("ended", s.ended);
+  v("winner", s.winner);
+  v("endTick", s.endTick);
+  v("exited", s.exited);
+  v("exitedCount", s.exitedCount);
+  v("holdSince", s.holdSince);
+}
+
+// A 64-bit hash over a described value, one multiply-rotate round per word (as xxHash64's
+// rounds): integers and enums exactly, doubles quantised to 1/1024 (so float noise below that
+// is ignored), containers by size then elements, pointers by presence then what they point to.
+class StateHasher {
+ public:
+  template <class T>
+  void operator()(const char* /*name*/, const T& value) {
+    add(value);
+  }
+  std::uint64_t value() const { return hash_; }
+
+  void addWord(std::uint64_t v) {
+    constexpr std::uint64_t kPrime1 = 0x9E3779B185EBCA87ull;
+    constexpr std::uint64_t kPrime2 = 0xC2B2AE3D27D4EB4Full;
+    hash_ ^= v * kPrime2;
+    hash_ = ((hash_ << 31) | (hash_ >> 33)) * kPrime1;
+  }
+
+ private:
+  template <class T>
+  void add(const T& value) {
+    if constexpr (std::is_same_v<T, double>) {
+      addWord(static_cast<std::uint64_t>(std::llround(value * 1024.0)));
+    } else if constexpr (std::is_enum_v<T>) {
+      addWord(static_cast<std::uint64_t>(value));
+    } else if constexpr (std::is_integral_v<T>) {
+      addWord(static_cast<std::uint64_t>(value));
+    } else if constexpr (requires {
+                           value.get();
+                           *value;
+                         }) {  // smart pointers
+      if (value) {
+        addWord(1);
+        add(*value);
+      } else {
+        addWord(0);
+      }
+    } else if constexpr (requires {
+                           value.size();
+                           value.begin();
+                         }) {  // containers
+      addWord(static_cast<std::uint64_t>(value.size()));
+      for (const auto& element : value)
+        add(element);
+    } else {
+      describe(*this, value);
+    }
+  }
+
+  std::uint64_t hash_ = 0xCBF29CE484222325ull;
+};
+
+inline std::uint64_t hashState(const WorldState& state) {
+  StateHasher h;
+  describe(h, state);
+  return h.value();
+}
+
+}  // namespace warpath::engine

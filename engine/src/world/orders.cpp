@@ -1,0 +1,324 @@
+// Orders: what a unit was told (move, attack-move, attack, hold, stop), the goal cell it was
+// handed, the path it asked for and what it holds on the goal board; and a unit's death.
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/src/world/phases.h"
+#include "pathing/invariant.h"
+
+namespace warpath::engine::world {
+
+using namespace pathing;
+
+const units::UnitType& Refs::typeOf(const Unit& unit) const {
+  return catalogue[static_cast<std::size_t>(unit.type)];
+}
+
+units::Combatant Refs::combatantOf(const Unit& unit) const {
+  const units::UnitType& type = typeOf(unit);
+  return {unit.id.index, unit.team, type.armour, type.size, unit.position, unit.hp};
+}
+
+Unit& Refs::unit(UnitId id) {
+  WARPATH_INVARIANT(
+      id.index < state.units.size() && state.units[id.index].id.generation == id.generation,
+      "a unit handle the world did not give out");
+  return state.units[id.index];
+}
+
+const Unit& Refs::unit(UnitId id) const {
+  WARPATH_INVARIANT(
+      id.index < state.units.size() && state.units[id.index].id.generation == id.generation,
+      "a unit handle the world did not give out");
+  return state.units[id.index];
+}
+
+void Refs::log(EventKind kind, const Unit& u, int detail) {
+  events.push_back({state.tick, kind, u.id, detail});
+}
+
+int chebyshev(Cell a, Cell b) {
+  return std::max(std::abs(a.x - b.x), std::abs(a.y - b.y));
+}
+
+namespace {
+
+bool livingKnown(const Refs& w, UnitId id) {
+  return id.index < w.state.units.size() &&
+         w.state.units[id.index].id.generation == id.generation && w.state.units[id.index].alive();
+}
+
+std::vector<Cell> shuffledStandable(Refs& w, Agent agent, const CellRect& area) {
+  // Every cell of the area the agent can stand on, in an order drawn from the world RNG.
+  std::vector<Cell> cells;
+  for (int y = area.y; y < area.y + area.height; ++y) {
+    for (int x = area.x; x < area.x + area.width; ++x) {
+      if (w.grid.canStand(agent, {x, y})) cells.push_back({x, y});
+    }
+  }
+  for (std::size_t i = cells.size(); i > 1; --i)
+    std::swap(cells[i - 1], cells[w.state.rng.below(static_cast<std::uint32_t>(i))]);
+  return cells;
+}
+
+std::uint32_t componentOf(const Refs& w, const Unit& unit) {
+  const auto& components = w.grid.layer(w.typeOf(unit).agent()).components();
+  return components[w.map().indexOf(nearestStandable(w, unit))];
+}
+
+void beginMove(Refs& w, Unit& unit, const CellRect& area, const std::vector<Cell>& candidates,
+               std::size_t& cursor) {
+  const GridMap& map = w.map();
+  const units::UnitType& type = w.typeOf(unit);
+  const auto& components = w.grid.layer(type.agent()).components();
+  const std::uint32_t component = componentOf(w, unit);
+  const auto fits = [&](Cell c, bool strict) {
+    if (components[map.indexOf(c)] != component) return false;
+    return !strict || (w.state.goals.freeFor(GoalLayer::Claimed, c, type.size, {}) &&
+                       w.state.goals.freeFor(GoalLayer::Parked, c, type.size, {}));
+  };
+  // Prefer a footprint nobody else was given; when the area is full, share one.
+  std::optional<Cell> goal;
+  for (bool strict : {true, false}) {
+    for (std::size_t k = 0; k < candidates.size() && !goal; ++k) {
+      const Cell c = candidates[(cursor + k) % candidates.size()];
+      if (fits(c, strict)) {
+        goal = c;
+        cursor = (cursor + k + 1) % candidates.size();
+      }
+    }
+    if (goal) break;
+  }
+  unit.goalArea = area;
+  unit.orderTick = w.state.tick;
+  unit.arrivalTick = -1;
+  unit.progress.reset(unit.position, w.state.tick);
+  if (!goal) {
+    unit.state = UnitState::NoPath;
+    w.log(EventKind::PathFailed, unit, static_cast<int>(PathStatus::Unreachable));
+    return;
+  }
+  unit.goalCell = *goal;
+  w.state.goals.take(GoalLayer::Claimed, unit.goalCell, type.size, unit.id);
+  unit.state = UnitState::WaitingPath;
+  requestPath(w, unit);
+}
+
+std::optional<Cell> approachCell(const Refs& w, const Unit& unit, const Unit& target) {
+  // The standable cell in the unit's own component nearest the target's centre, searched in
+  // square rings around it out to the weapon's reach: the target may stand where the unit
+  // cannot (infantry in a forest, an amphibious unit afloat).
+  const units::UnitType& type = w.typeOf(unit);
+  const GridMap& map = w.map();
+  const auto& components = w.grid.layer(type.agent()).components();
+  const std::uint32_t component = componentOf(w, unit);
+  const Cell centre = units::centreToAnchor(target.position, type.size);
+  const int reach =
+      static_cast<int>(std::ceil(type.weapon ? type.weapon->range : 0.0)) + w.typeOf(target).size;
+  for (int r = 0; r <= reach; ++r) {
+    std::optional<Cell> best;
+    double bestDistance = INFINITY;
+    for (int y = centre.y - r; y <= centre.y + r; ++y) {
+      for (int x = centre.x - r; x <= centre.x + r; ++x) {
+        if (std::max(std::abs(x - centre.x), std::abs(y - centre.y)) != r) continue;
+        if (!w.grid.canStand(type.agent(), {x, y})) continue;
+        if (components[map.indexOf({x, y})] != component) continue;
+        const double d = (units::anchorToCentre({x, y}, type.size) - target.position).length();
+        if (d < bestDistance) {
+          bestDistance = d;
+          best = Cell{x, y};
+        }
+      }
+    }
+    if (best) return best;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+Cell nearestStandable(const Refs& w, const Unit& unit) {
+  const units::UnitType& type = w.typeOf(unit);
+  const Cell anchor = units::centreToAnchor(unit.position, type.size);
+  if (w.grid.canStand(type.agent(), anchor)) return anchor;
+  // Pushed against an edge, the rounded anchor may straddle it: take the nearest cell where
+  // the footprint fits (row-major order breaks ties).
+  constexpr int kReach = 2;
+  Cell best = anchor;
+  double bestDistance = INFINITY;
+  for (int y = anchor.y - kReach; y <= anchor.y + kReach; ++y) {
+    for (int x = anchor.x - kReach; x <= anchor.x + kReach; ++x) {
+      if (!w.grid.canStand(type.agent(), {x, y})) continue;
+      const double d = (units::anchorToCentre({x, y}, type.size) - unit.position).length();
+      if (d < bestDistance) {
+        bestDistance = d;
+        best = {x, y};
+      }
+    }
+  }
+  return best;
+}
+
+void leaveOrder(Refs& w, Unit& unit) {
+  const int size = w.typeOf(unit).size;
+  if (unit.state == UnitState::Parked)
+    w.state.goals.release(GoalLayer::Parked, unit.goalCell, size, unit.id);
+  w.state.goals.release(GoalLayer::Claimed, unit.goalCell, size, unit.id);
+  unit.path.reset();
+  unit.next = 0;
+  unit.attackTargets.clear();
+  unit.engaged = false;
+  ++unit.pathSerial;  // answers to requests of the old order are stale
+}
+
+void applyCommand(Refs& w, const Command& command) {
+  std::vector<Cell> candidates;
+  int candidatesType = -1;
+  std::size_t cursor = 0;
+  for (UnitId id : command.units) {
+    if (!livingKnown(w, id)) continue;
+    Unit& unit = w.unit(id);
+    leaveOrder(w, unit);
+    unit.order = command.kind;
+    w.log(EventKind::Ordered, unit, static_cast<int>(command.kind));
+    switch (command.kind) {
+      case OrderKind::Move:
+      case OrderKind::AttackMove:
+        if (unit.type != candidatesType) {
+          candidates = shuffledStandable(w, w.typeOf(unit).agent(), command.area);
+          candidatesType = unit.type;
+          cursor = 0;
+        }
+        beginMove(w, unit, command.area, candidates, cursor);
+        break;
+      case OrderKind::Attack:
+        for (UnitId t : command.targets) {
+          if (livingKnown(w, t) && w.unit(t).team != unit.team) unit.attackTargets.push_back(t);
+        }
+        unit.target = {};
+        unit.state = UnitState::Idle;
+        pursue(w, unit, true);
+        break;
+      case OrderKind::Hold:
+        // Holding a spot is parking where the unit stands: steering brings it back when shoved.
+        unit.goalCell = nearestStandable(w, unit);
+        unit.state = UnitState::Parked;
+        w.state.goals.take(GoalLayer::Parked, unit.goalCell, w.typeOf(unit).size, unit.id);
+        break;
+      case OrderKind::Stop:
+        unit.state = UnitState::Idle;
+        break;
+    }
+  }
+}
+
+void pursue(Refs& w, Unit& unit, bool force) {
+  // The living attack target nearest the unit (gap, then the order listed).
+  const units::Combatant self = w.combatantOf(unit);
+  const Unit* chase = nullptr;
+  double chaseGap = INFINITY;
+  std::erase_if(unit.attackTargets, [&](UnitId t) { return !w.unit(t).alive(); });
+  for (UnitId t : unit.attackTargets) {
+    const double gap = units::gapSquared(self, w.combatantOf(w.unit(t)));
+    if (gap < chaseGap) {
+      chaseGap = gap;
+      chase = &w.unit(t);
+    }
+  }
+  if (chase == nullptr) {
+    // Every target is dead: the order is done.
+    leaveOrder(w, unit);
+    unit.order = OrderKind::Stop;
+    unit.state = UnitState::Idle;
+    return;
+  }
+  const std::optional<Cell> cell = approachCell(w, unit, *chase);
+  if (!cell) {
+    unit.state = UnitState::NoPath;
+    return;
+  }
+  if (!force && unit.state != UnitState::NoPath && chebyshev(*cell, unit.goalCell) <= 2) return;
+  unit.goalCell = *cell;
+  unit.progress.reset(unit.position, w.state.tick);
+  unit.state = UnitState::WaitingPath;
+  requestPath(w, unit);
+}
+
+void requestPath(Refs& w, Unit& unit) {
+  ++unit.pathSerial;
+  w.state.paths->request(
+      {unit.id, unit.pathSerial, w.typeOf(unit).agent(), nearestStandable(w, unit), unit.goalCell});
+}
+
+void deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
+  scratch.clear();
+  w.state.paths->serve(scratch);
+  for (const PathDelivery& delivery : scratch) {
+    if (!(delivery.unit.index < w.state.units.size())) continue;
+    Unit& unit = w.unit(delivery.unit);
+    if (delivery.serial != unit.pathSerial || !unit.alive()) continue;  // superseded, or dead
+    if (delivery.status == PathStatus::Found) {
+      unit.path = delivery.path;
+      unit.next = 0;
+      unit.state = UnitState::Moving;
+      unit.progress.restartWindow(unit.position, w.state.tick);
+      w.log(EventKind::PathFound, unit);
+    } else {
+      unit.path.reset();
+      unit.state = UnitState::NoPath;
+      w.log(EventKind::PathFailed, unit, static_cast<int>(delivery.status));
+    }
+  }
+}
+
+bool reassignGoal(Refs& w, Unit& unit) {
+  const units::UnitType& type = w.typeOf(unit);
+  const Agent agent = type.agent();
+  const GridMap& map = w.map();
+  const auto& components = w.grid.layer(agent).components();
+  const std::uint32_t component = componentOf(w, unit);
+  std::optional<Cell> best;
+  double bestDistance = INFINITY;
+  const CellRect& area = unit.goalArea;
+  for (int y = area.y; y < area.y + area.height; ++y) {
+    for (int x = area.x; x < area.x + area.width; ++x) {
+      const Cell c{x, y};
+      if (!w.grid.canStand(agent, c) || components[map.indexOf(c)] != component) continue;
+      const bool free = w.state.goals.freeFor(GoalLayer::Parked, c, type.size, unit.id) &&
+                        w.state.goals.freeFor(GoalLayer::Claimed, c, type.size, unit.id);
+      const double d = (units::anchorToCentre(c, type.size) - unit.position).length();
+      if (free && d < bestDistance) {
+        bestDistance = d;
+        best = c;
+      }
+    }
+  }
+  if (!best || *best == unit.goalCell) return false;
+  w.state.goals.release(GoalLayer::Claimed, unit.goalCell, type.size, unit.id);
+  unit.goalCell = *best;
+  w.state.goals.take(GoalLayer::Claimed, unit.goalCell, type.size, unit.id);
+  return true;
+}
+
+void kill(Refs& w, Unit& unit, UnitId killer) {
+  leaveOrder(w, unit);
+  unit.state = UnitState::Dead;
+  unit.order = OrderKind::Stop;
+  unit.target = {};
+  unit.deathTick = w.state.tick;
+  unit.killedBy = killer;
+  unit.velocity = {};
+  w.state.paths->cancel(unit.id);
+  const double wreck = w.settings.combat.wreckSeconds;
+  if (wreck > 0.0) {
+    w.state.physics->freeze(unit.body);
+    unit.wreckUntilTick =
+        w.state.tick + std::max<std::int64_t>(1, std::llround(wreck * w.settings.tickRate));
+  } else {
+    w.state.physics->removeBody(unit.body);
+  }
+  w.log(EventKind::Killed, unit, static_cast<int>(killer.index));
+}
+
+}  // namespace warpath::engine::world

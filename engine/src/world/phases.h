@@ -1,0 +1,100 @@
+#pragma once
+// The phases of a world tick (DESIGN.md §4), each with one job, and what they share. World::step
+// (engine/src/world.cpp) calls them in order; nothing here is visible outside the engine.
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "engine/world.h"
+
+namespace warpath::engine::world {
+
+// What every phase reads (map, catalogue, settings) and writes (the state, the step's events).
+struct Refs {
+  const pathing::AnnotatedGrid& grid;
+  const std::vector<units::UnitType>& catalogue;
+  const WorldSettings& settings;
+  WorldState& state;
+  std::vector<Event>& events;
+
+  const pathing::GridMap& map() const { return grid.map(); }
+  const units::UnitType& typeOf(const Unit& unit) const;
+  // What the combat rules (units/combat.h) see of a unit.
+  units::Combatant combatantOf(const Unit& unit) const;
+  // The unit a handle names. A handle the world did not give out is a bug: checked as an
+  // invariant (units reached through commands and scripts go through World::find first).
+  Unit& unit(UnitId id);
+  const Unit& unit(UnitId id) const;
+  void log(EventKind kind, const Unit& unit, int detail = 0);
+};
+
+int chebyshev(pathing::Cell a, pathing::Cell b);
+
+// --- Orders: what a unit was told and what it holds for it (engine/src/world/orders.cpp) ---
+
+// Applies a command to its living units, in the order listed.
+void applyCommand(Refs& w, const Command& command);
+// Undoes what the current order holds: goal claim, parking spot, path, attack targets.
+void leaveOrder(Refs& w, Unit& unit);
+// Attack order: heads for the nearest living target (a new path when it moved, or `force`);
+// the order ends when every target is dead.
+void pursue(Refs& w, Unit& unit, bool force);
+// The anchor nearest the unit's body where its footprint fits.
+pathing::Cell nearestStandable(const Refs& w, const Unit& unit);
+void requestPath(Refs& w, Unit& unit);
+// Serves the path service within its budget and hands each answer to its unit.
+void deliverPaths(Refs& w, std::vector<PathDelivery>& scratch);
+// Moves the unit to the nearest free goal cell of its area; false when there is none other.
+bool reassignGoal(Refs& w, Unit& unit);
+// hp reached 0: the unit leaves its order, the path service and (after its wreck) physics.
+void kill(Refs& w, Unit& unit, UnitId killer);
+
+// --- Combat: targets and fire (engine/src/world/combat.cpp) ---
+
+// Living units bucketed by position (CSR), rebuilt every tick, so that a scan for targets looks
+// at the units near the shooter only.
+class TargetIndex {
+ public:
+  void rebuild(const Refs& w);
+  const units::Combatant& combatant(UnitId id) const { return combatants_[id.index]; }
+  int maxUnitSize() const { return maxUnitSize_; }
+  // Every living unit whose centre may lie within `reach` of `centre` (a superset: whole
+  // buckets), in bucket order.
+  const std::vector<units::Combatant>& near(units::Vec2 centre, double reach);
+
+ private:
+  static constexpr int kBucketCells = 8;  // side of a bucket
+  int bucketsWide_ = 0;
+  int bucketsHigh_ = 0;
+  int maxUnitSize_ = 1;
+  std::vector<std::uint32_t> start_;
+  std::vector<std::uint32_t> units_;
+  std::vector<std::uint32_t> fill_;           // next free slot per bucket
+  std::vector<units::Combatant> combatants_;  // per unit, this tick
+  std::vector<units::Combatant> near_;        // the last near() answer
+};
+
+class Combat {
+ public:
+  // Each armed living unit keeps, changes or drops its target (units::chooseTarget); halts
+  // to fight under AttackMove and Attack orders.
+  void chooseTargets(Refs& w);
+  // Ready units fire in id order; shots due land in the order fired (deaths).
+  void fire(Refs& w);
+
+ private:
+  TargetIndex index_;
+  std::vector<units::Combatant> ordered_;  // scratch: an Attack order's living targets
+};
+
+// --- Steering: desired velocities into physics (engine/src/world/steering.cpp) ---
+void steerAll(Refs& w);
+
+// --- Physics: Box2D steps, positions read back ---
+void stepPhysics(Refs& w);
+
+// --- Rules: arrivals, wrecks, repaths, stuck units (engine/src/world/rules.cpp) ---
+void applyRules(Refs& w);
+
+}  // namespace warpath::engine::world

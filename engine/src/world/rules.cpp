@@ -1,0 +1,77 @@
+// Rules after the physics step: wrecks cleared, arrivals, attack pursuit, goal cells taken by
+// others, units pushed off their path, and the stuck rule.
+
+#include "engine/src/world/phases.h"
+
+namespace warpath::engine::world {
+
+using pathing::Cell;
+
+namespace {
+
+// A moving unit's checks, in order; at most one repath a tick.
+void checkProgress(Refs& w, Unit& unit, Cell anchor) {
+  const units::UnitType& type = w.typeOf(unit);
+  const std::vector<Cell>& path = unit.path->cells;
+  const bool movingToArea = unit.order != OrderKind::Attack;
+  // The goal cell was taken by a unit that parked there first: pick the nearest free one.
+  const bool nearEnd = unit.next + static_cast<std::size_t>(type.size) + 2 >= path.size();
+  const bool goalTaken =
+      !w.state.goals.freeFor(GoalLayer::Parked, unit.goalCell, type.size, unit.id);
+  if (movingToArea && nearEnd && goalTaken && reassignGoal(w, unit)) {
+    w.log(EventKind::Repath, unit, 2);
+    requestPath(w, unit);
+    return;
+  }
+  // Pushed off its path: the next waypoint is more than a step away, and steering straight
+  // at it could cut a corner the path went around.
+  if (chebyshev(anchor, path[unit.next]) > 2) {
+    w.log(EventKind::Repath, unit, 1);
+    requestPath(w, unit);
+    unit.state = UnitState::WaitingPath;
+    return;
+  }
+  const WorldSettings& settings = w.settings;
+  if (unit.progress.update(unit.position, w.state.tick, settings.tickRate, settings.stuck)) {
+    ++unit.repaths;
+    if (unit.progress.stuckWindows() == settings.stuck.flagAfter) {
+      unit.everStuck = true;
+      w.log(EventKind::StuckFlagged, unit);
+    }
+    // Near the goal, a crowd is the likely cause: a free goal cell resolves it.
+    if (movingToArea && nearEnd) reassignGoal(w, unit);
+    w.log(EventKind::Repath, unit, 0);
+    requestPath(w, unit);
+  }
+}
+
+}  // namespace
+
+void applyRules(Refs& w) {
+  const std::int64_t tick = w.state.tick;
+  for (Unit& unit : w.state.units) {
+    if (!unit.alive()) {
+      if (unit.wreckUntilTick >= 0 && tick >= unit.wreckUntilTick) {
+        w.state.physics->removeBody(unit.body);
+        unit.wreckUntilTick = -1;
+        w.log(EventKind::WreckCleared, unit);
+      }
+      continue;
+    }
+    const Cell anchor = units::centreToAnchor(unit.position, w.typeOf(unit).size);
+    if (unit.orderTick >= 0 && unit.arrivalTick < 0 && unit.goalArea.contains(anchor)) {
+      unit.arrivalTick = tick;
+      w.log(EventKind::Arrived, unit);
+    }
+    if (unit.order == OrderKind::Attack) {
+      // Follow the target as it moves, about once a second (staggered by id).
+      const auto second = static_cast<std::int64_t>(std::max(1.0, std::round(w.settings.tickRate)));
+      if (!unit.engaged && (tick + unit.id.index) % second == 0) pursue(w, unit, false);
+      if (unit.order != OrderKind::Attack) continue;
+    }
+    if (unit.state != UnitState::Moving || unit.engaged) continue;
+    checkProgress(w, unit, anchor);
+  }
+}
+
+}  // namespace warpath::engine::world
