@@ -7,6 +7,10 @@
 // that reads is opened for playback (its embedded scenario parsed from the embedded files, its
 // command stream checked against the scenario) and, when its map and unit count are small,
 // played for a few ticks.
+//
+// To get the checksummed file for `rts replay info|verify` (a crash artifact is the raw
+// input), run the harness on it with WARPATH_FUZZ_WRITE_REPLAY=FILE: the file is written there
+// instead of the scratch file and kept.
 
 #include <unistd.h>
 #include <zlib.h>
@@ -65,6 +69,8 @@ void fixChecksums(std::string& b) {
 
 const fs::path& scratchFile() {
   static const fs::path file = [] {
+    if (const char* keep = std::getenv("WARPATH_FUZZ_WRITE_REPLAY"); keep && *keep)
+      return fs::path(keep);
     fs::path f = fs::temp_directory_path() /
                  ("warpath-fuzz-replay." + std::to_string(static_cast<long>(::getpid())));
     std::atexit([] {

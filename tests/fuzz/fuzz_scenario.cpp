@@ -16,13 +16,17 @@
 // The scenario is read as /fuzz/scenarios/fuzz.yaml. A file it asks for gets the first unused
 // section whose NAME is the requested file's name, else the next unused section in order (so a
 // mutated file name still finds contents), else nothing ("not found"). Nothing is read from
-// disk. A scenario that loads is checked for what the loader promises: every unit placed
-// where its type can stand, inside its spawn area, no more than the group's count.
+// disk. With WARPATH_FUZZ_WRITE_SCENARIO=DIR, the scenario and each file handed out are also
+// written under DIR (DIR/scenarios/fuzz.yaml, files at the paths they were asked for), so an
+// input reproduces with `rts run DIR/scenarios/fuzz.yaml`. A scenario that loads is checked for
+// what the loader promises: every unit placed where its type can stand, inside its spawn area, no
+// more than the group's count.
 
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -42,6 +46,21 @@ struct Section {
 };
 
 constexpr std::string_view kHeader = "\n==> ";
+constexpr std::string_view kScenarioPath = "/fuzz/scenarios/fuzz.yaml";
+
+// WARPATH_FUZZ_WRITE_SCENARIO: writes `contents` as `file` (a path under /fuzz) under that
+// folder; paths that would leave it are skipped.
+void writeOut(const std::filesystem::path& file, std::string_view contents) {
+  static const char* const dir = std::getenv("WARPATH_FUZZ_WRITE_SCENARIO");
+  if (!dir || !*dir) return;
+  namespace fs = std::filesystem;
+  const fs::path relative = file.lexically_normal().lexically_relative("/fuzz");
+  if (relative.empty() || *relative.begin() == "..") return;
+  const fs::path target = fs::path(dir) / relative;
+  std::error_code ignored;
+  fs::create_directories(target.parent_path(), ignored);
+  std::ofstream(target, std::ios::binary) << contents;
+}
 
 // Splits the input into the scenario text (returned) and the file sections.
 std::string_view split(std::string_view input, std::vector<Section>& sections) {
@@ -95,19 +114,22 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (Section& s : sections) {
       if (!s.used && s.name == name) {
         s.used = true;
+        writeOut(file, s.contents);
         return std::string(s.contents);
       }
     }
     for (Section& s : sections) {
       if (!s.used) {
         s.used = true;
+        writeOut(file, s.contents);
         return std::string(s.contents);
       }
     }
     return std::nullopt;
   };
+  writeOut(kScenarioPath, text);
   const engine::ScenarioResult<engine::Scenario> loaded =
-      engine::parseScenario(text, "/fuzz/scenarios/fuzz.yaml", files);
+      engine::parseScenario(text, kScenarioPath, files);
   if (!loaded.ok()) {
     if (loaded.error.describe().empty()) std::abort();
     return 0;
