@@ -62,14 +62,14 @@ seeds() {  # TARGET -> fills $out/seeds/TARGET
     fuzz_scenario)
       # The scenario, then each file it names under a "==> NAME" line (fuzz_scenario.cpp).
       local s map
-      for s in scenarios/*.yaml; do
+      for s in scenarios/*.yaml tests/fuzz/seeds/*.yaml; do
         [[ "$(basename "$s")" == stress_2000.yaml ]] && continue
         {
           cat "$s"
           map=$(sed -n 's/^map: *\([^{ ][^ #]*\).*/\1/p' "$s")
           if [[ -n "$map" ]]; then
             printf '==> %s\n' "$(basename "$map")"
-            cat "scenarios/$map"
+            cat "$(dirname "$s")/$map"
           fi
           printf '==> units.yaml\n'
           cat assets/units.yaml
@@ -79,7 +79,9 @@ seeds() {  # TARGET -> fills $out/seeds/TARGET
       # A travel scenario, hashed every tick; a battle, hashed every 10 ticks, with its orders.
       "$bin/make_replay_seed" scenarios/narrow_pass.yaml "$dir/narrow_pass.replay" 20
       "$bin/make_replay_seed" scenarios/river_ambush.yaml "$dir/river_ambush.replay" 60 10
-      "$bin/make_replay_seed" scenarios/forest_battle.yaml "$dir/forest_battle.replay" 5 ;;
+      "$bin/make_replay_seed" scenarios/forest_battle.yaml "$dir/forest_battle.replay" 5
+      # A small inline map, every order kind and a reinforcement: cheap to play back.
+      "$bin/make_replay_seed" tests/fuzz/seeds/skirmish.yaml "$dir/skirmish.replay" 200 5 ;;
   esac
   # Inputs that once crashed a harness are seeds too.
   if [[ -d tests/fuzz/regressions/$target ]]; then
