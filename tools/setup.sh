@@ -8,6 +8,9 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libgif-dev
   libbox2d-dev libsdl2-dev libosmesa6-dev libyaml-cpp-dev zlib1g-dev
+  # The fuzz harnesses (docs/fuzzing.md): clang 14, and libclang-rt-14-dev, which holds
+  # libFuzzer (libclang_rt.fuzzer*.a) and clang's sanitizer runtimes on Debian 12.
+  clang libclang-rt-14-dev
 )
 
 missing=()

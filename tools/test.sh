@@ -3,15 +3,19 @@
 #   1. Release build, every test; the MovingAI data suite (CTest label `data`) runs too when
 #      $WARPATH_DATA or ../shared/data holds the benchmark maps.
 #   2. AddressSanitizer + UndefinedBehaviorSanitizer build, every test but the data suite.
-# Pass --no-sanitizers to skip step 2 while iterating.
+#   3. When clang is installed: the libFuzzer harnesses (tests/fuzz, docs/fuzzing.md) built in
+#      build-fuzz/ and each run for 30 s from the bundled seeds; a crash, hang or OOM fails.
+# Pass --no-sanitizers to skip step 2 and --no-fuzz to skip step 3 while iterating.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 sanitizers=1
+fuzz=1
 for arg in "$@"; do
   case "$arg" in
     --no-sanitizers) sanitizers=0 ;;
-    *) echo "usage: tools/test.sh [--no-sanitizers]" >&2; exit 2 ;;
+    --no-fuzz) fuzz=0 ;;
+    *) echo "usage: tools/test.sh [--no-sanitizers] [--no-fuzz]" >&2; exit 2 ;;
   esac
 done
 
@@ -28,4 +32,12 @@ if ((sanitizers)); then
   cmake --build build-asan -j "$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
     ctest --test-dir build-asan -j "$jobs" --output-on-failure --label-exclude data
+fi
+
+if ((fuzz)); then
+  if command -v clang++ >/dev/null; then
+    bash tools/fuzz.sh --seconds 30
+  else
+    echo "test: clang++ not found, fuzz harnesses skipped (tools/setup.sh installs clang)"
+  fi
 fi
