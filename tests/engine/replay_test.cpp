@@ -271,6 +271,19 @@ TEST_F(Replays, TruncationBetweenRecordsVerifiesUpToTheLastTick) {
   EXPECT_NE(info.out.find("status: interrupted (no end record"), std::string::npos) << info.out;
 }
 
+// A format-2 replay written by the release before the complete state hash (forest_battle,
+// hashes every 30 ticks) still verifies: playback computes the hash that format recorded.
+TEST_F(Replays, AFormat2ReplayOfThePreviousReleaseVerifies) {
+  const std::string file =
+      std::string(WARPATH_SOURCE_DIR) + "/tests/fixtures/forest_battle_format2.replay";
+  ScenarioResult<Replay> replay = readReplay(file);
+  ASSERT_TRUE(replay.ok()) << replay.error.describe();
+  EXPECT_EQ(replay.value->version, 2u);
+  const Result r = rts("replay verify " + file);
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("verified 1978 ticks, 66 state hashes match"), std::string::npos) << r.out;
+}
+
 TEST_F(Replays, AnotherVersionIsRefused) {
   const fs::path file = record(1);
   std::string bytes = slurp(file);
