@@ -51,7 +51,7 @@ class Encoder {
   std::string bytes_;
 };
 
-// Thrown inside the reader only; readReplay turns it into a ScenarioError.
+// Thrown inside the reader only; readReplay turns it into an Error.
 struct Malformed {
   std::string problem;
 };
@@ -256,9 +256,9 @@ std::int64_t Replay::lastTick() const {
   return hashes.empty() ? 0 : hashes.back().tick;
 }
 
-ScenarioResult<Scenario> loadRecordedScenario(const fs::path& file, ReplaySource& source) {
+Result<Scenario> loadRecordedScenario(const fs::path& file, ReplaySource& source) {
   const std::optional<std::string> text = readDiskFile(file);
-  if (!text) return {std::nullopt, {file.string(), 0, 0, "cannot open the scenario file"}};
+  if (!text) return Error{file.string(), 0, 0, "cannot open the scenario file"};
   source.scenarioPath = file.generic_string();
   source.scenarioText = *text;
   source.files.clear();
@@ -270,9 +270,9 @@ ScenarioResult<Scenario> loadRecordedScenario(const fs::path& file, ReplaySource
   return parseScenario(*text, source.scenarioPath, recording);
 }
 
-ScenarioResult<Replay> readReplay(const fs::path& file) {
-  const auto fail = [&](const std::string& problem) -> ScenarioResult<Replay> {
-    return {std::nullopt, {file.string(), 0, 0, problem}};
+Result<Replay> readReplay(const fs::path& file) {
+  const auto fail = [&](const std::string& problem) -> Result<Replay> {
+    return Error{file.string(), 0, 0, problem};
   };
   std::ifstream in(file, std::ios::binary);
   if (!in) return fail("cannot open the replay");
@@ -327,10 +327,10 @@ ScenarioResult<Replay> readReplay(const fs::path& file) {
     at += total;
   }
   if (!haveSource) return fail("truncated: no scenario record");
-  return {std::move(replay), {}};
+  return replay;
 }
 
-ScenarioResult<Scenario> replayScenario(const Replay& replay) {
+Result<Scenario> replayScenario(const Replay& replay) {
   std::map<std::string, const std::string*> embedded;
   for (const ReplayFile& f : replay.source.files)
     embedded[f.path] = &f.contents;
@@ -342,22 +342,21 @@ ScenarioResult<Scenario> replayScenario(const Replay& replay) {
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay);
 }
 
-ScenarioResult<ReplayWriter> ReplayWriter::open(const fs::path& file, const ReplaySource& source) {
+Result<ReplayWriter> ReplayWriter::open(const fs::path& file, const ReplaySource& source) {
   std::unique_ptr<std::FILE, Closer> out(std::fopen(file.c_str(), "wb"));
-  if (!out) return {std::nullopt, {file.string(), 0, 0, "cannot create the replay"}};
+  if (!out) return Error{file.string(), 0, 0, "cannot create the replay"};
   ReplayWriter writer(file.string(), std::move(out), std::max<std::int64_t>(source.hashEvery, 1));
   Encoder head;
   head.u32(kReplayVersion);
   if (std::fwrite(kMagic.data(), 1, kMagic.size(), writer.out_.get()) != kMagic.size() ||
       std::fwrite(head.bytes().data(), 1, 4, writer.out_.get()) != 4) {
-    return {std::nullopt, {file.string(), 0, 0, "cannot write the replay"}};
+    return Error{file.string(), 0, 0, "cannot write the replay"};
   }
-  if (std::optional<ScenarioError> e = writer.append('S', sourcePayload(source)))
-    return {std::nullopt, *e};
-  return {std::move(writer), {}};
+  if (Status s = writer.append('S', sourcePayload(source)); !s) return s.error();
+  return writer;
 }
 
-std::optional<ScenarioError> ReplayWriter::append(char kind, const std::string& payload) {
+Status ReplayWriter::append(char kind, const std::string& payload) {
   Encoder head;
   head.u8(static_cast<std::uint8_t>(kind));
   head.u32(static_cast<std::uint32_t>(payload.size()));
@@ -368,32 +367,33 @@ std::optional<ScenarioError> ReplayWriter::append(char kind, const std::string& 
   if (std::fwrite(head.bytes().data(), 1, kRecordHead, f) != kRecordHead ||
       std::fwrite(payload.data(), 1, payload.size(), f) != payload.size() ||
       std::fwrite(tail.bytes().data(), 1, kRecordTail, f) != kRecordTail) {
-    return ScenarioError{file_, 0, 0, "cannot write the replay"};
+    return Error{file_, 0, 0, "cannot write the replay"};
   }
-  return std::nullopt;
+  return Status::success();
 }
 
-std::optional<ScenarioError> ReplayWriter::record(const ScenarioRun& run) {
+Status ReplayWriter::record(const ScenarioRun& run) {
   const std::vector<IssuedOrder>& orders = run.issued();
   for (; ordersWritten_ < orders.size(); ++ordersWritten_) {
-    if (auto e = append('O', orderPayload(orders[ordersWritten_]))) return e;
+    if (Status s = append('O', orderPayload(orders[ordersWritten_])); !s) return s;
   }
   const std::int64_t tick = run.world().tick();
   if (tick > lastHashed_ && tick % every_ == 0) {
-    if (auto e = append('H', hashPayload({tick, run.world().stateHash()}))) return e;
+    if (Status s = append('H', hashPayload({tick, run.world().stateHash()})); !s) return s;
     lastHashed_ = tick;
   }
   // Flushed every tick: a run killed between ticks leaves whole records behind.
-  if (std::fflush(out_.get()) != 0) return ScenarioError{file_, 0, 0, "cannot write the replay"};
-  return std::nullopt;
+  if (std::fflush(out_.get()) != 0) return Error{file_, 0, 0, "cannot write the replay"};
+  return Status::success();
 }
 
-std::optional<ScenarioError> ReplayWriter::finish(const ScenarioRun& run, ReplayEnd reason) {
-  if (auto e = record(run)) return e;
-  if (auto e = append('E', endPayload({reason, {run.world().tick(), run.world().stateHash()}})))
-    return e;
-  if (std::fflush(out_.get()) != 0) return ScenarioError{file_, 0, 0, "cannot write the replay"};
-  return std::nullopt;
+Status ReplayWriter::finish(const ScenarioRun& run, ReplayEnd reason) {
+  if (Status s = record(run); !s) return s;
+  if (Status s = append('E', endPayload({reason, {run.world().tick(), run.world().stateHash()}}));
+      !s)
+    return s;
+  if (std::fflush(out_.get()) != 0) return Error{file_, 0, 0, "cannot write the replay"};
+  return Status::success();
 }
 
 ReplayPlayback::ReplayPlayback(const Replay& replay, std::unique_ptr<Scenario> scenario)
@@ -457,15 +457,13 @@ std::string scriptProblem(const Replay& replay, const Scenario& scenario) {
 
 }  // namespace
 
-ScenarioResult<ReplayPlayback> ReplayPlayback::open(const Replay& replay, const std::string& file) {
-  ScenarioResult<Scenario> loaded = replayScenario(replay);
-  if (!loaded.ok()) {
-    return {std::nullopt,
-            {file, 0, 0, "the embedded scenario does not load: " + loaded.error.describe()}};
-  }
-  if (const std::string problem = scriptProblem(replay, *loaded.value); !problem.empty())
-    return {std::nullopt, {file, 0, 0, problem}};
-  return {ReplayPlayback(replay, std::make_unique<Scenario>(std::move(*loaded.value))), {}};
+Result<ReplayPlayback> ReplayPlayback::open(const Replay& replay, const std::string& file) {
+  Result<Scenario> loaded = replayScenario(replay);
+  if (!loaded.ok())
+    return Error{file, 0, 0, "the embedded scenario does not load: " + loaded.error().describe()};
+  if (const std::string problem = scriptProblem(replay, loaded.value()); !problem.empty())
+    return Error{file, 0, 0, problem};
+  return ReplayPlayback(replay, std::make_unique<Scenario>(std::move(loaded).value()));
 }
 
 void ReplayPlayback::restart() {

@@ -182,23 +182,23 @@ std::string systemReason(int error) {
   return error != 0 ? concat({": ", std::generic_category().message(error)}) : std::string{};
 }
 
-std::optional<LoadError> openForReading(const std::filesystem::path& file, std::ifstream& in) {
+std::optional<Error> openForReading(const std::filesystem::path& file, std::ifstream& in) {
   // A directory opens "successfully" on POSIX and then reads as empty; say what it is.
   std::error_code ignored;
   if (std::filesystem::is_directory(file, ignored)) {
-    return LoadError{file.string(), 0, "cannot open file: it is a directory"};
+    return Error{file.string(), 0, 0, "cannot open file: it is a directory"};
   }
   errno = 0;
   in.open(file, std::ios::binary);
-  if (!in) return LoadError{file.string(), 0, concat({"cannot open file", systemReason(errno)})};
+  if (!in) return Error{file.string(), 0, 0, concat({"cannot open file", systemReason(errno)})};
   return std::nullopt;
 }
 
 class ErrorMaker {
  public:
   explicit ErrorMaker(std::string_view source) : source_(source) {}
-  LoadError operator()(int line, std::string message) const {
-    return LoadError{std::string(source_), line, std::move(message)};
+  Error operator()(int line, std::string message) const {
+    return Error{std::string(source_), line, 0, std::move(message)};
   }
 
  private:
@@ -225,7 +225,7 @@ char mapChar(Terrain t) {
   return '?';
 }
 
-Loaded<GridMap> parseMap(std::istream& in, std::string_view sourceName) {
+Result<GridMap> parseMap(std::istream& in, std::string_view sourceName) {
   const ErrorMaker error(sourceName);
   std::string text;
   if (!readAll(in, text)) return error(0, "read error");
@@ -327,9 +327,9 @@ Loaded<GridMap> parseMap(std::istream& in, std::string_view sourceName) {
   return map;
 }
 
-Loaded<GridMap> loadMap(const std::filesystem::path& file) {
+Result<GridMap> loadMap(const std::filesystem::path& file) {
   std::ifstream in;
-  if (std::optional<LoadError> failed = openForReading(file, in)) return std::move(*failed);
+  if (std::optional<Error> failed = openForReading(file, in)) return std::move(*failed);
   return parseMap(in, file.string());
 }
 
@@ -346,25 +346,22 @@ void writeMap(const GridMap& map, std::ostream& out) {
   }
 }
 
-bool saveMap(const GridMap& map, const std::filesystem::path& file, std::string* error) {
+Status saveMap(const GridMap& map, const std::filesystem::path& file) {
   errno = 0;
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
   if (!out) {
-    if (error)
-      *error = concat({"cannot open '", file.string(), "' for writing", systemReason(errno)});
-    return false;
+    return Error{"", 0, 0,
+                 concat({"cannot open '", file.string(), "' for writing", systemReason(errno)})};
   }
   writeMap(map, out);
   errno = 0;
   out.close();
-  if (!out) {
-    if (error) *error = concat({"cannot write '", file.string(), "'", systemReason(errno)});
-    return false;
-  }
-  return true;
+  if (!out)
+    return Error{"", 0, 0, concat({"cannot write '", file.string(), "'", systemReason(errno)})};
+  return Status::success();
 }
 
-Loaded<std::vector<ScenQuery>> parseScen(std::istream& in, std::string_view sourceName) {
+Result<std::vector<ScenQuery>> parseScen(std::istream& in, std::string_view sourceName) {
   const ErrorMaker error(sourceName);
   std::string text;
   if (!readAll(in, text)) return error(0, "read error");
@@ -484,19 +481,19 @@ Loaded<std::vector<ScenQuery>> parseScen(std::istream& in, std::string_view sour
   return queries;
 }
 
-Loaded<std::vector<ScenQuery>> loadScen(const std::filesystem::path& file) {
+Result<std::vector<ScenQuery>> loadScen(const std::filesystem::path& file) {
   std::ifstream in;
-  if (std::optional<LoadError> failed = openForReading(file, in)) return std::move(*failed);
+  if (std::optional<Error> failed = openForReading(file, in)) return std::move(*failed);
   return parseScen(in, file.string());
 }
 
-std::optional<LoadError> checkScenAgainstMap(const std::vector<ScenQuery>& queries,
-                                             const GridMap& map, std::string_view scenName) {
+Status checkScenAgainstMap(const std::vector<ScenQuery>& queries, const GridMap& map,
+                           std::string_view scenName) {
   const auto size = [](int w, int h) { return concat({str(w), "x", str(h)}); };
   const std::string mapSize = size(map.width(), map.height());
   for (const ScenQuery& q : queries) {
     const auto fail = [&](std::string message) {
-      return LoadError{std::string(scenName), q.line, std::move(message)};
+      return Error{std::string(scenName), q.line, 0, std::move(message)};
     };
     if (q.mapWidth != map.width() || q.mapHeight != map.height()) {
       return fail(concat(
@@ -509,7 +506,7 @@ std::optional<LoadError> checkScenAgainstMap(const std::vector<ScenQuery>& queri
       }
     }
   }
-  return std::nullopt;
+  return Status::success();
 }
 
 }  // namespace warpath::pathing

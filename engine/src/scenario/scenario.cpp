@@ -1,4 +1,4 @@
-// The only user of yaml-cpp. Parsing throws ScenarioError internally (at the node it concerns)
+// The only user of yaml-cpp. Parsing throws Error internally (at the node it concerns)
 // and the public functions turn it into a result.
 #include "engine/scenario.h"
 
@@ -20,11 +20,6 @@ namespace warpath::engine {
 using namespace pathing;
 namespace fs = std::filesystem;
 
-std::string ScenarioError::describe() const {
-  if (line <= 0) return file + ": " + message;
-  return file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message;
-}
-
 std::int64_t Scenario::durationTicks() const {
   return static_cast<std::int64_t>(std::llround(duration * settings.tickRate));
 }
@@ -37,10 +32,10 @@ class Parser {
 
   [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const {
     const YAML::Mark mark = node.Mark();
-    throw ScenarioError{file_.string(), mark.line + 1, mark.column + 1, message};
+    throw Error{file_.string(), mark.line + 1, mark.column + 1, message};
   }
   [[noreturn]] void fail(const YAML::Mark& mark, const std::string& message) const {
-    throw ScenarioError{file_.string(), mark.line + 1, mark.column + 1, message};
+    throw Error{file_.string(), mark.line + 1, mark.column + 1, message};
   }
 
   const fs::path& file() const { return file_; }
@@ -135,10 +130,9 @@ Capability parseCapabilityNode(const Parser& p, const YAML::Node& node) {
   } else {
     joined = p.text(node, "capability");
   }
-  std::string error;
-  const std::optional<Capability> c = parseCapability(joined, &error);
-  if (!c) p.fail(node, "capability: " + error);
-  return *c;
+  const Result<Capability> c = parseCapability(joined);
+  if (!c) p.fail(node, "capability: " + c.error().describe());
+  return c.value();
 }
 
 std::string armourList() {
@@ -308,7 +302,7 @@ GridMap parseMapNode(const Parser& p, const YAML::Node& node) {
   if (node.IsScalar()) {
     const auto [file, contents] = p.referenced(node, "map");
     std::istringstream in(contents);
-    Loaded<GridMap> map = parseMap(in, file.string());
+    Result<GridMap> map = parseMap(in, file.string());
     if (!map) p.fail(node, "map: " + map.error().describe());
     return std::move(map).value();
   }
@@ -321,7 +315,7 @@ GridMap parseMapNode(const Parser& p, const YAML::Node& node) {
   for (const auto& row : rows)
     text += p.text(row, "map row") + "\n";
   std::istringstream in(text);
-  Loaded<GridMap> map = parseMap(in, "inline map");
+  Result<GridMap> map = parseMap(in, "inline map");
   if (!map) {
     constexpr int kHeaderLines = 4;
     const int row = map.error().line - kHeaderLines - 1;
@@ -664,8 +658,7 @@ VictorySpec parseVictory(const Parser& p, const YAML::Node& node, const Scenario
   return v;
 }
 
-ScenarioResult<std::vector<units::UnitType>> parseCatalogue(std::string_view text,
-                                                            const fs::path& file) {
+Result<std::vector<units::UnitType>> parseCatalogue(std::string_view text, const fs::path& file) {
   // A catalogue names no other files.
   const FileReader none = [](const fs::path&) { return std::optional<std::string>(); };
   const Parser p(file, none);
@@ -674,11 +667,11 @@ ScenarioResult<std::vector<units::UnitType>> parseCatalogue(std::string_view tex
     p.checkKeys(root, "the catalogue", {"unit_types"});
     std::vector<units::UnitType> catalogue;
     parseUnitTypes(p, p.need(root, "unit_types", "the catalogue"), catalogue);
-    return {std::move(catalogue), {}};
-  } catch (const ScenarioError& e) {
-    return {std::nullopt, e};
+    return catalogue;
+  } catch (const Error& e) {
+    return e;
   } catch (const YAML::Exception& e) {
-    return {std::nullopt, {file.string(), e.mark.line + 1, e.mark.column + 1, e.msg}};
+    return Error{file.string(), e.mark.line + 1, e.mark.column + 1, e.msg};
   }
 }
 
@@ -697,9 +690,9 @@ Scenario parse(const Parser& p, std::string_view text) {
 
   if (const YAML::Node cat = root["catalogue"]) {
     const auto [file, contents] = p.referenced(cat, "catalogue");
-    ScenarioResult<std::vector<units::UnitType>> loaded = parseCatalogue(contents, file);
-    if (!loaded.ok()) throw loaded.error;
-    s.catalogue = std::move(*loaded.value);
+    Result<std::vector<units::UnitType>> loaded = parseCatalogue(contents, file);
+    if (!loaded.ok()) throw loaded.error();
+    s.catalogue = std::move(loaded).value();
   }
   if (root["unit_types"]) parseUnitTypes(p, root["unit_types"], s.catalogue);
   if (s.catalogue.empty()) p.fail(root, "no unit types: give 'catalogue' or 'unit_types'");
@@ -941,30 +934,30 @@ std::optional<std::string> readDiskFile(const fs::path& file) {
   return std::move(out).str();
 }
 
-ScenarioResult<Scenario> parseScenario(std::string_view text, const fs::path& file) {
+Result<Scenario> parseScenario(std::string_view text, const fs::path& file) {
   return parseScenario(text, file, readDiskFile);
 }
 
-ScenarioResult<Scenario> parseScenario(std::string_view text, const fs::path& file,
-                                       const FileReader& files) {
+Result<Scenario> parseScenario(std::string_view text, const fs::path& file,
+                               const FileReader& files) {
   try {
-    return {parse(Parser(file, files), text), {}};
-  } catch (const ScenarioError& e) {
-    return {std::nullopt, e};
+    return parse(Parser(file, files), text);
+  } catch (const Error& e) {
+    return e;
   } catch (const YAML::Exception& e) {
-    return {std::nullopt, {file.string(), e.mark.line + 1, e.mark.column + 1, e.msg}};
+    return Error{file.string(), e.mark.line + 1, e.mark.column + 1, e.msg};
   }
 }
 
-ScenarioResult<Scenario> loadScenario(const fs::path& file) {
+Result<Scenario> loadScenario(const fs::path& file) {
   const std::optional<std::string> text = readDiskFile(file);
-  if (!text) return {std::nullopt, {file.string(), 0, 0, "cannot open the scenario file"}};
+  if (!text) return Error{file.string(), 0, 0, "cannot open the scenario file"};
   return parseScenario(*text, file);
 }
 
-ScenarioResult<std::vector<units::UnitType>> loadCatalogue(const fs::path& file) {
+Result<std::vector<units::UnitType>> loadCatalogue(const fs::path& file) {
   const std::optional<std::string> text = readDiskFile(file);
-  if (!text) return {std::nullopt, {file.string(), 0, 0, "cannot open the catalogue file"}};
+  if (!text) return Error{file.string(), 0, 0, "cannot open the catalogue file"};
   return parseCatalogue(*text, file);
 }
 

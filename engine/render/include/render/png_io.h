@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <vector>
 
+#include "pathing/error.h"
 #include "render/image.h"
-#include "render/status.h"
 
 namespace warpath::render {
 
