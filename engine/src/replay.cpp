@@ -4,8 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <string_view>
 
@@ -115,6 +113,10 @@ ReplaySource decodeSource(Decoder& d) {
   ReplaySource s;
   s.scenarioPath = d.str();
   s.scenarioText = d.str();
+  if (s.scenarioText.size() > kYamlFileLimit.maxBytes)
+    throw Malformed{"the embedded scenario is larger than the " +
+                    std::to_string(kYamlFileLimit.maxBytes / kMiB) + " MiB limit for " +
+                    std::string(kYamlFileLimit.kind)};
   s.seed = d.u64();
   s.hashEvery = d.i64();
   if (s.hashEvery < 1) throw Malformed{"the hash interval must be at least 1"};
@@ -257,32 +259,34 @@ std::int64_t Replay::lastTick() const {
 }
 
 Result<Scenario> loadRecordedScenario(const fs::path& file, ReplaySource& source) {
-  const std::optional<std::string> text = readDiskFile(file);
-  if (!text) return Error{file.string(), 0, 0, "cannot open the scenario file"};
+  const Result<std::string> text = readDiskFile(file, kYamlFileLimit);
+  if (!text) return text.error();
   source.scenarioPath = file.generic_string();
-  source.scenarioText = *text;
+  source.scenarioText = text.value();
   source.files.clear();
-  const FileReader recording = [&source](const fs::path& f) {
-    std::optional<std::string> contents = readDiskFile(f);
-    if (contents) source.files.push_back({f.generic_string(), *contents});
+  const FileReader recording = [&source](const fs::path& f, FileLimit limit) {
+    Result<std::string> contents = readDiskFile(f, limit);
+    if (contents) source.files.push_back({f.generic_string(), contents.value()});
     return contents;
   };
-  return parseScenario(*text, source.scenarioPath, recording);
+  return parseScenario(text.value(), source.scenarioPath, recording);
 }
 
 Result<Replay> readReplay(const fs::path& file) {
   const auto fail = [&](const std::string& problem) -> Result<Replay> {
     return Error{file.string(), 0, 0, problem};
   };
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return fail("cannot open the replay");
-  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) return fail("cannot read the replay");
-  if (bytes.size() < kFileHeader || !std::equal(kMagic.begin(), kMagic.end(), bytes.begin()))
+  Result<CappedFile> opened = CappedFile::open(file, kReplayFileLimit);
+  if (!opened) return opened.error();
+  CappedFile& in = opened.value();
+  // The header first: a file that is not a replay is refused before anything else is read.
+  std::string header;
+  if (Result<std::size_t> got = in.read(header, kFileHeader); !got) return got.error();
+  if (header.size() < kFileHeader || !std::equal(kMagic.begin(), kMagic.end(), header.begin()))
     return fail("not a warpath replay (no WPREPLAY header)");
 
   Replay replay;
-  replay.version = Decoder(std::string_view(bytes).substr(kMagic.size(), 4)).u32();
+  replay.version = Decoder(std::string_view(header).substr(kMagic.size(), 4)).u32();
   if (replay.version != kReplayVersion) {
     std::string problem = "replay format version " + std::to_string(replay.version) +
                           " is not supported (this build reads version " +
@@ -293,29 +297,43 @@ Result<Replay> readReplay(const fs::path& file) {
           "--replay";
     return fail(problem);
   }
+  // Then record by record: only one record's bytes are held at a time.
   bool haveSource = false;
-  std::size_t at = kFileHeader;
-  while (at < bytes.size()) {
+  std::string record;
+  while (true) {
+    const std::uint64_t at = in.offset();
+    record.clear();
+    Result<std::size_t> got = in.read(record, kRecordHead);
+    if (!got) return got.error();
+    if (got.value() == 0) break;
     const std::string where = "record at byte " + std::to_string(at);
-    const std::size_t left = bytes.size() - at;
-    if (left < kRecordHead) {
+    if (got.value() < kRecordHead) {
       return fail("truncated in the middle of a record at byte " + std::to_string(at) +
-                  " (the file ends " + std::to_string(left) + " bytes into it)");
+                  " (the file ends " + std::to_string(got.value()) + " bytes into it)");
     }
-    Decoder head(std::string_view(bytes).substr(at, kRecordHead));
+    Decoder head(record);
     const char kind = static_cast<char>(head.u8());
     const std::uint32_t length = head.u32();
-    if (head.u32() != crc(bytes.data() + at, 5))
+    if (head.u32() != crc(record.data(), 5))
       return fail(where + " is corrupted (header checksum mismatch)");
     const std::size_t total = kRecordHead + std::size_t{length} + kRecordTail;
+    // The size stat gave bounds what a record may claim before anything is allocated.
+    const std::uint64_t left = in.size() > at ? in.size() - at : 0;
     if (left < total) {
       return fail("truncated in the middle of a record at byte " + std::to_string(at) +
                   " (the file ends " + std::to_string(left) + " bytes into its " +
                   std::to_string(total) + ")");
     }
-    const std::string_view payload = std::string_view(bytes).substr(at + kRecordHead, length);
+    got = in.read(record, length + kRecordTail);
+    if (!got) return got.error();
+    if (got.value() < length + kRecordTail) {
+      return fail("truncated in the middle of a record at byte " + std::to_string(at) +
+                  " (the file ends " + std::to_string(kRecordHead + got.value()) +
+                  " bytes into its " + std::to_string(total) + ")");
+    }
+    const std::string_view payload = std::string_view(record).substr(kRecordHead, length);
     const std::uint32_t stored =
-        Decoder(std::string_view(bytes).substr(at + kRecordHead + length, kRecordTail)).u32();
+        Decoder(std::string_view(record).substr(kRecordHead + length, kRecordTail)).u32();
     if (stored != crc(payload.data(), payload.size()))
       return fail(where + " is corrupted (checksum mismatch)");
     try {
@@ -324,7 +342,6 @@ Result<Replay> readReplay(const fs::path& file) {
     } catch (const Malformed& m) {
       return fail(where + " is malformed: " + m.problem);
     }
-    at += total;
   }
   if (!haveSource) return fail("truncated: no scenario record");
   return replay;
@@ -334,9 +351,15 @@ Result<Scenario> replayScenario(const Replay& replay) {
   std::map<std::string, const std::string*> embedded;
   for (const ReplayFile& f : replay.source.files)
     embedded[f.path] = &f.contents;
-  const FileReader fromReplay = [&embedded](const fs::path& f) -> std::optional<std::string> {
+  const FileReader fromReplay = [&embedded](const fs::path& f,
+                                            FileLimit limit) -> Result<std::string> {
     const auto it = embedded.find(f.generic_string());
-    if (it == embedded.end()) return std::nullopt;
+    if (it == embedded.end()) return Error{f.string(), 0, 0, std::string(kNoSuchFile)};
+    if (it->second->size() > limit.maxBytes) {
+      return Error{f.string(), 0, 0,
+                   "larger than the " + std::to_string(limit.maxBytes / kMiB) + " MiB limit for " +
+                       std::string(limit.kind)};
+    }
     return *it->second;
   };
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay);

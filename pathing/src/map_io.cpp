@@ -11,6 +11,8 @@
 #include <tuple>
 #include <utility>
 
+#include "pathing/file_read.h"
+
 namespace warpath::pathing {
 namespace {
 
@@ -182,18 +184,6 @@ std::string systemReason(int error) {
   return error != 0 ? concat({": ", std::generic_category().message(error)}) : std::string{};
 }
 
-std::optional<Error> openForReading(const std::filesystem::path& file, std::ifstream& in) {
-  // A directory opens "successfully" on POSIX and then reads as empty; say what it is.
-  std::error_code ignored;
-  if (std::filesystem::is_directory(file, ignored)) {
-    return Error{file.string(), 0, 0, "cannot open file: it is a directory"};
-  }
-  errno = 0;
-  in.open(file, std::ios::binary);
-  if (!in) return Error{file.string(), 0, 0, concat({"cannot open file", systemReason(errno)})};
-  return std::nullopt;
-}
-
 class ErrorMaker {
  public:
   explicit ErrorMaker(std::string_view source) : source_(source) {}
@@ -226,9 +216,13 @@ char mapChar(Terrain t) {
 }
 
 Result<GridMap> parseMap(std::istream& in, std::string_view sourceName) {
-  const ErrorMaker error(sourceName);
   std::string text;
-  if (!readAll(in, text)) return error(0, "read error");
+  if (!readAll(in, text)) return ErrorMaker(sourceName)(0, "read error");
+  return parseMap(std::string_view(text), sourceName);
+}
+
+Result<GridMap> parseMap(std::string_view text, std::string_view sourceName) {
+  const ErrorMaker error(sourceName);
   LineReader lines(withoutBom(text));
   std::string_view line;
 
@@ -328,9 +322,9 @@ Result<GridMap> parseMap(std::istream& in, std::string_view sourceName) {
 }
 
 Result<GridMap> loadMap(const std::filesystem::path& file) {
-  std::ifstream in;
-  if (std::optional<Error> failed = openForReading(file, in)) return std::move(*failed);
-  return parseMap(in, file.string());
+  const Result<std::string> text = readFileCapped(file, kMapFileLimit);
+  if (!text) return text.error();
+  return parseMap(std::string_view(text.value()), file.string());
 }
 
 void writeMap(const GridMap& map, std::ostream& out) {
@@ -362,9 +356,13 @@ Status saveMap(const GridMap& map, const std::filesystem::path& file) {
 }
 
 Result<std::vector<ScenQuery>> parseScen(std::istream& in, std::string_view sourceName) {
-  const ErrorMaker error(sourceName);
   std::string text;
-  if (!readAll(in, text)) return error(0, "read error");
+  if (!readAll(in, text)) return ErrorMaker(sourceName)(0, "read error");
+  return parseScen(std::string_view(text), sourceName);
+}
+
+Result<std::vector<ScenQuery>> parseScen(std::string_view text, std::string_view sourceName) {
+  const ErrorMaker error(sourceName);
   LineReader lines(withoutBom(text));
   std::string_view line;
 
@@ -482,9 +480,9 @@ Result<std::vector<ScenQuery>> parseScen(std::istream& in, std::string_view sour
 }
 
 Result<std::vector<ScenQuery>> loadScen(const std::filesystem::path& file) {
-  std::ifstream in;
-  if (std::optional<Error> failed = openForReading(file, in)) return std::move(*failed);
-  return parseScen(in, file.string());
+  const Result<std::string> text = readFileCapped(file, kScenFileLimit);
+  if (!text) return text.error();
+  return parseScen(std::string_view(text.value()), file.string());
 }
 
 Status checkScenAgainstMap(const std::vector<ScenQuery>& queries, const GridMap& map,

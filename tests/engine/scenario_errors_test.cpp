@@ -87,6 +87,30 @@ TEST(Errors, MissingMapFile) {
   EXPECT_NE(e.message.find("not found"), std::string::npos) << e.message;
 }
 
+TEST(Errors, MapThatIsNotAFileSaysWhatItIs) {
+  // Not "not found": the path exists but cannot be a map.
+  Error e = errorOf("map: /dev/zero\nduration: 1\nteams: [a]\ngroups: []\n");
+  EXPECT_EQ(e.describe(), kFile + ":1:6: map: /dev/zero: not a regular file");
+  e = errorOf("map: ../assets\nduration: 1\nteams: [a]\ngroups: []\n");
+  EXPECT_EQ(e.describe(), kFile + ":1:6: map: " + std::string(WARPATH_SOURCE_DIR) +
+                              "/scenarios/../assets: is a directory");
+  e = errorOf(
+      "map: ../assets/maps/river.map\ncatalogue: /dev/zero\nduration: 1\nteams: [a]\n"
+      "groups: []\n");
+  EXPECT_EQ(e.describe(), kFile + ":2:12: catalogue: /dev/zero: not a regular file");
+}
+
+TEST(Errors, ScenarioFileThatIsNotAFile) {
+  for (const auto& [file, problem] :
+       {std::pair{std::string("/dev/zero"), "not a regular file"},
+        std::pair{std::string(WARPATH_SOURCE_DIR) + "/scenarios", "is a directory"},
+        std::pair{std::string(WARPATH_SOURCE_DIR) + "/scenarios/no_such.yaml", "no such file"}}) {
+    const Result<Scenario> r = loadScenario(file);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().describe(), file + ": " + problem);
+  }
+}
+
 TEST(Errors, YamlSyntaxError) {
   const Error e = errorOf("map: [unclosed\nduration: 1\n");
   EXPECT_GT(e.line, 0);

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "pathing/file_read.h"
+
 namespace warpath::pathing {
 namespace {
 
@@ -481,15 +483,53 @@ TEST(LoadMapTest, MissingFile) {
   ASSERT_FALSE(map);
   EXPECT_EQ(map.error().file, file.string());
   EXPECT_EQ(map.error().line, 0);
-  EXPECT_EQ(map.error().describe(),
-            file.string() + ": cannot open file: No such file or directory");
+  EXPECT_EQ(map.error().describe(), file.string() + ": no such file");
 }
 
 TEST(LoadMapTest, DirectoryIsNotAFile) {
   Result<GridMap> map = loadMap(kFixtures);
   ASSERT_FALSE(map);
   EXPECT_EQ(map.error().line, 0);
-  EXPECT_EQ(map.error().message, "cannot open file: it is a directory");
+  EXPECT_EQ(map.error().describe(), kFixtures.string() + ": is a directory");
+}
+
+TEST(LoadMapTest, SpecialFileIsRefusedAtOnce) {
+  // /dev/zero never ends; it is refused before anything is read.
+  Result<GridMap> map = loadMap("/dev/zero");
+  ASSERT_FALSE(map);
+  EXPECT_EQ(map.error().describe(), "/dev/zero: not a regular file");
+}
+
+TEST(LoadMapTest, OversizedFileIsRefusedBeforeReading) {
+  // A sparse file: 65 MiB on paper, nothing on disk; stat says it is too large.
+  const fs::path file = scratchPath(".map");
+  { std::ofstream create(file); }
+  fs::resize_file(file, kMapFileLimit.maxBytes + 1);
+  Result<GridMap> map = loadMap(file);
+  ASSERT_FALSE(map);
+  EXPECT_EQ(map.error().describe(), file.string() + ": larger than the 64 MiB limit for maps");
+  fs::remove(file);
+}
+
+TEST(ReadFileCappedTest, StopsAtTheCapWhileReading) {
+  // A file within the cap reads whole; the cap is also enforced on the bytes actually read.
+  const fs::path file = scratchPath(".txt");
+  { std::ofstream(file) << "0123456789"; }
+  const Result<std::string> whole = readFileCapped(file, {10, "tests"});
+  ASSERT_TRUE(whole) << whole.error().describe();
+  EXPECT_EQ(whole.value(), "0123456789");
+  const Result<std::string> capped = readFileCapped(file, {9, "tests"});
+  ASSERT_FALSE(capped);
+  EXPECT_EQ(capped.error().describe(), file.string() + ": larger than the 9 bytes limit for tests");
+  Result<CappedFile> opened = CappedFile::open(file, {10, "tests"});
+  ASSERT_TRUE(opened);
+  std::string head;
+  ASSERT_TRUE(opened.value().read(head, 4));
+  EXPECT_EQ(head, "0123");
+  fs::remove(file);
+  const Result<std::string> gone = readFileCapped(file, {10, "tests"});
+  ASSERT_FALSE(gone);
+  EXPECT_EQ(gone.error().describe(), file.string() + ": no such file");
 }
 
 // ---------------------------------------------------------------------------------------
@@ -757,8 +797,7 @@ TEST(LoadScenTest, MissingFile) {
   Result<std::vector<ScenQuery>> scen = loadScen(file);
   ASSERT_FALSE(scen);
   EXPECT_EQ(scen.error().line, 0);
-  EXPECT_EQ(scen.error().describe(),
-            file.string() + ": cannot open file: No such file or directory");
+  EXPECT_EQ(scen.error().describe(), file.string() + ": no such file");
 }
 
 TEST(CheckScenTest, DeclaredSizeMustMatchMap) {

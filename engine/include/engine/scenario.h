@@ -13,6 +13,7 @@
 #include "engine/world.h"
 #include "pathing/annotated_grid.h"
 #include "pathing/error.h"
+#include "pathing/file_read.h"
 #include "units/unit_type.h"
 
 namespace warpath::engine {
@@ -130,11 +131,12 @@ struct Scenario {
 };
 
 // Supplies the contents of a file a scenario names (its map, its catalogue), given the path
-// resolved against the scenario's folder; nullopt when there is no such file. Replays pass one
-// that answers from the files they embed, so a replay never reads the disk.
-using FileReader = std::function<std::optional<std::string>(const std::filesystem::path&)>;
-// The whole of a regular file on disk, or nullopt.
-std::optional<std::string> readDiskFile(const std::filesystem::path& file);
+// resolved against the scenario's folder and the limit for that kind of file; an Error naming
+// the file otherwise (message kNoSuchFile when there is no such file). Replays pass one that
+// answers from the files they embed, so a replay never reads the disk.
+using FileReader = std::function<Result<std::string>(const std::filesystem::path&, FileLimit)>;
+// The whole of a regular file on disk, through readFileCapped.
+Result<std::string> readDiskFile(const std::filesystem::path& file, FileLimit limit);
 
 // `text` is read as if it were the file `file` (relative paths resolve against its folder).
 // Referenced files come from `files` (default: the disk).

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <string>
 
+#include "pathing/file_read.h"
+
 namespace warpath::render {
 namespace {
 
@@ -101,11 +103,21 @@ Status writePng(const std::filesystem::path& file, const Image& image, const Png
 }
 
 Result<Image> readPng(const std::filesystem::path& file) {
+  const Result<std::string> bytes = readFileCapped(file, kPngFileLimit);
+  if (!bytes) return bytes.error();
   // The simplified API reports errors in the struct instead of by longjmp.
   png_image png{};
   png.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&png, file.string().c_str())) {
+  if (!png_image_begin_read_from_memory(&png, bytes.value().data(), bytes.value().size())) {
     return Error{file.string(), 0, 0, png.message};
+  }
+  // The header alone must not make us allocate gigabytes: frames are at most 8192x8192.
+  constexpr png_uint_32 kMaxSide = 8192;
+  if (png.width > kMaxSide || png.height > kMaxSide) {
+    png_image_free(&png);
+    return Error{file.string(), 0, 0,
+                 "a " + std::to_string(png.width) + "x" + std::to_string(png.height) +
+                     " image is larger than the 8192x8192 limit"};
   }
   png.format = PNG_FORMAT_RGBA;
   Image image;

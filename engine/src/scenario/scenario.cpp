@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <initializer_list>
 #include <numbers>
 #include <set>
@@ -41,13 +40,18 @@ class Parser {
   const fs::path& file() const { return file_; }
   fs::path resolve(const std::string& relative) const { return file_.parent_path() / relative; }
   // The contents of the file `node` names (resolved against the scenario's folder) through the
-  // file reader; fails at `node` when it has none. `what` is "map" or "catalogue".
-  std::pair<fs::path, std::string> referenced(const YAML::Node& node,
-                                              const std::string& what) const {
+  // file reader; fails at `node` when it has none or cannot read it ("map: FILE: is a
+  // directory"). `what` is "map" or "catalogue".
+  std::pair<fs::path, std::string> referenced(const YAML::Node& node, const std::string& what,
+                                              FileLimit limit) const {
     const fs::path file = resolve(text(node, what));
-    std::optional<std::string> contents = files_(file);
-    if (!contents) fail(node, what + " file '" + file.string() + "' not found");
-    return {file, std::move(*contents)};
+    Result<std::string> contents = files_(file, limit);
+    if (!contents) {
+      if (contents.error().message == kNoSuchFile)
+        fail(node, what + " file '" + file.string() + "' not found");
+      fail(node, what + ": " + contents.error().describe());
+    }
+    return {file, std::move(contents).value()};
   }
 
   void expectMap(const YAML::Node& node, const std::string& what) const {
@@ -300,9 +304,8 @@ YAML::Node loadYaml(const Parser& p, std::string_view text) {
 
 GridMap parseMapNode(const Parser& p, const YAML::Node& node) {
   if (node.IsScalar()) {
-    const auto [file, contents] = p.referenced(node, "map");
-    std::istringstream in(contents);
-    Result<GridMap> map = parseMap(in, file.string());
+    const auto [file, contents] = p.referenced(node, "map", kMapFileLimit);
+    Result<GridMap> map = parseMap(std::string_view(contents), file.string());
     if (!map) p.fail(node, "map: " + map.error().describe());
     return std::move(map).value();
   }
@@ -660,7 +663,9 @@ VictorySpec parseVictory(const Parser& p, const YAML::Node& node, const Scenario
 
 Result<std::vector<units::UnitType>> parseCatalogue(std::string_view text, const fs::path& file) {
   // A catalogue names no other files.
-  const FileReader none = [](const fs::path&) { return std::optional<std::string>(); };
+  const FileReader none = [](const fs::path& f, FileLimit) -> Result<std::string> {
+    return Error{f.string(), 0, 0, std::string(kNoSuchFile)};
+  };
   const Parser p(file, none);
   try {
     const YAML::Node root = loadYaml(p, text);
@@ -689,7 +694,7 @@ Scenario parse(const Parser& p, std::string_view text) {
   const GridMap& map = s.grid->map();
 
   if (const YAML::Node cat = root["catalogue"]) {
-    const auto [file, contents] = p.referenced(cat, "catalogue");
+    const auto [file, contents] = p.referenced(cat, "catalogue", kYamlFileLimit);
     Result<std::vector<units::UnitType>> loaded = parseCatalogue(contents, file);
     if (!loaded.ok()) throw loaded.error();
     s.catalogue = std::move(loaded).value();
@@ -924,14 +929,8 @@ std::vector<Cell> placeUnits(const AnnotatedGrid& grid, Agent agent, CellRect ar
   return anchors;
 }
 
-std::optional<std::string> readDiskFile(const fs::path& file) {
-  std::error_code error;
-  if (!fs::is_regular_file(file, error)) return std::nullopt;
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream out;
-  out << in.rdbuf();
-  return std::move(out).str();
+Result<std::string> readDiskFile(const fs::path& file, FileLimit limit) {
+  return readFileCapped(file, limit);
 }
 
 Result<Scenario> parseScenario(std::string_view text, const fs::path& file) {
@@ -950,15 +949,15 @@ Result<Scenario> parseScenario(std::string_view text, const fs::path& file,
 }
 
 Result<Scenario> loadScenario(const fs::path& file) {
-  const std::optional<std::string> text = readDiskFile(file);
-  if (!text) return Error{file.string(), 0, 0, "cannot open the scenario file"};
-  return parseScenario(*text, file);
+  const Result<std::string> text = readDiskFile(file, kYamlFileLimit);
+  if (!text) return text.error();
+  return parseScenario(text.value(), file);
 }
 
 Result<std::vector<units::UnitType>> loadCatalogue(const fs::path& file) {
-  const std::optional<std::string> text = readDiskFile(file);
-  if (!text) return Error{file.string(), 0, 0, "cannot open the catalogue file"};
-  return parseCatalogue(*text, file);
+  const Result<std::string> text = readDiskFile(file, kYamlFileLimit);
+  if (!text) return text.error();
+  return parseCatalogue(text.value(), file);
 }
 
 }  // namespace warpath::engine

@@ -19,7 +19,9 @@
 namespace warpath::pathing {
 
 // `sourceName` is used in error messages (usually the file path).
+Result<GridMap> parseMap(std::string_view text, std::string_view sourceName);
 Result<GridMap> parseMap(std::istream& in, std::string_view sourceName);
+// Through readFileCapped (pathing/file_read.h): at most kMapFileLimit bytes, regular files only.
 Result<GridMap> loadMap(const std::filesystem::path& file);
 
 // The canonical character of a terrain ('.', 'S', 'T', 'W', '@'); '?' for one the format
@@ -43,7 +45,9 @@ struct ScenQuery {
 };
 
 // Every query's coordinates are checked against the width and height the line declares.
+Result<std::vector<ScenQuery>> parseScen(std::string_view text, std::string_view sourceName);
 Result<std::vector<ScenQuery>> parseScen(std::istream& in, std::string_view sourceName);
+// Through readFileCapped: at most kScenFileLimit bytes, regular files only.
 Result<std::vector<ScenQuery>> loadScen(const std::filesystem::path& file);
 
 // Checks the queries against the map they are run on: declared size matches, coordinates
