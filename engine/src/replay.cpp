@@ -4,8 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <string_view>
 
@@ -51,7 +49,7 @@ class Encoder {
   std::string bytes_;
 };
 
-// Thrown inside the reader only; readReplay turns it into a ScenarioError.
+// Thrown inside the reader only; readReplay turns it into an Error.
 struct Malformed {
   std::string problem;
 };
@@ -115,6 +113,10 @@ ReplaySource decodeSource(Decoder& d) {
   ReplaySource s;
   s.scenarioPath = d.str();
   s.scenarioText = d.str();
+  if (s.scenarioText.size() > kYamlFileLimit.maxBytes)
+    throw Malformed{"the embedded scenario is larger than the " +
+                    std::to_string(kYamlFileLimit.maxBytes / kMiB) + " MiB limit for " +
+                    std::string(kYamlFileLimit.kind)};
   s.seed = d.u64();
   s.hashEvery = d.i64();
   if (s.hashEvery < 1) throw Malformed{"the hash interval must be at least 1"};
@@ -256,33 +258,35 @@ std::int64_t Replay::lastTick() const {
   return hashes.empty() ? 0 : hashes.back().tick;
 }
 
-ScenarioResult<Scenario> loadRecordedScenario(const fs::path& file, ReplaySource& source) {
-  const std::optional<std::string> text = readDiskFile(file);
-  if (!text) return {std::nullopt, {file.string(), 0, 0, "cannot open the scenario file"}};
+Result<Scenario> loadRecordedScenario(const fs::path& file, ReplaySource& source) {
+  const Result<std::string> text = readDiskFile(file, kYamlFileLimit);
+  if (!text) return text.error();
   source.scenarioPath = file.generic_string();
-  source.scenarioText = *text;
+  source.scenarioText = text.value();
   source.files.clear();
-  const FileReader recording = [&source](const fs::path& f) {
-    std::optional<std::string> contents = readDiskFile(f);
-    if (contents) source.files.push_back({f.generic_string(), *contents});
+  const FileReader recording = [&source](const fs::path& f, FileLimit limit) {
+    Result<std::string> contents = readDiskFile(f, limit);
+    if (contents) source.files.push_back({f.generic_string(), contents.value()});
     return contents;
   };
-  return parseScenario(*text, source.scenarioPath, recording);
+  return parseScenario(text.value(), source.scenarioPath, recording);
 }
 
-ScenarioResult<Replay> readReplay(const fs::path& file) {
-  const auto fail = [&](const std::string& problem) -> ScenarioResult<Replay> {
-    return {std::nullopt, {file.string(), 0, 0, problem}};
+Result<Replay> readReplay(const fs::path& file) {
+  const auto fail = [&](const std::string& problem) -> Result<Replay> {
+    return Error{file.string(), 0, 0, problem};
   };
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return fail("cannot open the replay");
-  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) return fail("cannot read the replay");
-  if (bytes.size() < kFileHeader || !std::equal(kMagic.begin(), kMagic.end(), bytes.begin()))
+  Result<CappedFile> opened = CappedFile::open(file, kReplayFileLimit);
+  if (!opened) return opened.error();
+  CappedFile& in = opened.value();
+  // The header first: a file that is not a replay is refused before anything else is read.
+  std::string header;
+  if (Result<std::size_t> got = in.read(header, kFileHeader); !got) return got.error();
+  if (header.size() < kFileHeader || !std::equal(kMagic.begin(), kMagic.end(), header.begin()))
     return fail("not a warpath replay (no WPREPLAY header)");
 
   Replay replay;
-  replay.version = Decoder(std::string_view(bytes).substr(kMagic.size(), 4)).u32();
+  replay.version = Decoder(std::string_view(header).substr(kMagic.size(), 4)).u32();
   if (replay.version < kOldestReplayVersion || replay.version > kReplayVersion) {
     std::string problem = "replay format version " + std::to_string(replay.version) +
                           " is not supported (this build reads versions " +
@@ -294,29 +298,43 @@ ScenarioResult<Replay> readReplay(const fs::path& file) {
           "--replay";
     return fail(problem);
   }
+  // Then record by record: only one record's bytes are held at a time.
   bool haveSource = false;
-  std::size_t at = kFileHeader;
-  while (at < bytes.size()) {
+  std::string record;
+  while (true) {
+    const std::uint64_t at = in.offset();
+    record.clear();
+    Result<std::size_t> got = in.read(record, kRecordHead);
+    if (!got) return got.error();
+    if (got.value() == 0) break;
     const std::string where = "record at byte " + std::to_string(at);
-    const std::size_t left = bytes.size() - at;
-    if (left < kRecordHead) {
+    if (got.value() < kRecordHead) {
       return fail("truncated in the middle of a record at byte " + std::to_string(at) +
-                  " (the file ends " + std::to_string(left) + " bytes into it)");
+                  " (the file ends " + std::to_string(got.value()) + " bytes into it)");
     }
-    Decoder head(std::string_view(bytes).substr(at, kRecordHead));
+    Decoder head(record);
     const char kind = static_cast<char>(head.u8());
     const std::uint32_t length = head.u32();
-    if (head.u32() != crc(bytes.data() + at, 5))
+    if (head.u32() != crc(record.data(), 5))
       return fail(where + " is corrupted (header checksum mismatch)");
     const std::size_t total = kRecordHead + std::size_t{length} + kRecordTail;
+    // The size stat gave bounds what a record may claim before anything is allocated.
+    const std::uint64_t left = in.size() > at ? in.size() - at : 0;
     if (left < total) {
       return fail("truncated in the middle of a record at byte " + std::to_string(at) +
                   " (the file ends " + std::to_string(left) + " bytes into its " +
                   std::to_string(total) + ")");
     }
-    const std::string_view payload = std::string_view(bytes).substr(at + kRecordHead, length);
+    got = in.read(record, length + kRecordTail);
+    if (!got) return got.error();
+    if (got.value() < length + kRecordTail) {
+      return fail("truncated in the middle of a record at byte " + std::to_string(at) +
+                  " (the file ends " + std::to_string(kRecordHead + got.value()) +
+                  " bytes into its " + std::to_string(total) + ")");
+    }
+    const std::string_view payload = std::string_view(record).substr(kRecordHead, length);
     const std::uint32_t stored =
-        Decoder(std::string_view(bytes).substr(at + kRecordHead + length, kRecordTail)).u32();
+        Decoder(std::string_view(record).substr(kRecordHead + length, kRecordTail)).u32();
     if (stored != crc(payload.data(), payload.size()))
       return fail(where + " is corrupted (checksum mismatch)");
     try {
@@ -325,40 +343,44 @@ ScenarioResult<Replay> readReplay(const fs::path& file) {
     } catch (const Malformed& m) {
       return fail(where + " is malformed: " + m.problem);
     }
-    at += total;
   }
   if (!haveSource) return fail("truncated: no scenario record");
-  return {std::move(replay), {}};
+  return replay;
 }
 
-ScenarioResult<Scenario> replayScenario(const Replay& replay) {
+Result<Scenario> replayScenario(const Replay& replay) {
   std::map<std::string, const std::string*> embedded;
   for (const ReplayFile& f : replay.source.files)
     embedded[f.path] = &f.contents;
-  const FileReader fromReplay = [&embedded](const fs::path& f) -> std::optional<std::string> {
+  const FileReader fromReplay = [&embedded](const fs::path& f,
+                                            FileLimit limit) -> Result<std::string> {
     const auto it = embedded.find(f.generic_string());
-    if (it == embedded.end()) return std::nullopt;
+    if (it == embedded.end()) return Error{f.string(), 0, 0, std::string(kNoSuchFile)};
+    if (it->second->size() > limit.maxBytes) {
+      return Error{f.string(), 0, 0,
+                   "larger than the " + std::to_string(limit.maxBytes / kMiB) + " MiB limit for " +
+                       std::string(limit.kind)};
+    }
     return *it->second;
   };
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay);
 }
 
-ScenarioResult<ReplayWriter> ReplayWriter::open(const fs::path& file, const ReplaySource& source) {
+Result<ReplayWriter> ReplayWriter::open(const fs::path& file, const ReplaySource& source) {
   std::unique_ptr<std::FILE, Closer> out(std::fopen(file.c_str(), "wb"));
-  if (!out) return {std::nullopt, {file.string(), 0, 0, "cannot create the replay"}};
+  if (!out) return Error{file.string(), 0, 0, "cannot create the replay"};
   ReplayWriter writer(file.string(), std::move(out), std::max<std::int64_t>(source.hashEvery, 1));
   Encoder head;
   head.u32(kReplayVersion);
   if (std::fwrite(kMagic.data(), 1, kMagic.size(), writer.out_.get()) != kMagic.size() ||
       std::fwrite(head.bytes().data(), 1, 4, writer.out_.get()) != 4) {
-    return {std::nullopt, {file.string(), 0, 0, "cannot write the replay"}};
+    return Error{file.string(), 0, 0, "cannot write the replay"};
   }
-  if (std::optional<ScenarioError> e = writer.append('S', sourcePayload(source)))
-    return {std::nullopt, *e};
-  return {std::move(writer), {}};
+  if (Status s = writer.append('S', sourcePayload(source)); !s) return s.error();
+  return writer;
 }
 
-std::optional<ScenarioError> ReplayWriter::append(char kind, const std::string& payload) {
+Status ReplayWriter::append(char kind, const std::string& payload) {
   Encoder head;
   head.u8(static_cast<std::uint8_t>(kind));
   head.u32(static_cast<std::uint32_t>(payload.size()));
@@ -369,31 +391,33 @@ std::optional<ScenarioError> ReplayWriter::append(char kind, const std::string& 
   if (std::fwrite(head.bytes().data(), 1, kRecordHead, f) != kRecordHead ||
       std::fwrite(payload.data(), 1, payload.size(), f) != payload.size() ||
       std::fwrite(tail.bytes().data(), 1, kRecordTail, f) != kRecordTail) {
-    return ScenarioError{file_, 0, 0, "cannot write the replay"};
+    return Error{file_, 0, 0, "cannot write the replay"};
   }
-  return std::nullopt;
+  return Status::success();
 }
 
-std::optional<ScenarioError> ReplayWriter::record(const ScenarioRun& run) {
+Status ReplayWriter::record(const ScenarioRun& run) {
   const std::vector<IssuedOrder>& orders = run.issued();
   for (; ordersWritten_ < orders.size(); ++ordersWritten_) {
-    if (auto e = append('O', orderPayload(orders[ordersWritten_]))) return e;
+    if (Status s = append('O', orderPayload(orders[ordersWritten_])); !s) return s;
   }
   const std::int64_t tick = run.world().tick();
   if (tick > lastHashed_ && tick % every_ == 0) {
-    if (auto e = append('H', hashPayload({tick, run.stateHash()}))) return e;
+    if (Status s = append('H', hashPayload({tick, run.stateHash()})); !s) return s;
     lastHashed_ = tick;
   }
   // Flushed every tick: a run killed between ticks leaves whole records behind.
-  if (std::fflush(out_.get()) != 0) return ScenarioError{file_, 0, 0, "cannot write the replay"};
-  return std::nullopt;
+  if (std::fflush(out_.get()) != 0) return Error{file_, 0, 0, "cannot write the replay"};
+  return Status::success();
 }
 
-std::optional<ScenarioError> ReplayWriter::finish(const ScenarioRun& run, ReplayEnd reason) {
-  if (auto e = record(run)) return e;
-  if (auto e = append('E', endPayload({reason, {run.world().tick(), run.stateHash()}}))) return e;
-  if (std::fflush(out_.get()) != 0) return ScenarioError{file_, 0, 0, "cannot write the replay"};
-  return std::nullopt;
+Status ReplayWriter::finish(const ScenarioRun& run, ReplayEnd reason) {
+  if (Status s = record(run); !s) return s;
+  if (Status s = append('E', endPayload({reason, {run.world().tick(), run.stateHash()}}));
+      !s)
+    return s;
+  if (std::fflush(out_.get()) != 0) return Error{file_, 0, 0, "cannot write the replay"};
+  return Status::success();
 }
 
 ReplayPlayback::ReplayPlayback(const Replay& replay, std::unique_ptr<Scenario> scenario)
@@ -457,15 +481,13 @@ std::string scriptProblem(const Replay& replay, const Scenario& scenario) {
 
 }  // namespace
 
-ScenarioResult<ReplayPlayback> ReplayPlayback::open(const Replay& replay, const std::string& file) {
-  ScenarioResult<Scenario> loaded = replayScenario(replay);
-  if (!loaded.ok()) {
-    return {std::nullopt,
-            {file, 0, 0, "the embedded scenario does not load: " + loaded.error.describe()}};
-  }
-  if (const std::string problem = scriptProblem(replay, *loaded.value); !problem.empty())
-    return {std::nullopt, {file, 0, 0, problem}};
-  return {ReplayPlayback(replay, std::make_unique<Scenario>(std::move(*loaded.value))), {}};
+Result<ReplayPlayback> ReplayPlayback::open(const Replay& replay, const std::string& file) {
+  Result<Scenario> loaded = replayScenario(replay);
+  if (!loaded.ok())
+    return Error{file, 0, 0, "the embedded scenario does not load: " + loaded.error().describe()};
+  if (const std::string problem = scriptProblem(replay, loaded.value()); !problem.empty())
+    return Error{file, 0, 0, problem};
+  return ReplayPlayback(replay, std::make_unique<Scenario>(std::move(loaded).value()));
 }
 
 void ReplayPlayback::restart() {

@@ -11,6 +11,8 @@
 #include <tuple>
 #include <utility>
 
+#include "pathing/file_read.h"
+
 namespace warpath::pathing {
 namespace {
 
@@ -182,23 +184,11 @@ std::string systemReason(int error) {
   return error != 0 ? concat({": ", std::generic_category().message(error)}) : std::string{};
 }
 
-std::optional<LoadError> openForReading(const std::filesystem::path& file, std::ifstream& in) {
-  // A directory opens "successfully" on POSIX and then reads as empty; say what it is.
-  std::error_code ignored;
-  if (std::filesystem::is_directory(file, ignored)) {
-    return LoadError{file.string(), 0, "cannot open file: it is a directory"};
-  }
-  errno = 0;
-  in.open(file, std::ios::binary);
-  if (!in) return LoadError{file.string(), 0, concat({"cannot open file", systemReason(errno)})};
-  return std::nullopt;
-}
-
 class ErrorMaker {
  public:
   explicit ErrorMaker(std::string_view source) : source_(source) {}
-  LoadError operator()(int line, std::string message) const {
-    return LoadError{std::string(source_), line, std::move(message)};
+  Error operator()(int line, std::string message) const {
+    return Error{std::string(source_), line, 0, std::move(message)};
   }
 
  private:
@@ -225,10 +215,14 @@ char mapChar(Terrain t) {
   return '?';
 }
 
-Loaded<GridMap> parseMap(std::istream& in, std::string_view sourceName) {
-  const ErrorMaker error(sourceName);
+Result<GridMap> parseMap(std::istream& in, std::string_view sourceName) {
   std::string text;
-  if (!readAll(in, text)) return error(0, "read error");
+  if (!readAll(in, text)) return ErrorMaker(sourceName)(0, "read error");
+  return parseMap(std::string_view(text), sourceName);
+}
+
+Result<GridMap> parseMap(std::string_view text, std::string_view sourceName) {
+  const ErrorMaker error(sourceName);
   LineReader lines(withoutBom(text));
   std::string_view line;
 
@@ -327,10 +321,10 @@ Loaded<GridMap> parseMap(std::istream& in, std::string_view sourceName) {
   return map;
 }
 
-Loaded<GridMap> loadMap(const std::filesystem::path& file) {
-  std::ifstream in;
-  if (std::optional<LoadError> failed = openForReading(file, in)) return std::move(*failed);
-  return parseMap(in, file.string());
+Result<GridMap> loadMap(const std::filesystem::path& file) {
+  const Result<std::string> text = readFileCapped(file, kMapFileLimit);
+  if (!text) return text.error();
+  return parseMap(std::string_view(text.value()), file.string());
 }
 
 void writeMap(const GridMap& map, std::ostream& out) {
@@ -346,28 +340,29 @@ void writeMap(const GridMap& map, std::ostream& out) {
   }
 }
 
-bool saveMap(const GridMap& map, const std::filesystem::path& file, std::string* error) {
+Status saveMap(const GridMap& map, const std::filesystem::path& file) {
   errno = 0;
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
   if (!out) {
-    if (error)
-      *error = concat({"cannot open '", file.string(), "' for writing", systemReason(errno)});
-    return false;
+    return Error{"", 0, 0,
+                 concat({"cannot open '", file.string(), "' for writing", systemReason(errno)})};
   }
   writeMap(map, out);
   errno = 0;
   out.close();
-  if (!out) {
-    if (error) *error = concat({"cannot write '", file.string(), "'", systemReason(errno)});
-    return false;
-  }
-  return true;
+  if (!out)
+    return Error{"", 0, 0, concat({"cannot write '", file.string(), "'", systemReason(errno)})};
+  return Status::success();
 }
 
-Loaded<std::vector<ScenQuery>> parseScen(std::istream& in, std::string_view sourceName) {
-  const ErrorMaker error(sourceName);
+Result<std::vector<ScenQuery>> parseScen(std::istream& in, std::string_view sourceName) {
   std::string text;
-  if (!readAll(in, text)) return error(0, "read error");
+  if (!readAll(in, text)) return ErrorMaker(sourceName)(0, "read error");
+  return parseScen(std::string_view(text), sourceName);
+}
+
+Result<std::vector<ScenQuery>> parseScen(std::string_view text, std::string_view sourceName) {
+  const ErrorMaker error(sourceName);
   LineReader lines(withoutBom(text));
   std::string_view line;
 
@@ -484,19 +479,19 @@ Loaded<std::vector<ScenQuery>> parseScen(std::istream& in, std::string_view sour
   return queries;
 }
 
-Loaded<std::vector<ScenQuery>> loadScen(const std::filesystem::path& file) {
-  std::ifstream in;
-  if (std::optional<LoadError> failed = openForReading(file, in)) return std::move(*failed);
-  return parseScen(in, file.string());
+Result<std::vector<ScenQuery>> loadScen(const std::filesystem::path& file) {
+  const Result<std::string> text = readFileCapped(file, kScenFileLimit);
+  if (!text) return text.error();
+  return parseScen(std::string_view(text.value()), file.string());
 }
 
-std::optional<LoadError> checkScenAgainstMap(const std::vector<ScenQuery>& queries,
-                                             const GridMap& map, std::string_view scenName) {
+Status checkScenAgainstMap(const std::vector<ScenQuery>& queries, const GridMap& map,
+                           std::string_view scenName) {
   const auto size = [](int w, int h) { return concat({str(w), "x", str(h)}); };
   const std::string mapSize = size(map.width(), map.height());
   for (const ScenQuery& q : queries) {
     const auto fail = [&](std::string message) {
-      return LoadError{std::string(scenName), q.line, std::move(message)};
+      return Error{std::string(scenName), q.line, 0, std::move(message)};
     };
     if (q.mapWidth != map.width() || q.mapHeight != map.height()) {
       return fail(concat(
@@ -509,7 +504,7 @@ std::optional<LoadError> checkScenAgainstMap(const std::vector<ScenQuery>& queri
       }
     }
   }
-  return std::nullopt;
+  return Status::success();
 }
 
 }  // namespace warpath::pathing

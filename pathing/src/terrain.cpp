@@ -60,22 +60,21 @@ std::string Capability::toString() const {
   return out.empty() ? "none" : out;
 }
 
-std::optional<Capability> parseCapability(std::string_view text, std::string* error) {
+Result<Capability> parseCapability(std::string_view text) {
   Capability result;
   while (true) {
     const std::size_t comma = text.find(',');
     const std::string_view name = trim(text.substr(0, comma));
     const std::optional<Terrain> terrain = terrainFromName(name);
     if (!terrain || !isTraversable(*terrain)) {
-      if (error) {
-        // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + string chains.
-        error->assign(name.empty() ? "empty terrain name in capability" : "'");
-        if (!name.empty()) {
-          error->append(name).append(
-              "' is not a traversable terrain (ground, swamp, trees, water)");
-        }
+      // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + string chains.
+      Error error;
+      error.message.assign(name.empty() ? "empty terrain name in capability" : "'");
+      if (!name.empty()) {
+        error.message.append(name).append(
+            "' is not a traversable terrain (ground, swamp, trees, water)");
       }
-      return std::nullopt;
+      return error;
     }
     result = result | Capability::of({*terrain});
     if (comma == std::string_view::npos) break;

@@ -76,20 +76,20 @@ std::string battle(const std::string& extra, const std::string& unitTypes = "") 
 }
 
 Scenario load(const std::string& text) {
-  ScenarioResult<Scenario> r = parseScenario(text, kFile);
-  EXPECT_TRUE(r.ok()) << r.error.describe() << "\n" << text;
-  return r.ok() ? std::move(*r.value) : Scenario{};
+  Result<Scenario> r = parseScenario(text, kFile);
+  EXPECT_TRUE(r.ok()) << r.error().describe() << "\n" << text;
+  return r.ok() ? std::move(r).value() : Scenario{};
 }
 
-ScenarioError errorOf(const std::string& text) {
-  const ScenarioResult<Scenario> r = parseScenario(text, kFile);
+Error errorOf(const std::string& text) {
+  const Result<Scenario> r = parseScenario(text, kFile);
   EXPECT_FALSE(r.ok()) << text;
-  return r.ok() ? ScenarioError{} : r.error;
+  return r.ok() ? Error{} : r.error();
 }
 
 // The error names the problem (`part` is in the message) at the line holding `where`.
 void expectError(const std::string& text, const std::string& part, const std::string& where) {
-  const ScenarioError e = errorOf(text);
+  const Error e = errorOf(text);
   EXPECT_NE(e.message.find(part), std::string::npos) << "message: " << e.message;
   EXPECT_EQ(e.line, lineOf(text, where)) << e.describe();
   EXPECT_GT(e.column, 0);
@@ -118,11 +118,11 @@ void expectSameWeapon(const units::Weapon& a, const units::Weapon& b) {
 // ---- unit types -------------------------------------------------------------------------
 
 TEST(BattleParse, BundledCatalogueHasTheDefaultArmourAndWeapons) {
-  const ScenarioResult<std::vector<units::UnitType>> r =
+  const Result<std::vector<units::UnitType>> r =
       loadCatalogue(std::string(WARPATH_SOURCE_DIR) + "/assets/units.yaml");
-  ASSERT_TRUE(r.ok()) << r.error.describe();
-  ASSERT_EQ(r.value->size(), 4u);
-  for (const units::UnitType& t : *r.value) {
+  ASSERT_TRUE(r.ok()) << r.error().describe();
+  ASSERT_EQ(r.value().size(), 4u);
+  for (const units::UnitType& t : r.value()) {
     ASSERT_TRUE(units::defaultArmourFor(t.name).has_value()) << t.name;
     EXPECT_EQ(t.armour, *units::defaultArmourFor(t.name)) << t.name;
     ASSERT_TRUE(t.weapon.has_value()) << t.name;
@@ -286,11 +286,11 @@ TEST(BattleParse, CombatSettingsErrors) {
 
 TEST(BattleParse, TravelScenariosHaveCombatOff) {
   for (const char* name : {"demo", "stress_2000"}) {
-    const ScenarioResult<Scenario> r =
+    const Result<Scenario> r =
         loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/" + name + ".yaml");
-    ASSERT_TRUE(r.ok()) << r.error.describe();
-    EXPECT_FALSE(r.value->settings.combat.enabled) << name;
-    EXPECT_TRUE(r.value->catalogue[0].weapon.has_value()) << name;
+    ASSERT_TRUE(r.ok()) << r.error().describe();
+    EXPECT_FALSE(r.value().settings.combat.enabled) << name;
+    EXPECT_TRUE(r.value().catalogue[0].weapon.has_value()) << name;
   }
 }
 

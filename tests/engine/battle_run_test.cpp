@@ -27,9 +27,9 @@ std::string field(const std::string& rest, double duration = 20) {
 }
 
 Scenario load(const std::string& text) {
-  ScenarioResult<Scenario> r = parseScenario(text, kFile);
-  EXPECT_TRUE(r.ok()) << r.error.describe() << "\n" << text;
-  return r.ok() ? std::move(*r.value) : Scenario{};
+  Result<Scenario> r = parseScenario(text, kFile);
+  EXPECT_TRUE(r.ok()) << r.error().describe() << "\n" << text;
+  return r.ok() ? std::move(r).value() : Scenario{};
 }
 
 void runOut(ScenarioRun& run) {

@@ -31,10 +31,10 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 }
 
 Report play(const std::string& text, const std::string& name) {
-  ScenarioResult<Scenario> s = parseScenario(text, kDir + name + ".yaml");
-  EXPECT_TRUE(s.ok()) << s.error.describe();
+  Result<Scenario> s = parseScenario(text, kDir + name + ".yaml");
+  EXPECT_TRUE(s.ok()) << s.error().describe();
   if (!s.ok()) return {};
-  ScenarioRun run(*s.value);
+  ScenarioRun run(s.value());
   while (!run.done())
     run.step();
   return run.report();

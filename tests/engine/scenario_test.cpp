@@ -32,10 +32,10 @@ const Bundled kBundled[] = {
 };
 
 Scenario loadBundled(const std::string& name) {
-  ScenarioResult<Scenario> r =
+  Result<Scenario> r =
       loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/" + name + ".yaml");
-  EXPECT_TRUE(r.ok()) << r.error.describe();
-  return std::move(*r.value);
+  EXPECT_TRUE(r.ok()) << r.error().describe();
+  return std::move(r).value();
 }
 
 Report run(const Scenario& s, std::int64_t ticks) {
@@ -97,7 +97,7 @@ TEST(BundledScenarios, TheRiverMakesTanksUseTheBridge) {
 TEST(BundledScenarios, WithoutTheBridgeTheRiverRefusesTanks) {
   // Flood the bridge (rows 8-12 of the river's columns 28-35) and load the same scenario.
   const std::string dir = std::string(WARPATH_SOURCE_DIR) + "/scenarios/";
-  pathing::Loaded<pathing::GridMap> map =
+  Result<pathing::GridMap> map =
       pathing::loadMap(std::string(WARPATH_SOURCE_DIR) + "/assets/maps/river.map");
   ASSERT_TRUE(map.ok());
   for (int y = 8; y <= 12; ++y) {
@@ -105,16 +105,16 @@ TEST(BundledScenarios, WithoutTheBridgeTheRiverRefusesTanks) {
       map.value().set({x, y}, pathing::Terrain::Water);
   }
   const auto flooded = std::filesystem::temp_directory_path() / "warpath_river_no_bridge.map";
-  std::string error;
-  ASSERT_TRUE(pathing::saveMap(map.value(), flooded, &error)) << error;
+  const Status saved = pathing::saveMap(map.value(), flooded);
+  ASSERT_TRUE(saved) << saved.error().describe();
   std::ifstream in(dir + "river_crossing.yaml");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string original = "../assets/maps/river.map";
   text.replace(text.find(original), original.size(), flooded.string());
-  const ScenarioResult<Scenario> r = parseScenario(text, dir + "river_crossing.yaml");
+  const Result<Scenario> r = parseScenario(text, dir + "river_crossing.yaml");
   std::filesystem::remove(flooded);
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.error.message.find("unreachable for tank"), std::string::npos) << r.error.message;
+  EXPECT_NE(r.error().message.find("unreachable for tank"), std::string::npos) << r.error().message;
 }
 
 std::string hex(std::uint64_t v) {

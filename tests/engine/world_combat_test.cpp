@@ -25,7 +25,7 @@ std::shared_ptr<const pathing::AnnotatedGrid> gridOf(const std::vector<std::stri
   for (const std::string& row : rows)
     text += row + "\n";
   std::istringstream in(text);
-  pathing::Loaded<pathing::GridMap> map = pathing::parseMap(in, "test map");
+  Result<pathing::GridMap> map = pathing::parseMap(in, "test map");
   EXPECT_TRUE(map) << map.error().describe();
   return std::make_shared<const pathing::AnnotatedGrid>(std::move(map).value());
 }
@@ -36,7 +36,7 @@ units::UnitType armed(const std::string& name, int size, const std::string& capa
   units::UnitType t;
   t.name = name;
   t.size = size;
-  t.capability = *pathing::parseCapability(capability, nullptr);
+  t.capability = pathing::parseCapability(capability).value();
   t.setSpeed(speed);
   t.acceleration = 20.0;
   t.turnRate = 30.0;
@@ -252,7 +252,7 @@ TEST(WorldCombat, WrecksStayForTheirTimeThenGo) {
 // A unit that dies is dropped from the path service: its queued requests are never served.
 TEST(WorldCombat, CancelDropsAUnitsQueuedRequests) {
   const auto grid = gridOf(openField(24, 8));
-  const pathing::Capability ground = *pathing::parseCapability("ground", nullptr);
+  const pathing::Capability ground = pathing::parseCapability("ground").value();
   PathService service(*grid, {}, {ground}, 1);
   const UnitId alive{0, 0};
   const UnitId dead{1, 0};

@@ -23,9 +23,9 @@ using pathing::Terrain;
 const std::string kDir = std::string(WARPATH_SOURCE_DIR) + "/scenarios/";
 
 Scenario load(const std::string& text) {
-  ScenarioResult<Scenario> r = parseScenario(text, kDir + "test_input.yaml");
-  EXPECT_TRUE(r.ok()) << r.error.describe();
-  return std::move(*r.value);
+  Result<Scenario> r = parseScenario(text, kDir + "test_input.yaml");
+  EXPECT_TRUE(r.ok()) << r.error().describe();
+  return std::move(r).value();
 }
 
 // Largest depth by which a unit's body overlaps a cell it may not enter (or the outside).
@@ -301,9 +301,9 @@ TEST(World, UnitsMeetingHeadOnInACorridorPushPast) {
 TEST(World, NoUnitOfABundledScenarioEverOverlapsForbiddenTerrain) {
   for (const char* name : {"demo", "river_crossing", "forest", "narrow_pass", "swamp"}) {
     SCOPED_TRACE(name);
-    ScenarioResult<Scenario> s = loadScenario(kDir + name + ".yaml");
-    ASSERT_TRUE(s.ok()) << s.error.describe();
-    ScenarioRun run(*s.value);
+    Result<Scenario> s = loadScenario(kDir + name + ".yaml");
+    ASSERT_TRUE(s.ok()) << s.error().describe();
+    ScenarioRun run(s.value());
     runChecked(run);
   }
 }

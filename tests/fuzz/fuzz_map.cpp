@@ -42,7 +42,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size > fuzz::kMaxInput) return -1;
   const std::string_view text = fuzz::asText(data, size);
   std::istringstream in{std::string(text)};
-  Loaded<GridMap> loaded = parseMap(in, "fuzz.map");
+  Result<GridMap> loaded = parseMap(in, "fuzz.map");
   if (!loaded) {
     if (loaded.error().describe().empty()) std::abort();
     return 0;
@@ -53,7 +53,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::ostringstream out;
   writeMap(map, out);
   std::istringstream back(out.str());
-  Loaded<GridMap> again = parseMap(back, "fuzz-written.map");
+  Result<GridMap> again = parseMap(back, "fuzz-written.map");
   if (!again || !(again.value() == map)) std::abort();
 
   if (map.width() >= 1 && map.height() >= 1 &&

@@ -91,18 +91,18 @@ bool writeScratch(const std::string& bytes) {
 
 void play(const engine::Replay& replay) {
   // The scenario is parsed once to see its size, then again by ReplayPlayback::open.
-  const engine::ScenarioResult<engine::Scenario> scenario = engine::replayScenario(replay);
+  const Result<engine::Scenario> scenario = engine::replayScenario(replay);
   if (!scenario.ok()) return;
-  const pathing::GridMap& map = scenario.value->grid->map();
+  const pathing::GridMap& map = scenario.value().grid->map();
   int units = 0;
-  for (const engine::GroupSpec& g : scenario.value->groups)
+  for (const engine::GroupSpec& g : scenario.value().groups)
     units += static_cast<int>(g.anchors.size());
   if (std::int64_t{map.width()} * map.height() > kMaxPlayCells || units > kMaxPlayUnits) return;
-  engine::ScenarioResult<engine::ReplayPlayback> playback =
+  Result<engine::ReplayPlayback> playback =
       engine::ReplayPlayback::open(replay, "fuzz.replay");
   if (!playback.ok()) return;
-  for (std::int64_t t = 0; t < kPlayTicks && !playback.value->done(); ++t) {
-    if (playback.value->step()) break;  // a hash mismatch: expected for mutated replays
+  for (std::int64_t t = 0; t < kPlayTicks && !playback.value().done(); ++t) {
+    if (playback.value().step()) break;  // a hash mismatch: expected for mutated replays
   }
 }
 
@@ -113,12 +113,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::string bytes(fuzz::asText(data, size));
   fixChecksums(bytes);
   if (!writeScratch(bytes)) std::abort();  // the harness's own failure, not the reader's
-  const engine::ScenarioResult<engine::Replay> loaded = engine::readReplay(scratchFile());
+  const Result<engine::Replay> loaded = engine::readReplay(scratchFile());
   if (!loaded.ok()) {
-    if (loaded.error.describe().empty()) std::abort();
+    if (loaded.error().describe().empty()) std::abort();
     return 0;
   }
-  const engine::Replay& replay = *loaded.value;
+  const engine::Replay& replay = loaded.value();
   for (std::size_t i = 1; i < replay.orders.size(); ++i) {
     if (replay.orders[i].tick < replay.orders[i - 1].tick) std::abort();
   }

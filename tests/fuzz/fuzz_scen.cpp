@@ -17,7 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace warpath::pathing;
   if (size > fuzz::kMaxInput) return -1;
   std::istringstream in{std::string(fuzz::asText(data, size))};
-  const Loaded<std::vector<ScenQuery>> loaded = parseScen(in, "fuzz.scen");
+  const Result<std::vector<ScenQuery>> loaded = parseScen(in, "fuzz.scen");
   if (!loaded) {
     if (loaded.error().describe().empty()) std::abort();
     return 0;

@@ -109,7 +109,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::vector<Section> sections;
   const std::string_view text = split(fuzz::asText(data, size), sections);
   const engine::FileReader files =
-      [&sections](const std::filesystem::path& file) -> std::optional<std::string> {
+      [&sections](const std::filesystem::path& file, FileLimit) -> Result<std::string> {
     const std::string name = file.filename().string();
     for (Section& s : sections) {
       if (!s.used && s.name == name) {
@@ -125,15 +125,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         return std::string(s.contents);
       }
     }
-    return std::nullopt;
+    return Error{file.string(), 0, 0, "no such file"};
   };
   writeOut(kScenarioPath, text);
-  const engine::ScenarioResult<engine::Scenario> loaded =
+  const Result<engine::Scenario> loaded =
       engine::parseScenario(text, kScenarioPath, files);
   if (!loaded.ok()) {
-    if (loaded.error.describe().empty()) std::abort();
+    if (loaded.error().describe().empty()) std::abort();
     return 0;
   }
-  checkLoaded(*loaded.value);
+  checkLoaded(loaded.value());
   return 0;
 }

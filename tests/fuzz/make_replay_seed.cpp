@@ -22,28 +22,28 @@ int main(int argc, char** argv) {
   try {
     const std::int64_t ticks = std::stoll(argv[3]);
     ReplaySource source;
-    const ScenarioResult<Scenario> scenario = loadRecordedScenario(argv[1], source);
+    const Result<Scenario> scenario = loadRecordedScenario(argv[1], source);
     if (!scenario.ok()) {
-      std::fprintf(stderr, "%s\n", scenario.error.describe().c_str());
+      std::fprintf(stderr, "%s\n", scenario.error().describe().c_str());
       return 2;
     }
-    source.seed = scenario.value->settings.seed;
+    source.seed = scenario.value().settings.seed;
     source.hashEvery = argc == 5 ? std::stoll(argv[4]) : 1;
-    ScenarioRun run(*scenario.value);
-    ScenarioResult<ReplayWriter> writer = ReplayWriter::open(argv[2], source);
+    ScenarioRun run(scenario.value());
+    Result<ReplayWriter> writer = ReplayWriter::open(argv[2], source);
     if (!writer.ok()) {
-      std::fprintf(stderr, "%s\n", writer.error.describe().c_str());
+      std::fprintf(stderr, "%s\n", writer.error().describe().c_str());
       return 2;
     }
-    std::optional<ScenarioError> error = writer.value->record(run);
-    while (!error && !run.done() && run.world().tick() < ticks) {
+    Status status = writer.value().record(run);
+    while (status && !run.done() && run.world().tick() < ticks) {
       run.step();
-      error = writer.value->record(run);
+      status = writer.value().record(run);
     }
-    if (!error)
-      error = writer.value->finish(run, run.done() ? ReplayEnd::Complete : ReplayEnd::Stopped);
-    if (error) {
-      std::fprintf(stderr, "%s\n", error->describe().c_str());
+    if (status)
+      status = writer.value().finish(run, run.done() ? ReplayEnd::Complete : ReplayEnd::Stopped);
+    if (!status) {
+      std::fprintf(stderr, "%s\n", status.error().describe().c_str());
       return 2;
     }
   } catch (const std::exception& e) {

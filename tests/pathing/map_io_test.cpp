@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "pathing/file_read.h"
+
 namespace warpath::pathing {
 namespace {
 
@@ -18,19 +20,19 @@ const fs::path kFixtures = WARPATH_FIXTURES_DIR;
 
 constexpr std::string_view kHeader3x2 = "type octile\nheight 2\nwidth 3\nmap\n";
 
-Loaded<GridMap> parseMapText(const std::string& text) {
+Result<GridMap> parseMapText(const std::string& text) {
   std::istringstream in(text);
   return parseMap(in, "test.map");
 }
 
-Loaded<std::vector<ScenQuery>> parseScenText(const std::string& text) {
+Result<std::vector<ScenQuery>> parseScenText(const std::string& text) {
   std::istringstream in(text);
   return parseScen(in, "test.scen");
 }
 
 // The error of a parse that must fail; records a test failure if it succeeded.
-LoadError mapError(const std::string& text) {
-  Loaded<GridMap> result = parseMapText(text);
+Error mapError(const std::string& text) {
+  Result<GridMap> result = parseMapText(text);
   if (result) {
     ADD_FAILURE() << "parsed although it should not:\n" << text;
     return {};
@@ -39,8 +41,8 @@ LoadError mapError(const std::string& text) {
   return result.error();
 }
 
-LoadError scenError(const std::string& text) {
-  Loaded<std::vector<ScenQuery>> result = parseScenText(text);
+Error scenError(const std::string& text) {
+  Result<std::vector<ScenQuery>> result = parseScenText(text);
   if (result) {
     ADD_FAILURE() << "parsed although it should not:\n" << text;
     return {};
@@ -79,20 +81,36 @@ fs::path scratchPath(const std::string& suffix) {
 }
 
 // ---------------------------------------------------------------------------------------
-// LoadError
+// Error
 
-TEST(LoadErrorTest, DescribeWithAndWithoutLine) {
-  EXPECT_EQ((LoadError{"a.map", 7, "bad row"}).describe(), "a.map:7: bad row");
-  EXPECT_EQ((LoadError{"a.map", 0, "cannot open file"}).describe(), "a.map: cannot open file");
-  EXPECT_EQ((LoadError{"", 3, "bad row"}).describe(), "line 3: bad row");
-  EXPECT_EQ((LoadError{"", 0, "bad"}).describe(), "bad");
+TEST(ErrorTest, DescribeWithAndWithoutLine) {
+  EXPECT_EQ((Error{"a.map", 7, 0, "bad row"}).describe(), "a.map:7: bad row");
+  EXPECT_EQ((Error{"a.map", 0, 0, "cannot open file"}).describe(), "a.map: cannot open file");
+  EXPECT_EQ((Error{"", 3, 0, "bad row"}).describe(), "line 3: bad row");
+  EXPECT_EQ((Error{"", 0, 0, "bad"}).describe(), "bad");
+  EXPECT_EQ((Error{"s.yaml", 4, 9, "bad key"}).describe(), "s.yaml:4:9: bad key");
+}
+
+TEST(ErrorTest, ResultAndStatus) {
+  const Result<int> good = 3;
+  ASSERT_TRUE(good);
+  EXPECT_EQ(good.value(), 3);
+  EXPECT_TRUE(good.status());
+  const Result<int> bad = Error{"f", 0, 0, "no"};
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error().describe(), "f: no");
+  EXPECT_EQ(bad.status().error().message, "no");
+  EXPECT_TRUE(Status::success().ok());
+  const Status failed = Error{"", 0, 0, "broken"};
+  ASSERT_FALSE(failed);
+  EXPECT_EQ(failed.error().describe(), "broken");
 }
 
 // ---------------------------------------------------------------------------------------
 // parseMap: valid input
 
 TEST(ParseMapTest, ReadsEveryTerrainCharacter) {
-  Loaded<GridMap> map = parseMapText(
+  Result<GridMap> map = parseMapText(
       "type octile\nheight 2\nwidth 4\nmap\n"
       ".GST\n"
       "W@O.\n");
@@ -111,20 +129,20 @@ TEST(ParseMapTest, ReadsEveryTerrainCharacter) {
 }
 
 TEST(ParseMapTest, XIsColumnAndYIsRow) {
-  Loaded<GridMap> map = parseMapText("type octile\nheight 3\nwidth 2\nmap\n.@\n..\nT.\n");
+  Result<GridMap> map = parseMapText("type octile\nheight 3\nwidth 2\nmap\n.@\n..\nT.\n");
   ASSERT_TRUE(map) << map.error().describe();
   EXPECT_EQ(map.value().at({1, 0}), Terrain::Blocked);
   EXPECT_EQ(map.value().at({0, 2}), Terrain::Trees);
 }
 
 TEST(ParseMapTest, AcceptsCrlfLineEndings) {
-  Loaded<GridMap> map = parseMapText("type octile\r\nheight 2\r\nwidth 3\r\nmap\r\n.@T\r\nWS.\r\n");
+  Result<GridMap> map = parseMapText("type octile\r\nheight 2\r\nwidth 3\r\nmap\r\n.@T\r\nWS.\r\n");
   ASSERT_TRUE(map) << map.error().describe();
   EXPECT_EQ(map.value(), parseMapText(std::string(kHeader3x2) + ".@T\nWS.\n").value());
 }
 
 TEST(ParseMapTest, AcceptsMissingFinalNewline) {
-  Loaded<GridMap> map = parseMapText(std::string(kHeader3x2) + "...\n.@.");
+  Result<GridMap> map = parseMapText(std::string(kHeader3x2) + "...\n.@.");
   ASSERT_TRUE(map) << map.error().describe();
   EXPECT_EQ(map.value().at({1, 1}), Terrain::Blocked);
 }
@@ -134,7 +152,7 @@ TEST(ParseMapTest, AcceptsHeaderKeysInAnyOrder) {
        {"type octile\nheight 2\nwidth 3\nmap\n", "type octile\nwidth 3\nheight 2\nmap\n",
         "height 2\nwidth 3\ntype octile\nmap\n"}) {
     SCOPED_TRACE(header);
-    Loaded<GridMap> map = parseMapText(std::string(header) + "...\n...\n");
+    Result<GridMap> map = parseMapText(std::string(header) + "...\n...\n");
     ASSERT_TRUE(map) << map.error().describe();
     EXPECT_EQ(map.value().width(), 3);
     EXPECT_EQ(map.value().height(), 2);
@@ -142,24 +160,24 @@ TEST(ParseMapTest, AcceptsHeaderKeysInAnyOrder) {
 }
 
 TEST(ParseMapTest, ToleratesBlankLinesAndSpacesInHeader) {
-  Loaded<GridMap> map =
+  Result<GridMap> map =
       parseMapText("\ntype   octile  \n\n  height\t2\nwidth 3 \r\n\nmap  \n...\n...\n");
   ASSERT_TRUE(map) << map.error().describe();
   EXPECT_EQ(map.value().width(), 3);
 }
 
 TEST(ParseMapTest, AcceptsTrailingBlankLines) {
-  Loaded<GridMap> map = parseMapText(std::string(kHeader3x2) + "...\n...\n\n  \n\t\r\n\n");
+  Result<GridMap> map = parseMapText(std::string(kHeader3x2) + "...\n...\n\n  \n\t\r\n\n");
   ASSERT_TRUE(map) << map.error().describe();
 }
 
 TEST(ParseMapTest, IgnoresUtf8ByteOrderMark) {
-  Loaded<GridMap> map = parseMapText("\xEF\xBB\xBF" + std::string(kHeader3x2) + "...\n...\n");
+  Result<GridMap> map = parseMapText("\xEF\xBB\xBF" + std::string(kHeader3x2) + "...\n...\n");
   ASSERT_TRUE(map) << map.error().describe();
 }
 
 TEST(ParseMapTest, AcceptsLargestDimension) {
-  Loaded<GridMap> map =
+  Result<GridMap> map =
       parseMapText("type octile\nheight 1\nwidth 32768\nmap\n" + std::string(32768, '.') + "\n");
   ASSERT_TRUE(map) << map.error().describe();
   EXPECT_EQ(map.value().width(), 32768);
@@ -171,7 +189,7 @@ TEST(ParseMapTest, AcceptsLargestDimension) {
 TEST(ParseMapErrorTest, EmptyInput) {
   for (const char* text : {"", "\n\n", "  \r\n"}) {
     SCOPED_TRACE(text);
-    const LoadError e = mapError(text);
+    const Error e = mapError(text);
     EXPECT_EQ(e.message, "empty file: expected a map header starting with 'type octile'");
   }
   EXPECT_EQ(mapError("").line, 1);
@@ -179,19 +197,19 @@ TEST(ParseMapErrorTest, EmptyInput) {
 }
 
 TEST(ParseMapErrorTest, MissingHeader) {
-  const LoadError e = mapError("...\n...\n");
+  const Error e = mapError("...\n...\n");
   EXPECT_EQ(e.line, 1);
   EXPECT_EQ(e.message, "missing map header: expected 'type octile', found '...'");
 }
 
 TEST(ParseMapErrorTest, MissingTypeLine) {
-  const LoadError e = mapError("height 2\nwidth 3\nmap\n...\n...\n");
+  const Error e = mapError("height 2\nwidth 3\nmap\n...\n...\n");
   EXPECT_EQ(e.line, 3);
   EXPECT_EQ(e.message, "missing 'type octile' line in header");
 }
 
 TEST(ParseMapErrorTest, UnsupportedType) {
-  const LoadError e = mapError("type tile\nheight 2\nwidth 3\nmap\n...\n...\n");
+  const Error e = mapError("type tile\nheight 2\nwidth 3\nmap\n...\n...\n");
   EXPECT_EQ(e.line, 1);
   EXPECT_EQ(e.message, "unsupported map type 'tile' (only 'octile' is supported)");
   EXPECT_EQ(mapError("type\nheight 2\nwidth 3\nmap\n").message,
@@ -201,7 +219,7 @@ TEST(ParseMapErrorTest, UnsupportedType) {
 }
 
 TEST(ParseMapErrorTest, MissingHeightOrWidth) {
-  LoadError e = mapError("type octile\nwidth 3\nmap\n...\n");
+  Error e = mapError("type octile\nwidth 3\nmap\n...\n");
   EXPECT_EQ(e.line, 3);
   EXPECT_EQ(e.message, "missing 'height' line in header");
   e = mapError("type octile\nheight 2\nmap\n...\n");
@@ -211,7 +229,7 @@ TEST(ParseMapErrorTest, MissingHeightOrWidth) {
 
 TEST(ParseMapErrorTest, HeaderEndsEarly) {
   // The file ends inside the header: the error points at the line after the last one.
-  LoadError e = mapError("type octile\nheight 2\n");
+  Error e = mapError("type octile\nheight 2\n");
   EXPECT_EQ(e.line, 3);
   EXPECT_EQ(e.message, "missing 'width' line in header");
   e = mapError("type octile\n");
@@ -224,7 +242,7 @@ TEST(ParseMapErrorTest, DuplicateHeaderKey) {
             "duplicate 'height' line in header");
   EXPECT_EQ(mapError("type octile\nwidth 2\nwidth 3\n").message,
             "duplicate 'width' line in header");
-  const LoadError e = mapError("type octile\ntype octile\n");
+  const Error e = mapError("type octile\ntype octile\n");
   EXPECT_EQ(e.line, 2);
   EXPECT_EQ(e.message, "duplicate 'type' line in header");
 }
@@ -251,19 +269,18 @@ TEST(ParseMapErrorTest, BadDimension) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.value);
-    const LoadError e =
-        mapError("type octile\nheight " + std::string(c.value) + "\nwidth 3\nmap\n");
+    const Error e = mapError("type octile\nheight " + std::string(c.value) + "\nwidth 3\nmap\n");
     EXPECT_EQ(e.line, 2);
     EXPECT_EQ(e.message, c.message);
   }
-  const LoadError e = mapError("type octile\nheight 2\nwidth x\nmap\n");
+  const Error e = mapError("type octile\nheight 2\nwidth x\nmap\n");
   EXPECT_EQ(e.line, 3);
   EXPECT_EQ(e.message, "width must be a positive integer, got 'x'");
 }
 
 TEST(ParseMapErrorTest, MissingMapLine) {
   // Rows right after the header.
-  LoadError e = mapError("type octile\nheight 2\nwidth 3\n...\n...\n");
+  Error e = mapError("type octile\nheight 2\nwidth 3\n...\n...\n");
   EXPECT_EQ(e.line, 4);
   EXPECT_EQ(e.message, "missing 'map' line after the header, found '...'");
   // The file ends after the header.
@@ -273,7 +290,7 @@ TEST(ParseMapErrorTest, MissingMapLine) {
 }
 
 TEST(ParseMapErrorTest, UnexpectedHeaderLine) {
-  const LoadError e = mapError("type octile\nheight 2\nlength 3\nmap\n");
+  const Error e = mapError("type octile\nheight 2\nlength 3\nmap\n");
   EXPECT_EQ(e.line, 3);
   EXPECT_EQ(e.message,
             "unexpected line in map header: 'length 3' (expected 'type', 'height', 'width' or "
@@ -286,7 +303,7 @@ TEST(ParseMapErrorTest, UnexpectedHeaderLine) {
 // parseMap: row errors
 
 TEST(ParseMapErrorTest, RowTooShortOrTooLong) {
-  LoadError e = mapError(std::string(kHeader3x2) + "...\n..\n");
+  Error e = mapError(std::string(kHeader3x2) + "...\n..\n");
   EXPECT_EQ(e.line, 6);
   EXPECT_EQ(e.message, "row y=1 has 2 characters, expected 3: '..'");
   e = mapError(std::string(kHeader3x2) + "....\n...\n");
@@ -301,20 +318,19 @@ TEST(ParseMapErrorTest, TrailingSpaceMakesRowTooLong) {
 }
 
 TEST(ParseMapErrorTest, LongRowIsQuotedShortened) {
-  const LoadError e =
-      mapError("type octile\nheight 1\nwidth 100\nmap\n" + std::string(99, '.') + "\n");
+  const Error e = mapError("type octile\nheight 1\nwidth 100\nmap\n" + std::string(99, '.') + "\n");
   EXPECT_EQ(e.message,
             "row y=0 has 99 characters, expected 100: '" + std::string(40, '.') + "...'");
 }
 
 TEST(ParseMapErrorTest, BlankLineBetweenRows) {
-  const LoadError e = mapError("type octile\nheight 3\nwidth 3\nmap\n...\n\n...\n");
+  const Error e = mapError("type octile\nheight 3\nwidth 3\nmap\n...\n\n...\n");
   EXPECT_EQ(e.line, 6);
   EXPECT_EQ(e.message, "row y=1 has 0 characters, expected 3: ''");
 }
 
 TEST(ParseMapErrorTest, FewerRowsThanHeight) {
-  LoadError e = mapError("type octile\nheight 4\nwidth 3\nmap\n...\n...\n");
+  Error e = mapError("type octile\nheight 4\nwidth 3\nmap\n...\n...\n");
   EXPECT_EQ(e.line, 7);
   EXPECT_EQ(e.message, "expected 4 rows, found 2");
   // Trailing blank lines are not rows: same message, pointing at the first of them.
@@ -327,7 +343,7 @@ TEST(ParseMapErrorTest, FewerRowsThanHeight) {
 }
 
 TEST(ParseMapErrorTest, UnknownCharacter) {
-  LoadError e = mapError(std::string(kHeader3x2) + "...\n.x.\n");
+  Error e = mapError(std::string(kHeader3x2) + "...\n.x.\n");
   EXPECT_EQ(e.line, 6);
   EXPECT_EQ(e.message, "unknown map character 'x' at x=1 (column 2) of row y=1");
   // Lower-case terrain letters are not MovingAI characters.
@@ -344,7 +360,7 @@ TEST(ParseMapErrorTest, UnknownCharacter) {
 }
 
 TEST(ParseMapErrorTest, ExtraDataAfterRows) {
-  LoadError e = mapError(std::string(kHeader3x2) + "...\n...\n...\n");
+  Error e = mapError(std::string(kHeader3x2) + "...\n...\n...\n");
   EXPECT_EQ(e.line, 7);
   EXPECT_EQ(e.message, "extra data after the 2 map rows: '...'");
   e = mapError(std::string(kHeader3x2) + "...\n...\n\n\nthe end\n");
@@ -355,7 +371,7 @@ TEST(ParseMapErrorTest, ExtraDataAfterRows) {
 TEST(ParseMapErrorTest, StreamInFailStateReadsAsEmpty) {
   std::istringstream in(std::string(kHeader3x2) + "...\n...\n");
   in.setstate(std::ios::failbit);
-  Loaded<GridMap> map = parseMap(in, "x.map");
+  Result<GridMap> map = parseMap(in, "x.map");
   ASSERT_FALSE(map);
   EXPECT_EQ(map.error().line, 1);
 }
@@ -366,7 +382,7 @@ TEST(ParseMapErrorTest, NeverCrashesOnDamagedInput) {
   const std::string valid = mapText(randomMap(9, 7, 5));
   const int lineCount = 4 + 7 + 3;  // each changed byte may be a new '\n'
   const auto check = [&](const std::string& text) {
-    Loaded<GridMap> map = parseMapText(text);
+    Result<GridMap> map = parseMapText(text);
     if (map) {
       EXPECT_GT(map.value().width(), 0);
       EXPECT_EQ(map.value().cellCount(),
@@ -401,7 +417,7 @@ TEST(WriteMapTest, WritesCanonicalText) {
 }
 
 TEST(WriteMapTest, AliasesBecomeCanonical) {
-  Loaded<GridMap> map = parseMapText("type octile\nheight 1\nwidth 4\nmap\nG.O@\n");
+  Result<GridMap> map = parseMapText("type octile\nheight 1\nwidth 4\nmap\nG.O@\n");
   ASSERT_TRUE(map) << map.error().describe();
   EXPECT_EQ(mapText(map.value()), "type octile\nheight 1\nwidth 4\nmap\n..@@\n");
 }
@@ -412,7 +428,7 @@ TEST(WriteMapTest, RoundTripsRandomMultiTerrainMaps) {
     ASSERT_EQ(original.terrainsPresent(),
               Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Trees, Terrain::Water}));
     const std::string text = mapText(original);
-    Loaded<GridMap> parsed = parseMapText(text);
+    Result<GridMap> parsed = parseMapText(text);
     ASSERT_TRUE(parsed) << parsed.error().describe();
     EXPECT_EQ(parsed.value(), original);
     EXPECT_EQ(mapText(parsed.value()), text);
@@ -422,28 +438,29 @@ TEST(WriteMapTest, RoundTripsRandomMultiTerrainMaps) {
 TEST(WriteMapTest, SaveThenLoad) {
   const GridMap original = randomMap(20, 11, 9);
   const fs::path file = scratchPath(".map");
-  std::string error;
-  ASSERT_TRUE(saveMap(original, file, &error)) << error;
-  Loaded<GridMap> loaded = loadMap(file);
+  Status saved = saveMap(original, file);
+  ASSERT_TRUE(saved) << saved.error().describe();
+  Result<GridMap> loaded = loadMap(file);
   ASSERT_TRUE(loaded) << loaded.error().describe();
   EXPECT_EQ(loaded.value(), original);
   // Saving again replaces the file instead of appending.
   const GridMap smaller = randomMap(3, 2, 10);
-  ASSERT_TRUE(saveMap(smaller, file, &error)) << error;
+  saved = saveMap(smaller, file);
+  ASSERT_TRUE(saved) << saved.error().describe();
   EXPECT_EQ(loadMap(file).value(), smaller);
   fs::remove(file);
 }
 
 TEST(WriteMapTest, SaveFailsWhenFileCannotBeOpened) {
   const fs::path file = scratchPath("_missing_dir") / "x.map";
-  std::string error;
-  EXPECT_FALSE(saveMap(GridMap(2, 2), file, &error));
-  EXPECT_EQ(error, "cannot open '" + file.string() + "' for writing: No such file or directory");
-  EXPECT_FALSE(saveMap(GridMap(2, 2), file, nullptr));  // no error string wanted: no crash
+  const Status saved = saveMap(GridMap(2, 2), file);
+  ASSERT_FALSE(saved);
+  EXPECT_EQ(saved.error().describe(),
+            "cannot open '" + file.string() + "' for writing: No such file or directory");
 }
 
 TEST(LoadMapTest, LoadsFixture) {
-  Loaded<GridMap> map = loadMap(kFixtures / "small.map");
+  Result<GridMap> map = loadMap(kFixtures / "small.map");
   ASSERT_TRUE(map) << map.error().describe();
   EXPECT_EQ(map.value().width(), 6);
   EXPECT_EQ(map.value().height(), 4);
@@ -452,7 +469,7 @@ TEST(LoadMapTest, LoadsFixture) {
 }
 
 TEST(LoadMapTest, ErrorNamesFileAndLine) {
-  Loaded<GridMap> map = loadMap(kFixtures / "bad_row_length.map");
+  Result<GridMap> map = loadMap(kFixtures / "bad_row_length.map");
   ASSERT_FALSE(map);
   EXPECT_EQ(map.error().file, fixture("bad_row_length.map"));
   EXPECT_EQ(map.error().line, 7);
@@ -462,26 +479,64 @@ TEST(LoadMapTest, ErrorNamesFileAndLine) {
 
 TEST(LoadMapTest, MissingFile) {
   const fs::path file = kFixtures / "does_not_exist.map";
-  Loaded<GridMap> map = loadMap(file);
+  Result<GridMap> map = loadMap(file);
   ASSERT_FALSE(map);
   EXPECT_EQ(map.error().file, file.string());
   EXPECT_EQ(map.error().line, 0);
-  EXPECT_EQ(map.error().describe(),
-            file.string() + ": cannot open file: No such file or directory");
+  EXPECT_EQ(map.error().describe(), file.string() + ": no such file");
 }
 
 TEST(LoadMapTest, DirectoryIsNotAFile) {
-  Loaded<GridMap> map = loadMap(kFixtures);
+  Result<GridMap> map = loadMap(kFixtures);
   ASSERT_FALSE(map);
   EXPECT_EQ(map.error().line, 0);
-  EXPECT_EQ(map.error().message, "cannot open file: it is a directory");
+  EXPECT_EQ(map.error().describe(), kFixtures.string() + ": is a directory");
+}
+
+TEST(LoadMapTest, SpecialFileIsRefusedAtOnce) {
+  // /dev/zero never ends; it is refused before anything is read.
+  Result<GridMap> map = loadMap("/dev/zero");
+  ASSERT_FALSE(map);
+  EXPECT_EQ(map.error().describe(), "/dev/zero: not a regular file");
+}
+
+TEST(LoadMapTest, OversizedFileIsRefusedBeforeReading) {
+  // A sparse file: 65 MiB on paper, nothing on disk; stat says it is too large.
+  const fs::path file = scratchPath(".map");
+  { std::ofstream create(file); }
+  fs::resize_file(file, kMapFileLimit.maxBytes + 1);
+  Result<GridMap> map = loadMap(file);
+  ASSERT_FALSE(map);
+  EXPECT_EQ(map.error().describe(), file.string() + ": larger than the 64 MiB limit for maps");
+  fs::remove(file);
+}
+
+TEST(ReadFileCappedTest, StopsAtTheCapWhileReading) {
+  // A file within the cap reads whole; the cap is also enforced on the bytes actually read.
+  const fs::path file = scratchPath(".txt");
+  { std::ofstream(file) << "0123456789"; }
+  const Result<std::string> whole = readFileCapped(file, {10, "tests"});
+  ASSERT_TRUE(whole) << whole.error().describe();
+  EXPECT_EQ(whole.value(), "0123456789");
+  const Result<std::string> capped = readFileCapped(file, {9, "tests"});
+  ASSERT_FALSE(capped);
+  EXPECT_EQ(capped.error().describe(), file.string() + ": larger than the 9 bytes limit for tests");
+  Result<CappedFile> opened = CappedFile::open(file, {10, "tests"});
+  ASSERT_TRUE(opened);
+  std::string head;
+  ASSERT_TRUE(opened.value().read(head, 4));
+  EXPECT_EQ(head, "0123");
+  fs::remove(file);
+  const Result<std::string> gone = readFileCapped(file, {10, "tests"});
+  ASSERT_FALSE(gone);
+  EXPECT_EQ(gone.error().describe(), file.string() + ": no such file");
 }
 
 // ---------------------------------------------------------------------------------------
 // parseScen: valid input
 
 TEST(ParseScenTest, ReadsTabSeparatedVersion1) {
-  Loaded<std::vector<ScenQuery>> scen = parseScenText(
+  Result<std::vector<ScenQuery>> scen = parseScenText(
       "version 1\n"
       "0\tmaps/dao/arena.map\t49\t49\t1\t11\t1\t12\t1\n"
       "3\tmaps/dao/arena.map\t49\t49\t1\t13\t4\t12\t3.41421\n");
@@ -504,7 +559,7 @@ TEST(ParseScenTest, ReadsTabSeparatedVersion1) {
 }
 
 TEST(ParseScenTest, ReadsSpaceSeparatedVersion1_0) {
-  Loaded<std::vector<ScenQuery>> scen =
+  Result<std::vector<ScenQuery>> scen =
       parseScenText("version 1.0\n61 maps/bgmaps/AR0011SR.map 512 300 210 295 87 201 244.95\n");
   ASSERT_TRUE(scen) << scen.error().describe();
   ASSERT_EQ(scen.value().size(), 1u);
@@ -522,14 +577,14 @@ TEST(ParseScenTest, AcceptsAnySpellingOfVersionOne) {
        {"version 1", "version 1.0", "version 1.00", "version\t1", "  version 1  ", "version 01",
         "version 1e0", "version 1\r", "\n\n version 1"}) {
     SCOPED_TRACE(version);
-    Loaded<std::vector<ScenQuery>> scen = parseScenText(std::string(version) + "\n");
+    Result<std::vector<ScenQuery>> scen = parseScenText(std::string(version) + "\n");
     ASSERT_TRUE(scen) << scen.error().describe();
     EXPECT_TRUE(scen.value().empty());
   }
 }
 
 TEST(ParseScenTest, SkipsBlankLinesAndKeepsLineNumbers) {
-  Loaded<std::vector<ScenQuery>> scen = parseScenText(
+  Result<std::vector<ScenQuery>> scen = parseScenText(
       "version 1\r\n"
       "\r\n"
       "0\ta.map\t4\t4\t0\t0\t1\t1\t1.41421\r\n"
@@ -546,7 +601,7 @@ TEST(ParseScenTest, SkipsBlankLinesAndKeepsLineNumbers) {
 }
 
 TEST(ParseScenTest, AcceptsZeroLengthAndEdgeCoordinates) {
-  Loaded<std::vector<ScenQuery>> scen = parseScenText("version 1\n0 m 5 3 4 2 4 2 0\n");
+  Result<std::vector<ScenQuery>> scen = parseScenText("version 1\n0 m 5 3 4 2 4 2 0\n");
   ASSERT_TRUE(scen) << scen.error().describe();
   EXPECT_EQ(scen.value()[0].start, (Cell{4, 2}));
   EXPECT_EQ(scen.value()[0].optimalLength, 0.0);
@@ -567,7 +622,7 @@ TEST(ParseScenErrorTest, EmptyInput) {
 }
 
 TEST(ParseScenErrorTest, MissingVersionLine) {
-  LoadError e = scenError("0\ta.map\t4\t4\t0\t0\t1\t1\t1.41421\n");
+  Error e = scenError("0\ta.map\t4\t4\t0\t0\t1\t1\t1.41421\n");
   EXPECT_EQ(e.line, 1);
   EXPECT_EQ(e.message,
             "missing 'version' line: expected 'version 1', found '0?a.map?4?4?0?0?1?1?1.41421'");
@@ -579,7 +634,7 @@ TEST(ParseScenErrorTest, MissingVersionLine) {
 TEST(ParseScenErrorTest, UnsupportedVersion) {
   for (const char* version : {"2", "1.5", "0", "abc", "1x", "1 0"}) {
     SCOPED_TRACE(version);
-    const LoadError e = scenError("version " + std::string(version) + "\n");
+    const Error e = scenError("version " + std::string(version) + "\n");
     EXPECT_EQ(e.line, 1);
     EXPECT_EQ(e.message, "unsupported scenario version '" + std::string(version) +
                              "' (only version 1 is supported)");
@@ -591,7 +646,7 @@ TEST(ParseScenErrorTest, WrongFieldCount) {
   const std::string expected =
       "expected 9 fields (bucket, map, map width, map height, start x, start y, goal x, goal y, "
       "optimal length), found ";
-  LoadError e = scenError(std::string(kVersion) + "0\ta.map\t4\t4\t0\t0\t1\t1\n");
+  Error e = scenError(std::string(kVersion) + "0\ta.map\t4\t4\t0\t0\t1\t1\n");
   EXPECT_EQ(e.line, 2);
   EXPECT_EQ(e.message, expected + "8");
   // A map path with a space splits into two fields.
@@ -613,7 +668,7 @@ TEST(ParseScenErrorTest, NonNumericFieldIsNamed) {
       for (const std::string& f : fields)
         line += f + "\t";
       SCOPED_TRACE(line);
-      const LoadError e = scenError(std::string(kVersion) + line + "\n");
+      const Error e = scenError(std::string(kVersion) + line + "\n");
       EXPECT_EQ(e.line, 2);
       const std::string shown = bad;
       const std::string name = names[field];
@@ -657,7 +712,7 @@ TEST(ParseScenErrorTest, CoordinateOutsideDeclaredMap) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.line);
-    const LoadError e = scenError(std::string(kVersion) + "0 a 5 3 0 0 1 1 1\n" + c.line + "\n");
+    const Error e = scenError(std::string(kVersion) + "0 a 5 3 0 0 1 1 1\n" + c.line + "\n");
     EXPECT_EQ(e.line, 3);
     EXPECT_EQ(e.message, c.message);
   }
@@ -681,7 +736,7 @@ TEST(ParseScenErrorTest, BadOptimalLength) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.value);
-    const LoadError e = scenError(std::string(kVersion) + "0 a 5 3 0 0 1 1 " + c.value + "\n");
+    const Error e = scenError(std::string(kVersion) + "0 a 5 3 0 0 1 1 " + c.value + "\n");
     EXPECT_EQ(e.line, 2);
     EXPECT_EQ(e.message, c.message);
   }
@@ -691,7 +746,7 @@ TEST(ParseScenErrorTest, NeverCrashesOnDamagedInput) {
   const std::string valid =
       "version 1\n0\ta.map\t9\t7\t0\t0\t8\t6\t10.4853\n\n1\tb.map\t9\t7\t3\t3\t3\t4\t1\n";
   const auto check = [&](const std::string& text) {
-    Loaded<std::vector<ScenQuery>> scen = parseScenText(text);
+    Result<std::vector<ScenQuery>> scen = parseScenText(text);
     if (scen) {
       for (const ScenQuery& q : scen.value()) {
         EXPECT_GE(q.start.x, 0);
@@ -719,20 +774,19 @@ TEST(ParseScenErrorTest, NeverCrashesOnDamagedInput) {
 // loadScen and checkScenAgainstMap
 
 TEST(LoadScenTest, LoadsFixtureAndMatchesItsMap) {
-  Loaded<std::vector<ScenQuery>> scen = loadScen(kFixtures / "small.map.scen");
+  Result<std::vector<ScenQuery>> scen = loadScen(kFixtures / "small.map.scen");
   ASSERT_TRUE(scen) << scen.error().describe();
   ASSERT_EQ(scen.value().size(), 3u);
   EXPECT_EQ(scen.value()[2].line, 5);  // after a blank line
   EXPECT_EQ(scen.value()[2].start, (Cell{1, 2}));
-  Loaded<GridMap> map = loadMap(kFixtures / "small.map");
+  Result<GridMap> map = loadMap(kFixtures / "small.map");
   ASSERT_TRUE(map) << map.error().describe();
-  const std::optional<LoadError> e =
-      checkScenAgainstMap(scen.value(), map.value(), "small.map.scen");
-  EXPECT_FALSE(e) << e->describe();
+  const Status e = checkScenAgainstMap(scen.value(), map.value(), "small.map.scen");
+  EXPECT_TRUE(e) << e.error().describe();
 }
 
 TEST(LoadScenTest, ErrorNamesFileAndLine) {
-  Loaded<std::vector<ScenQuery>> scen = loadScen(kFixtures / "bad_coordinate.scen");
+  Result<std::vector<ScenQuery>> scen = loadScen(kFixtures / "bad_coordinate.scen");
   ASSERT_FALSE(scen);
   EXPECT_EQ(scen.error().describe(),
             fixture("bad_coordinate.scen") + ":3: goal x 6 is outside 0..5 (map width 6)");
@@ -740,22 +794,21 @@ TEST(LoadScenTest, ErrorNamesFileAndLine) {
 
 TEST(LoadScenTest, MissingFile) {
   const fs::path file = kFixtures / "does_not_exist.scen";
-  Loaded<std::vector<ScenQuery>> scen = loadScen(file);
+  Result<std::vector<ScenQuery>> scen = loadScen(file);
   ASSERT_FALSE(scen);
   EXPECT_EQ(scen.error().line, 0);
-  EXPECT_EQ(scen.error().describe(),
-            file.string() + ": cannot open file: No such file or directory");
+  EXPECT_EQ(scen.error().describe(), file.string() + ": no such file");
 }
 
 TEST(CheckScenTest, DeclaredSizeMustMatchMap) {
-  Loaded<std::vector<ScenQuery>> scen = loadScen(kFixtures / "wrong_size.map.scen");
+  Result<std::vector<ScenQuery>> scen = loadScen(kFixtures / "wrong_size.map.scen");
   ASSERT_TRUE(scen) << scen.error().describe();
-  Loaded<GridMap> map = loadMap(kFixtures / "small.map");
+  Result<GridMap> map = loadMap(kFixtures / "small.map");
   ASSERT_TRUE(map) << map.error().describe();
   const std::string scenName = fixture("wrong_size.map.scen");
-  const std::optional<LoadError> e = checkScenAgainstMap(scen.value(), map.value(), scenName);
-  ASSERT_TRUE(e);
-  EXPECT_EQ(e->describe(), scenName + ":3: query declares a 8x8 map but the map is 6x4");
+  const Status e = checkScenAgainstMap(scen.value(), map.value(), scenName);
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().describe(), scenName + ":3: query declares a 8x8 map but the map is 6x4");
 }
 
 TEST(CheckScenTest, CoordinatesMustBeInsideMap) {
@@ -767,20 +820,20 @@ TEST(CheckScenTest, CoordinatesMustBeInsideMap) {
   q.goal = {0, 0};
   q.line = 12;
   const GridMap map(6, 4);
-  std::optional<LoadError> e = checkScenAgainstMap({q}, map, "s.scen");
-  EXPECT_FALSE(e) << e->describe();
-  EXPECT_FALSE(checkScenAgainstMap({}, map, "s.scen"));
+  Status e = checkScenAgainstMap({q}, map, "s.scen");
+  EXPECT_TRUE(e) << e.error().describe();
+  EXPECT_TRUE(checkScenAgainstMap({}, map, "s.scen"));
 
   q.start = {6, 0};
   e = checkScenAgainstMap({q}, map, "s.scen");
-  ASSERT_TRUE(e);
-  EXPECT_EQ(e->describe(), "s.scen:12: start (6, 0) is outside the 6x4 map");
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().describe(), "s.scen:12: start (6, 0) is outside the 6x4 map");
 
   q.start = {0, 0};
   q.goal = {-1, 2};
   e = checkScenAgainstMap({q, q}, map, "s.scen");
-  ASSERT_TRUE(e);
-  EXPECT_EQ(e->describe(), "s.scen:12: goal (-1, 2) is outside the 6x4 map");
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().describe(), "s.scen:12: goal (-1, 2) is outside the 6x4 map");
 }
 
 }  // namespace

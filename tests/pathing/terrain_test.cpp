@@ -6,20 +6,21 @@ namespace warpath::pathing {
 namespace {
 
 TEST(CapabilityTest, ParsesNamesInAnyCaseAndOrder) {
-  std::string error;
-  const auto cap = parseCapability("Swamp, ground", &error);
-  ASSERT_TRUE(cap) << error;
-  EXPECT_EQ(*cap, Capability::of({Terrain::Ground, Terrain::Swamp}));
-  EXPECT_EQ(cap->toString(), "ground,swamp");
+  const auto cap = parseCapability("Swamp, ground");
+  ASSERT_TRUE(cap) << cap.error().describe();
+  EXPECT_EQ(cap.value(), Capability::of({Terrain::Ground, Terrain::Swamp}));
+  EXPECT_EQ(cap.value().toString(), "ground,swamp");
 }
 
 TEST(CapabilityTest, RejectsUnknownEmptyAndBlockedNames) {
-  std::string error;
-  EXPECT_FALSE(parseCapability("ground,lava", &error));
-  EXPECT_EQ(error, "'lava' is not a traversable terrain (ground, swamp, trees, water)");
-  EXPECT_FALSE(parseCapability("ground,", &error));
-  EXPECT_EQ(error, "empty terrain name in capability");
-  EXPECT_FALSE(parseCapability("blocked", &error));
+  const auto lava = parseCapability("ground,lava");
+  ASSERT_FALSE(lava);
+  EXPECT_EQ(lava.error().describe(),
+            "'lava' is not a traversable terrain (ground, swamp, trees, water)");
+  const auto empty = parseCapability("ground,");
+  ASSERT_FALSE(empty);
+  EXPECT_EQ(empty.error().describe(), "empty terrain name in capability");
+  EXPECT_FALSE(parseCapability("blocked"));
 }
 
 TEST(CapabilityTest, SubsetAndMembership) {

@@ -49,7 +49,7 @@ TEST(PathPng, DrawsTheMapTheAgentAndItsFootprints) {
             0)
       << err;
   auto image = readPng(file);
-  ASSERT_TRUE(image.ok()) << image.status().message();
+  ASSERT_TRUE(image.ok()) << image.error().describe();
   // crossing.map is 64x40: 16 pixels a cell.
   EXPECT_EQ(image.value().width, 64 * 16);
   EXPECT_EQ(image.value().height, 40 * 16);
@@ -81,7 +81,7 @@ TEST(RunFrames, WritesPngFramesEveryNTicksAndAGif) {
       << err;
   for (const char* name : {"frame_000000.png", "frame_000030.png", "frame_000060.png"}) {
     auto frame = readPng(dir / "frames" / name);
-    ASSERT_TRUE(frame.ok()) << frame.status().message();
+    ASSERT_TRUE(frame.ok()) << frame.error().describe();
     EXPECT_EQ(frame.value().width, 192);  // the 96x64 demo map
     EXPECT_EQ(frame.value().height, 128);
   }

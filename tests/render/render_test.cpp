@@ -82,13 +82,13 @@ FrameScene tinyScene() {
 
 Renderer makeRenderer(const GridMap& map, RenderDef def) {
   auto renderer = Renderer::create(map, def);
-  EXPECT_TRUE(renderer.ok()) << renderer.status().message();
+  EXPECT_TRUE(renderer.ok()) << renderer.error().describe();
   return std::move(renderer).value();
 }
 
 const Image& renderOnce(Renderer& renderer, const FrameScene& scene) {
   const Status s = renderer.render(scene);
-  EXPECT_TRUE(s.ok()) << s.message();
+  EXPECT_TRUE(s.ok()) << s.error().describe();
   return renderer.image();
 }
 
@@ -133,7 +133,7 @@ TEST(Renderer, MatchesTheGoldenImage) {
     GTEST_SKIP() << "rewrote " << golden;
   }
   auto reference = readPng(golden);
-  ASSERT_TRUE(reference.ok()) << reference.status().message()
+  ASSERT_TRUE(reference.ok()) << reference.error().describe()
                               << " (WARPATH_UPDATE_GOLDEN=1 rewrites it)";
   ASSERT_EQ(reference.value().width, image.width);
   ASSERT_EQ(reference.value().height, image.height);
@@ -252,10 +252,10 @@ TEST(Renderer, RejectsBadDefinitionsWithAMessage) {
   const GridMap map = tinyMap();
   auto tooSmall = Renderer::create(map, {.width = 0, .height = 10});
   ASSERT_FALSE(tooSmall.ok());
-  EXPECT_NE(tooSmall.status().message().find("resolution"), std::string::npos);
+  EXPECT_NE(tooSmall.error().describe().find("resolution"), std::string::npos);
   auto offMap = Renderer::create(map, {.camera = pathing::CellRect{100, 0, 4, 4}});
   ASSERT_FALSE(offMap.ok());
-  EXPECT_NE(offMap.status().message().find("camera"), std::string::npos);
+  EXPECT_NE(offMap.error().describe().find("camera"), std::string::npos);
   EXPECT_FALSE(Renderer::create(GridMap(), {}).ok());
   Renderer renderer = makeRenderer(map, {.width = 32, .height = 32});
   const GridMap other(5, 5);
@@ -276,7 +276,7 @@ TEST(Overlays, ParseNames) {
   EXPECT_EQ(none.value(), (Overlays{.stuck = false, .arrivalZones = false, .hud = false}));
   auto bad = parseOverlays("paths,heat");
   ASSERT_FALSE(bad.ok());
-  EXPECT_NE(bad.status().message().find("'heat'"), std::string::npos);
+  EXPECT_NE(bad.error().describe().find("'heat'"), std::string::npos);
 }
 
 TEST(Png, RoundTripsAFrame) {
@@ -289,7 +289,7 @@ TEST(Png, RoundTripsAFrame) {
     ASSERT_TRUE(
         writePng(file, image, {.compressionLevel = filter ? 6 : 1, .filterRows = filter}).ok());
     auto back = readPng(file);
-    ASSERT_TRUE(back.ok()) << back.status().message();
+    ASSERT_TRUE(back.ok()) << back.error().describe();
     EXPECT_EQ(back.value(), image);
   }
   EXPECT_TRUE(fs::exists(dir / "frame_123456.png"));
@@ -300,14 +300,14 @@ TEST(Png, ReportsUnwritableAndUnreadableFiles) {
   const Image image(4, 4, palette::kWater);
   const Status s = writePng("/nonexistent-dir/frame.png", image);
   ASSERT_FALSE(s.ok());
-  EXPECT_NE(s.message().find("/nonexistent-dir/frame.png"), std::string::npos);
+  EXPECT_NE(s.error().describe().find("/nonexistent-dir/frame.png"), std::string::npos);
   EXPECT_FALSE(writePng(scratchDir("png_empty") / "e.png", Image()).ok());
 
   const fs::path notPng = scratchDir("png_bad") / "not.png";
   std::ofstream(notPng) << "this is not a PNG";
   auto read = readPng(notPng);
   ASSERT_FALSE(read.ok());
-  EXPECT_NE(read.status().message().find("not.png"), std::string::npos);
+  EXPECT_NE(read.error().describe().find("not.png"), std::string::npos);
 }
 
 TEST(Gif, WritesAnAnimationThatGiflibReadsBack) {
@@ -315,7 +315,7 @@ TEST(Gif, WritesAnAnimationThatGiflibReadsBack) {
   Renderer renderer = makeRenderer(map, {.width = 96, .height = 64});
   const fs::path file = scratchDir("gif") / "run.gif";
   auto gif = GifWriter::open(file, 96, 64, 5);
-  ASSERT_TRUE(gif.ok()) << gif.status().message();
+  ASSERT_TRUE(gif.ok()) << gif.error().describe();
   FrameScene scene = tinyScene();
   for (int i = 0; i < 3; ++i) {
     scene.tick = i;
@@ -364,7 +364,7 @@ TEST(FrameSink, BackgroundEncodingWritesTheSameBytesAsSerial) {
                                  .background = background,
                                  .queueLimit = 2},
                                 96, 64);
-    EXPECT_TRUE(sink.ok()) << sink.status().message();
+    EXPECT_TRUE(sink.ok()) << sink.error().describe();
     FrameScene scene = sampleScene(map, {.units = 12, .seed = 5});
     for (std::int64_t tick = 0; tick < 20; ++tick) {
       scene.tick = tick;
@@ -392,12 +392,13 @@ TEST(FrameSink, ReportsAFrameItCannotWrite) {
   for (const bool background : {false, true}) {
     const fs::path dir = scratchDir(background ? "sink_gone_bg" : "sink_gone") / "frames";
     auto sink = FrameSink::open({.framesDir = dir, .background = background}, 8, 8);
-    ASSERT_TRUE(sink.ok()) << sink.status().message();
+    ASSERT_TRUE(sink.ok()) << sink.error().describe();
     fs::remove_all(dir);  // the folder vanishes under the running sink
     static_cast<void>(sink.value().submit(0, Image(8, 8)));
     const Status finished = sink.value().finish();
     ASSERT_FALSE(finished.ok()) << (background ? "background" : "serial");
-    EXPECT_NE(finished.message().find("frame_000000.png"), std::string::npos) << finished.message();
+    EXPECT_NE(finished.error().describe().find("frame_000000.png"), std::string::npos)
+        << finished.error().describe();
     EXPECT_EQ(sink.value().framesWritten(), 0);
     EXPECT_FALSE(sink.value().submit(1, Image(8, 8)).ok());
   }
@@ -408,7 +409,7 @@ TEST(FrameSink, ReportsAFolderItCannotCreate) {
   std::ofstream(file) << "a file where the folder should go";
   auto sink = FrameSink::open({.framesDir = file / "frames"}, 8, 8);
   ASSERT_FALSE(sink.ok());
-  EXPECT_NE(sink.status().message().find("frames"), std::string::npos);
+  EXPECT_NE(sink.error().describe().find("frames"), std::string::npos);
 }
 
 }  // namespace

@@ -61,7 +61,7 @@ TEST_F(ReplayPictures, RenderWritesFramesAndAGif) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%06d.png", tick);
     auto image = readPng(frames / name);
-    ASSERT_TRUE(image.ok()) << image.status().message();
+    ASSERT_TRUE(image.ok()) << image.error().describe();
     EXPECT_EQ(image.value().width, 64);
     EXPECT_EQ(image.value().height, 40);
   }
@@ -107,7 +107,7 @@ TEST(Caption, DrawsAStripAlongTheBottomOnly) {
   EXPECT_EQ(def.height, 128);
   def.overlays.hud = false;
   auto renderer = Renderer::create(map.value(), def);
-  ASSERT_TRUE(renderer.ok()) << renderer.status().message();
+  ASSERT_TRUE(renderer.ok()) << renderer.error().describe();
   FrameScene scene;
   ASSERT_TRUE(renderer.value().render(scene));
   const Image plain = renderer.value().image();

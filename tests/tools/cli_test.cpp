@@ -104,7 +104,7 @@ TEST(RtsCliTest, BadInputExitsTwoWithFileLineAndProblem) {
   expectBadInput("path " + fixture("small.map") + " --capability lava --from 0,0 --to 1,1",
                  "'lava' is not a traversable terrain");
   expectBadInput("path " + fixture("missing.map") + " --from 0,0 --to 1,1",
-                 "missing.map: cannot open file");
+                 "missing.map: no such file");
   EXPECT_EQ(rts("path " + fixture("small.map") + " --size 0 --from 0,0 --to 1,1").exitCode, 2);
   EXPECT_EQ(rts("frobnicate").exitCode, 2);
 }
@@ -211,7 +211,7 @@ TEST(RtsCliTest, BenchRandomRejectsBadInput) {
   expectBadInput(random + " --algo astar", "--algo: unknown planner 'astar'");
   expectBadInput(random + " --algo haa-lq --cluster-size 1", "cluster size");
   expectBadInput(random + " --size 30 --capability water", "can stand nowhere");
-  expectBadInput("bench random " + fixture("missing.map"), "missing.map: cannot open file");
+  expectBadInput("bench random " + fixture("missing.map"), "missing.map: no such file");
 }
 
 TEST(RtsCliTest, BenchPaperPrintsItsTables) {

@@ -31,7 +31,7 @@ render::Renderer makeRenderer(const pathing::GridMap& map, int side) {
   def.overlays.paths = true;
   auto renderer = render::Renderer::create(map, def);
   if (!renderer) {
-    std::fprintf(stderr, "%s\n", renderer.status().message().c_str());
+    std::fprintf(stderr, "%s\n", renderer.error().describe().c_str());
     std::exit(2);
   }
   return std::move(renderer).value();

@@ -62,9 +62,8 @@ int runScenBench(const ScenBenchOptions& options) {
   auto scen = loadScen(options.scenFile);
   if (!scen) throw BadInput{scen.error().describe()};
   const AnnotatedGrid grid(loadMapOrThrow(options.mapFile));
-  if (auto mismatch = checkScenAgainstMap(scen.value(), grid.map(), options.scenFile)) {
-    throw BadInput{mismatch->describe()};
-  }
+  if (const Status fits = checkScenAgainstMap(scen.value(), grid.map(), options.scenFile); !fits)
+    throw BadInput{fits.error().describe()};
   std::vector<ScenQuery> queries;
   for (const ScenQuery& q : scen.value()) {
     if (q.bucket >= options.bucketMin) queries.push_back(q);

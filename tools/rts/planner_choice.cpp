@@ -21,10 +21,9 @@ void addAgentOptions(CLI::App& cmd, AgentChoice& choice) {
 }
 
 Agent parseAgent(const AgentChoice& choice) {
-  std::string error;
-  const auto capability = parseCapability(choice.capability, &error);
-  if (!capability) throw BadInput{"--capability: " + error};
-  return {choice.size, *capability};
+  const Result<Capability> capability = parseCapability(choice.capability);
+  if (!capability) throw BadInput{"--capability: " + capability.error().describe()};
+  return {choice.size, capability.value()};
 }
 
 nlohmann::json agentJson(Agent agent) {

@@ -28,10 +28,10 @@ void writePathPng(const std::string& file, const pathing::GridMap& map, pathing:
                   .arrivalZones = false,
                   .hud = false};
   auto renderer = render::Renderer::create(map, def);
-  if (!renderer) throw BadInput{"--png " + file + ": " + renderer.status().message()};
+  if (!renderer) throw BadInput{"--png " + file + ": " + renderer.error().describe()};
   if (graph != nullptr) {
-    if (render::Status s = renderer.value().setAbstractGraph(*graph, agent); !s) {
-      throw BadInput{"--png " + file + ": " + s.message()};
+    if (Status s = renderer.value().setAbstractGraph(*graph, agent); !s) {
+      throw BadInput{"--png " + file + ": " + s.error().describe()};
     }
   }
 
@@ -50,11 +50,11 @@ void writePathPng(const std::string& file, const pathing::GridMap& map, pathing:
     unit.path.push_back(centreOf(path[i]));
   render::FrameScene scene;
   if (!path.empty()) scene.units.push_back(std::move(unit));
-  if (render::Status s = renderer.value().render(scene); !s) {
-    throw BadInput{"--png " + file + ": " + s.message()};
+  if (Status s = renderer.value().render(scene); !s) {
+    throw BadInput{"--png " + file + ": " + s.error().describe()};
   }
-  if (render::Status s = render::writePng(file, renderer.value().image()); !s) {
-    throw BadInput{"--png: " + s.message()};
+  if (Status s = render::writePng(file, renderer.value().image()); !s) {
+    throw BadInput{"--png: " + s.error().describe()};
   }
 }
 
@@ -77,10 +77,10 @@ FrameRecorder::FrameRecorder(const FrameOptions& options, const pathing::GridMap
   if (options.size < 16 || options.size > 8192) throw BadInput{"--frame-size must be 16..8192"};
   render::RenderDef def = render::fittedDef(map, options.size);
   auto overlays = render::parseOverlays(options.overlays);
-  if (!overlays) throw BadInput{"--overlay: " + overlays.status().message()};
+  if (!overlays) throw BadInput{"--overlay: " + overlays.error().describe()};
   def.overlays = overlays.value();
   auto renderer = render::Renderer::create(map, def);
-  if (!renderer) throw BadInput{"frames: " + renderer.status().message()};
+  if (!renderer) throw BadInput{"frames: " + renderer.error().describe()};
   renderer_.emplace(std::move(renderer).value());
 
   const double frameSeconds = options.every / tickRate;
@@ -90,22 +90,22 @@ FrameRecorder::FrameRecorder(const FrameOptions& options, const pathing::GridMap
        .every = options.every,
        .gifDelayCentiseconds = std::max(2, static_cast<int>(std::lround(frameSeconds * 100.0)))},
       def.width, def.height);
-  if (!sink) throw BadInput{"frames: " + sink.status().message()};
+  if (!sink) throw BadInput{"frames: " + sink.error().describe()};
   sink_.emplace(std::move(sink).value());
 }
 
 void FrameRecorder::onTick(const engine::World& world) {
   if (!sink_->wants(world.tick())) return;
-  if (render::Status s = renderer_->render(render::sceneOf(world, teamCount_)); !s) {
-    throw BadInput{"frames: " + s.message()};
+  if (Status s = renderer_->render(render::sceneOf(world, teamCount_)); !s) {
+    throw BadInput{"frames: " + s.error().describe()};
   }
-  if (render::Status s = sink_->submit(world.tick(), renderer_->image()); !s) {
-    throw BadInput{"frames: " + s.message()};
+  if (Status s = sink_->submit(world.tick(), renderer_->image()); !s) {
+    throw BadInput{"frames: " + s.error().describe()};
   }
 }
 
 int FrameRecorder::finish() {
-  if (render::Status s = sink_->finish(); !s) throw BadInput{"frames: " + s.message()};
+  if (Status s = sink_->finish(); !s) throw BadInput{"frames: " + s.error().describe()};
   return sink_->framesWritten();
 }
 

@@ -79,12 +79,13 @@ int runRender(const RenderOptions& options) {
 int runInfo(const InfoOptions& options) {
   const engine::Replay replay = readReplayOrThrow(options.file);
   const engine::ReplaySource& s = replay.source;
-  const engine::ScenarioResult<engine::Scenario> scenario = engine::replayScenario(replay);
+  const Result<engine::Scenario> scenario = engine::replayScenario(replay);
   fmt::print("replay: {}\n", options.file);
   fmt::print("format version: {}\n", replay.version);
-  fmt::print("scenario: {} ({})\n",
-             scenario.ok() ? scenario.value->name : "does not load: " + scenario.error.describe(),
-             s.scenarioPath);
+  fmt::print(
+      "scenario: {} ({})\n",
+      scenario.ok() ? scenario.value().name : "does not load: " + scenario.error().describe(),
+      s.scenarioPath);
   fmt::print("seed: {}\n", s.seed);
   fmt::print("ticks recorded: {}\n", replay.lastTick());
   fmt::print("hash every: {} ticks ({} hashes)\n", s.hashEvery, replay.hashes.size());
@@ -114,9 +115,9 @@ int runInfo(const InfoOptions& options) {
     if (o.kind == engine::IssuedKind::EndBattle) {
       fmt::print("battle ended at tick {} by the script, winner: {}\n", o.tick,
                  o.group < 0 || !scenario.ok() ||
-                         static_cast<std::size_t>(o.group) >= scenario.value->teams.size()
+                         static_cast<std::size_t>(o.group) >= scenario.value().teams.size()
                      ? std::string("none")
-                     : scenario.value->teams[static_cast<std::size_t>(o.group)]);
+                     : scenario.value().teams[static_cast<std::size_t>(o.group)]);
     }
   }
   fmt::print("embedded files:\n  {} ({} bytes, the scenario)\n", s.scenarioPath,

@@ -161,11 +161,11 @@ int runRun(const RunOptions& options) {
   if (!options.replay.empty()) {
     source.seed = options.seed.value_or(scenario.settings.seed);
     source.hashEvery = options.replayEvery;
-    engine::ScenarioResult<engine::ReplayWriter> opened =
-        engine::ReplayWriter::open(options.replay, source);
-    if (!opened.ok()) throw BadInput{opened.error.describe()};
-    replay.emplace(std::move(*opened.value));
-    if (auto e = replay->record(run)) throw BadInput{e->describe()};  // the tick-0 orders
+    Result<engine::ReplayWriter> opened = engine::ReplayWriter::open(options.replay, source);
+    if (!opened.ok()) throw BadInput{opened.error().describe()};
+    replay.emplace(std::move(opened).value());
+    if (Status s = replay->record(run); !s)
+      throw BadInput{s.error().describe()};  // the tick-0 orders
   }
 
   const std::int64_t total =
@@ -187,13 +187,13 @@ int runRun(const RunOptions& options) {
   if (replay) {
     limits.onTick = [&replay, before = limits.onTick](const engine::ScenarioRun& r) {
       if (before) before(r);
-      if (auto e = replay->record(r)) throw BadInput{e->describe()};
+      if (Status s = replay->record(r); !s) throw BadInput{s.error().describe()};
     };
   }
   const RunOutcome outcome = runToEnd(run, limits);
   progress.finish();
   if (replay) {
-    if (auto e = replay->finish(run, endOf(outcome))) throw BadInput{e->describe()};
+    if (Status s = replay->finish(run, endOf(outcome)); !s) throw BadInput{s.error().describe()};
     if (!options.quiet) fmt::print("replay: {}\n", options.replay);
   }
   if (frames) {

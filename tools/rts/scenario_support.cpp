@@ -32,10 +32,10 @@ nlohmann::json secondsOrNull(double v) {
 }  // namespace
 
 engine::Scenario loadScenarioOrThrow(const std::string& file, engine::ReplaySource* source) {
-  engine::ScenarioResult<engine::Scenario> loaded =
+  Result<engine::Scenario> loaded =
       source ? engine::loadRecordedScenario(file, *source) : engine::loadScenario(file);
-  if (!loaded.ok()) throw BadInput{loaded.error.describe()};
-  return std::move(*loaded.value);
+  if (!loaded.ok()) throw BadInput{loaded.error().describe()};
+  return std::move(loaded).value();
 }
 
 void installInterruptHandlers() {

@@ -37,13 +37,13 @@ int runTest(const TestOptions& options) {
   int failed = 0;
   for (const fs::path& file : files) {
     if (interruptRequested()) break;
-    engine::ScenarioResult<engine::Scenario> loaded = engine::loadScenario(file);
+    Result<engine::Scenario> loaded = engine::loadScenario(file);
     if (!loaded.ok()) {
-      fmt::print("FAIL {}: {}\n", file.string(), loaded.error.describe());
+      fmt::print("FAIL {}: {}\n", file.string(), loaded.error().describe());
       ++failed;
       continue;
     }
-    engine::ScenarioRun run(*loaded.value);
+    engine::ScenarioRun run(loaded.value());
     const RunOutcome outcome = runToEnd(run, {});
     const bool ok = !outcome.interrupted && outcome.report.passed();
     fmt::print("{} {} ({} units, {} ticks{}, {:.2f} s)\n", ok ? "PASS" : "FAIL", file.string(),

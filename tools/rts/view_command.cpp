@@ -20,8 +20,8 @@ struct ViewOptions {
 int runView(const ViewOptions& options) {
   const engine::Replay replay = readReplayOrThrow(options.file);
   engine::ReplayPlayback playback = openPlaybackOrThrow(replay, options.file);
-  if (render::Status s = view::runViewer(playback, options.def); !s)
-    throw BadInput{options.file + ": " + s.message()};
+  if (Status s = view::runViewer(playback, options.def); !s)
+    throw BadInput{options.file + ": " + s.error().describe()};
   if (options.def.framesThenExit > 0) {
     fmt::print("{}: {} frames drawn, tick {}\n", options.file, options.def.framesThenExit,
                playback.run().world().tick());

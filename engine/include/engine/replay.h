@@ -73,25 +73,23 @@ struct Replay {
 
 // Loads a scenario from disk as loadScenario does and keeps in `source` the scenario's text and
 // every file it read (seed and hash interval are left to the caller).
-ScenarioResult<Scenario> loadRecordedScenario(const std::filesystem::path& file,
-                                              ReplaySource& source);
+Result<Scenario> loadRecordedScenario(const std::filesystem::path& file, ReplaySource& source);
 
-// Reads and checks a whole replay. Errors: "FILE: problem" (ScenarioError with line 0).
-ScenarioResult<Replay> readReplay(const std::filesystem::path& file);
+// Reads and checks a whole replay. Errors: "FILE: problem" (an Error with line 0).
+Result<Replay> readReplay(const std::filesystem::path& file);
 
 // The embedded scenario, its map and catalogue read from the replay, never from disk.
-ScenarioResult<Scenario> replayScenario(const Replay& replay);
+Result<Scenario> replayScenario(const Replay& replay);
 
 // Appends a replay while a ScenarioRun runs: record() after construction and after every step,
 // finish() at the end. Each call flushes. Errors name the file.
 class ReplayWriter {
  public:
-  static ScenarioResult<ReplayWriter> open(const std::filesystem::path& file,
-                                           const ReplaySource& source);
+  static Result<ReplayWriter> open(const std::filesystem::path& file, const ReplaySource& source);
   // The orders given since the last call and, when the tick is a multiple of hashEvery, the
   // world's hash.
-  std::optional<ScenarioError> record(const ScenarioRun& run);
-  std::optional<ScenarioError> finish(const ScenarioRun& run, ReplayEnd reason);
+  Status record(const ScenarioRun& run);
+  Status finish(const ScenarioRun& run, ReplayEnd reason);
 
  private:
   struct Closer {
@@ -99,7 +97,7 @@ class ReplayWriter {
   };
   ReplayWriter(std::string file, std::unique_ptr<std::FILE, Closer> out, std::int64_t every)
       : file_(std::move(file)), out_(std::move(out)), every_(every) {}
-  std::optional<ScenarioError> append(char kind, const std::string& payload);
+  Status append(char kind, const std::string& payload);
 
   std::string file_;
   std::unique_ptr<std::FILE, Closer> out_;
@@ -122,7 +120,7 @@ class ReplayPlayback {
  public:
   // `replay` must outlive the playback. Errors name `file` and the problem (an embedded scenario
   // that no longer loads, an order naming a unit the scenario never spawns).
-  static ScenarioResult<ReplayPlayback> open(const Replay& replay, const std::string& file);
+  static Result<ReplayPlayback> open(const Replay& replay, const std::string& file);
 
   // Steps once; a mismatch when the new tick has a recorded hash that differs, or when the
   // battle has already ended short of the replay's last tick (the world cannot step on).

@@ -12,18 +12,11 @@
 
 #include "engine/world.h"
 #include "pathing/annotated_grid.h"
+#include "pathing/error.h"
+#include "pathing/file_read.h"
 #include "units/unit_type.h"
 
 namespace warpath::engine {
-
-struct ScenarioError {
-  std::string file;
-  int line = 0;    // 1-based; 0 when not tied to a place in the file
-  int column = 0;  // 1-based
-  std::string message;
-  // "file:line:column: message" (or "file: message").
-  std::string describe() const;
-};
 
 enum class ExpectationKind : std::uint8_t {
   ArrivalRate,  // fraction of units (team, type) inside their goal area by `by` >= threshold
@@ -137,28 +130,22 @@ struct Scenario {
   std::int64_t durationTicks() const;
 };
 
-template <class T>
-struct ScenarioResult {
-  std::optional<T> value;
-  ScenarioError error;  // meaningful when !value
-  bool ok() const { return value.has_value(); }
-};
-
 // Supplies the contents of a file a scenario names (its map, its catalogue), given the path
-// resolved against the scenario's folder; nullopt when there is no such file. Replays pass one
-// that answers from the files they embed, so a replay never reads the disk.
-using FileReader = std::function<std::optional<std::string>(const std::filesystem::path&)>;
-// The whole of a regular file on disk, or nullopt.
-std::optional<std::string> readDiskFile(const std::filesystem::path& file);
+// resolved against the scenario's folder and the limit for that kind of file; an Error naming
+// the file otherwise (message kNoSuchFile when there is no such file). Replays pass one that
+// answers from the files they embed, so a replay never reads the disk.
+using FileReader = std::function<Result<std::string>(const std::filesystem::path&, FileLimit)>;
+// The whole of a regular file on disk, through readFileCapped.
+Result<std::string> readDiskFile(const std::filesystem::path& file, FileLimit limit);
 
 // `text` is read as if it were the file `file` (relative paths resolve against its folder).
 // Referenced files come from `files` (default: the disk).
-ScenarioResult<Scenario> parseScenario(std::string_view text, const std::filesystem::path& file);
-ScenarioResult<Scenario> parseScenario(std::string_view text, const std::filesystem::path& file,
-                                       const FileReader& files);
-ScenarioResult<Scenario> loadScenario(const std::filesystem::path& file);
+Result<Scenario> parseScenario(std::string_view text, const std::filesystem::path& file);
+Result<Scenario> parseScenario(std::string_view text, const std::filesystem::path& file,
+                               const FileReader& files);
+Result<Scenario> loadScenario(const std::filesystem::path& file);
 // A catalogue file: `unit_types:` mapping type names to their fields.
-ScenarioResult<std::vector<units::UnitType>> loadCatalogue(const std::filesystem::path& file);
+Result<std::vector<units::UnitType>> loadCatalogue(const std::filesystem::path& file);
 
 // Up to `count` anchor cells in `area` where `agent` can stand, row-major, with footprints
 // that overlap neither each other nor cells already marked in `occupied` (one byte per map

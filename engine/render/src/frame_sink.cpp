@@ -71,11 +71,12 @@ struct FrameSink::Impl {
   }
 
   Status submit(std::int64_t tick, const Image& image) {
-    if (finished) return Status::failure("frames submitted after the frame sink finished");
+    if (finished) return Error{"", 0, 0, "frames submitted after the frame sink finished"};
     if (image.width != width || image.height != height) {
-      return Status::failure("a " + std::to_string(image.width) + "x" +
-                             std::to_string(image.height) + " frame for a " +
-                             std::to_string(width) + "x" + std::to_string(height) + " frame sink");
+      return Error{"", 0, 0,
+                   "a " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                       " frame for a " + std::to_string(width) + "x" + std::to_string(height) +
+                       " frame sink"};
     }
     if (!worker.joinable()) {
       {
@@ -125,9 +126,9 @@ FrameSink::~FrameSink() = default;
 
 Result<FrameSink> FrameSink::open(const FrameSinkDef& def, int width, int height) {
   if (def.every < 1)
-    return Status::failure("frames every " + std::to_string(def.every) +
-                           " ticks: expected at least 1");
-  if (def.queueLimit < 1) return Status::failure("a frame queue limit below 1");
+    return Error{"", 0, 0,
+                 "frames every " + std::to_string(def.every) + " ticks: expected at least 1"};
+  if (def.queueLimit < 1) return Error{"", 0, 0, "a frame queue limit below 1"};
   auto impl = std::make_unique<Impl>();
   impl->def = def;
   impl->width = width;
@@ -136,13 +137,14 @@ Result<FrameSink> FrameSink::open(const FrameSinkDef& def, int width, int height
     std::error_code error;
     std::filesystem::create_directories(def.framesDir, error);
     if (error || !std::filesystem::is_directory(def.framesDir)) {
-      return Status::failure(def.framesDir.string() + ": cannot create the frames folder" +
-                             (error ? " (" + error.message() + ")" : std::string()));
+      return Error{def.framesDir.string(), 0, 0,
+                   "cannot create the frames folder" +
+                       (error ? " (" + error.message() + ")" : std::string())};
     }
   }
   if (!def.gifFile.empty()) {
     auto gif = GifWriter::open(def.gifFile, width, height, def.gifDelayCentiseconds);
-    if (!gif) return gif.status();
+    if (!gif) return gif.error();
     impl->gif.emplace(std::move(gif).value());
   }
   if (def.background) impl->worker = std::thread([p = impl.get()] { p->work(); });

@@ -59,9 +59,9 @@ struct GifWriter::Impl {
     if (gif != nullptr) EGifCloseFile(gif, nullptr);
   }
 
-  Status failure(const std::string& what) const {
-    return Status::failure(name + ": " + what + " (" +
-                           (gif != nullptr ? GifErrorString(gif->Error) : "giflib") + ")");
+  Error failure(const std::string& what) const {
+    return Error{name, 0, 0,
+                 what + " (" + (gif != nullptr ? GifErrorString(gif->Error) : "giflib") + ")"};
   }
 };
 
@@ -73,8 +73,9 @@ GifWriter::~GifWriter() = default;
 Result<GifWriter> GifWriter::open(const std::filesystem::path& file, int width, int height,
                                   int delayCentiseconds) {
   if (width < 1 || height < 1 || width > 65535 || height > 65535) {
-    return Status::failure(file.string() + ": GIF frames of " + std::to_string(width) + "x" +
-                           std::to_string(height) + " are outside 1x1..65535x65535");
+    return Error{file.string(), 0, 0,
+                 "GIF frames of " + std::to_string(width) + "x" + std::to_string(height) +
+                     " are outside 1x1..65535x65535"};
   }
   auto impl = std::make_unique<Impl>();
   impl->name = file.string();
@@ -86,19 +87,19 @@ Result<GifWriter> GifWriter::open(const std::filesystem::path& file, int width, 
   // only; giflib owns (and closes) the descriptor from then on.
   const int fd = ::open(impl->name.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
   if (fd < 0) {
-    return Status::failure(impl->name + ": cannot create (" + std::strerror(errno) + ")");
+    return Error{impl->name, 0, 0, std::string("cannot create (") + std::strerror(errno) + ")"};
   }
   int error = 0;
   impl->gif = EGifOpenFileHandle(fd, &error);
   if (impl->gif == nullptr) {
     ::close(fd);
-    return Status::failure(impl->name + ": cannot create (" + GifErrorString(error) + ")");
+    return Error{impl->name, 0, 0, std::string("cannot create (") + GifErrorString(error) + ")"};
   }
   EGifSetGifVersion(impl->gif, true);  // GIF89a: delays and looping
 
   const std::span<const Rgba> colours = palette::gifPalette();
   ColorMapObject* map = GifMakeMapObject(256, nullptr);
-  if (map == nullptr) return Status::failure(impl->name + ": out of memory for the palette");
+  if (map == nullptr) return Error{impl->name, 0, 0, "out of memory for the palette"};
   for (int i = 0; i < 256; ++i) {
     const Rgba c = static_cast<std::size_t>(i) < colours.size()
                        ? colours[static_cast<std::size_t>(i)]
@@ -124,13 +125,14 @@ Result<GifWriter> GifWriter::open(const std::filesystem::path& file, int width, 
 
 Status GifWriter::addFrame(const Image& image) {
   Impl& s = *impl_;
-  if (s.gif == nullptr) return Status::failure(s.name + ": the GIF is already closed");
+  if (s.gif == nullptr) return Error{s.name, 0, 0, "the GIF is already closed"};
   if (image.width != s.width || image.height != s.height ||
       image.pixels.size() !=
           static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 4) {
-    return Status::failure(s.name + ": a " + std::to_string(image.width) + "x" +
-                           std::to_string(image.height) + " frame in a " + std::to_string(s.width) +
-                           "x" + std::to_string(s.height) + " GIF");
+    return Error{s.name, 0, 0,
+                 "a " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                     " frame in a " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                     " GIF"};
   }
   GraphicsControlBlock gcb{};
   gcb.DisposalMode = DISPOSAL_UNSPECIFIED;
@@ -159,12 +161,12 @@ Status GifWriter::addFrame(const Image& image) {
 
 Status GifWriter::close() {
   Impl& s = *impl_;
-  if (s.gif == nullptr) return Status::failure(s.name + ": the GIF is already closed");
+  if (s.gif == nullptr) return Error{s.name, 0, 0, "the GIF is already closed"};
   int error = 0;
   const int result = EGifCloseFile(s.gif, &error);  // frees the handle either way
   s.gif = nullptr;
   if (result != GIF_OK) {
-    return Status::failure(s.name + ": cannot finish (" + GifErrorString(error) + ")");
+    return Error{s.name, 0, 0, std::string("cannot finish (") + GifErrorString(error) + ")"};
   }
   return Status::success();
 }

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <string>
 
+#include "pathing/file_read.h"
+
 namespace warpath::render {
 namespace {
 
@@ -66,44 +68,56 @@ Result<std::vector<std::uint8_t>> encodePng(const Image& image, const PngOptions
   if (image.width < 1 || image.height < 1 ||
       image.pixels.size() !=
           static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 4) {
-    return Status::failure("cannot encode an empty or inconsistent " + std::to_string(image.width) +
-                           "x" + std::to_string(image.height) + " image as PNG");
+    return Error{"", 0, 0,
+                 "cannot encode an empty or inconsistent " + std::to_string(image.width) + "x" +
+                     std::to_string(image.height) + " image as PNG"};
   }
   if (options.compressionLevel < 0 || options.compressionLevel > 9) {
-    return Status::failure("PNG compression level " + std::to_string(options.compressionLevel) +
-                           " is outside 0..9");
+    return Error{
+        "", 0, 0,
+        "PNG compression level " + std::to_string(options.compressionLevel) + " is outside 0..9"};
   }
   std::vector<std::uint8_t> bytes;
   bytes.reserve(image.pixels.size() / 8);
   EncodeState state{&bytes, {}};
   if (!encodeRows(image, options, &state)) {
-    return Status::failure(std::string("PNG encoding failed: ") + state.error);
+    return Error{"", 0, 0, std::string("PNG encoding failed: ") + state.error};
   }
   return bytes;
 }
 
 Status writeFile(const std::filesystem::path& file, const std::vector<std::uint8_t>& bytes) {
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
-  if (!out) return Status::failure(file.string() + ": cannot open for writing");
+  if (!out) return Error{file.string(), 0, 0, "cannot open for writing"};
   out.write(reinterpret_cast<const char*>(bytes.data()),
             static_cast<std::streamsize>(bytes.size()));
   out.close();
-  if (!out) return Status::failure(file.string() + ": write failed");
+  if (!out) return Error{file.string(), 0, 0, "write failed"};
   return Status::success();
 }
 
 Status writePng(const std::filesystem::path& file, const Image& image, const PngOptions& options) {
   auto bytes = encodePng(image, options);
-  if (!bytes) return Status::failure(file.string() + ": " + bytes.status().message());
+  if (!bytes) return Error{file.string(), 0, 0, bytes.error().describe()};
   return writeFile(file, bytes.value());
 }
 
 Result<Image> readPng(const std::filesystem::path& file) {
+  const Result<std::string> bytes = readFileCapped(file, kPngFileLimit);
+  if (!bytes) return bytes.error();
   // The simplified API reports errors in the struct instead of by longjmp.
   png_image png{};
   png.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&png, file.string().c_str())) {
-    return Status::failure(file.string() + ": " + png.message);
+  if (!png_image_begin_read_from_memory(&png, bytes.value().data(), bytes.value().size())) {
+    return Error{file.string(), 0, 0, png.message};
+  }
+  // The header alone must not make us allocate gigabytes: frames are at most 8192x8192.
+  constexpr png_uint_32 kMaxSide = 8192;
+  if (png.width > kMaxSide || png.height > kMaxSide) {
+    png_image_free(&png);
+    return Error{file.string(), 0, 0,
+                 "a " + std::to_string(png.width) + "x" + std::to_string(png.height) +
+                     " image is larger than the 8192x8192 limit"};
   }
   png.format = PNG_FORMAT_RGBA;
   Image image;
@@ -113,7 +127,7 @@ Result<Image> readPng(const std::filesystem::path& file) {
   if (!png_image_finish_read(&png, nullptr, image.pixels.data(), 0, nullptr)) {
     const std::string message = png.message;
     png_image_free(&png);
-    return Status::failure(file.string() + ": " + message);
+    return Error{file.string(), 0, 0, message};
   }
   return image;
 }

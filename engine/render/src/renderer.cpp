@@ -119,13 +119,15 @@ GLuint uploadTexture(GLuint texture, int width, int height, const std::vector<Rg
 
 Status checkCamera(const CellRect& camera, int mapWidth, int mapHeight) {
   if (camera.width <= 0 || camera.height <= 0) {
-    return Status::failure("camera " + std::to_string(camera.width) + "x" +
-                           std::to_string(camera.height) + " is empty");
+    return Error{"", 0, 0,
+                 "camera " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
+                     " is empty"};
   }
   if (camera.x >= mapWidth || camera.y >= mapHeight || camera.x + camera.width <= 0 ||
       camera.y + camera.height <= 0) {
-    return Status::failure("camera does not overlap the " + std::to_string(mapWidth) + "x" +
-                           std::to_string(mapHeight) + " map");
+    return Error{"", 0, 0,
+                 "camera does not overlap the " + std::to_string(mapWidth) + "x" +
+                     std::to_string(mapHeight) + " map"};
   }
   return Status::success();
 }
@@ -167,8 +169,9 @@ struct Renderer::Impl {
     if (OSMesaGetCurrentContext() == context) return Status::success();
     if (!OSMesaMakeCurrent(context, image.pixels.data(), GL_UNSIGNED_BYTE, image.width,
                            image.height)) {
-      return Status::failure("OSMesaMakeCurrent failed for a " + std::to_string(image.width) + "x" +
-                             std::to_string(image.height) + " RGBA buffer");
+      return Error{"", 0, 0,
+                   "OSMesaMakeCurrent failed for a " + std::to_string(image.width) + "x" +
+                       std::to_string(image.height) + " RGBA buffer"};
     }
     // Row 0 of the buffer is the top of the picture, as in Image.
     OSMesaPixelStore(OSMESA_Y_UP, 0);
@@ -429,7 +432,7 @@ struct Renderer::Impl {
     }
     glFinish();
     if (const GLenum error = glGetError(); error != GL_NO_ERROR) {
-      return Status::failure("OpenGL error " + std::to_string(error) + " while rendering");
+      return Error{"", 0, 0, "OpenGL error " + std::to_string(error) + " while rendering"};
     }
     return Status::success();
   }
@@ -467,9 +470,10 @@ Result<Overlays> parseOverlays(std::string_view names, Overlays base) {
     } else if (match != std::end(kSwitches)) {
       o.*match->second = true;
     } else {
-      return Status::failure("unknown overlay '" + std::string(name) +
-                             "' (expected paths, footprints, clearance, graph, stuck, zones, "
-                             "hud or none)");
+      return Error{"", 0, 0,
+                   "unknown overlay '" + std::string(name) +
+                       "' (expected paths, footprints, clearance, graph, stuck, zones, "
+                       "hud or none)"};
     }
     start = comma + 1;
   }
@@ -484,12 +488,13 @@ Renderer::~Renderer() = default;
 Result<Renderer> Renderer::create(const pathing::GridMap& map, const RenderDef& def) {
   if (def.width < 1 || def.height < 1 || def.width > kMaxResolution ||
       def.height > kMaxResolution) {
-    return Status::failure("resolution " + std::to_string(def.width) + "x" +
-                           std::to_string(def.height) + " is outside 1x1..8192x8192");
+    return Error{"", 0, 0,
+                 "resolution " + std::to_string(def.width) + "x" + std::to_string(def.height) +
+                     " is outside 1x1..8192x8192"};
   }
-  if (map.width() < 1 || map.height() < 1) return Status::failure("the map is empty");
+  if (map.width() < 1 || map.height() < 1) return Error{"", 0, 0, "the map is empty"};
   if (def.camera) {
-    if (Status s = checkCamera(*def.camera, map.width(), map.height()); !s) return s;
+    if (Status s = checkCamera(*def.camera, map.width(), map.height()); !s) return s.error();
   }
   auto impl = std::make_unique<Impl>();
   impl->def = def;
@@ -515,23 +520,24 @@ Result<Renderer> Renderer::create(const pathing::GridMap& map, const RenderDef& 
                             0};
   impl->context = OSMesaCreateContextAttribs(attributes, nullptr);
   if (impl->context == nullptr) {
-    return Status::failure("OSMesa could not create an OpenGL 2.1 compatibility context");
+    return Error{"", 0, 0, "OSMesa could not create an OpenGL 2.1 compatibility context"};
   }
-  if (Status s = impl->makeCurrent(); !s) return s;
+  if (Status s = impl->makeCurrent(); !s) return s.error();
   GLint maxTexture = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
   if (map.width() > maxTexture || map.height() > maxTexture) {
-    return Status::failure(
-        "the " + std::to_string(map.width()) + "x" + std::to_string(map.height()) +
-        " map exceeds the largest texture OSMesa offers (" + std::to_string(maxTexture) + ")");
+    return Error{"", 0, 0,
+                 "the " + std::to_string(map.width()) + "x" + std::to_string(map.height()) +
+                     " map exceeds the largest texture OSMesa offers (" +
+                     std::to_string(maxTexture) + ")"};
   }
   std::vector<Rgba> texels(map.cellCount());
   for (std::size_t i = 0; i < texels.size(); ++i)
     texels[i] = palette::terrainColour(map.cells()[i]);
   impl->terrainTexture = uploadTexture(0, map.width(), map.height(), texels);
   if (const GLenum error = glGetError(); error != GL_NO_ERROR) {
-    return Status::failure("OpenGL error " + std::to_string(error) +
-                           " while uploading the terrain");
+    return Error{"", 0, 0,
+                 "OpenGL error " + std::to_string(error) + " while uploading the terrain"};
   }
   return Renderer(std::move(impl));
 }
@@ -565,10 +571,10 @@ Status Renderer::setCamera(std::optional<pathing::CellRect> camera) {
 
 Status Renderer::setClearance(const pathing::ClearanceField& field) {
   if (field.width() != impl_->mapWidth || field.height() != impl_->mapHeight) {
-    return Status::failure("the clearance field is " + std::to_string(field.width()) + "x" +
-                           std::to_string(field.height()) + ", the map " +
-                           std::to_string(impl_->mapWidth) + "x" +
-                           std::to_string(impl_->mapHeight));
+    return Error{"", 0, 0,
+                 "the clearance field is " + std::to_string(field.width()) + "x" +
+                     std::to_string(field.height()) + ", the map " +
+                     std::to_string(impl_->mapWidth) + "x" + std::to_string(impl_->mapHeight)};
   }
   if (Status s = impl_->makeCurrent(); !s) return s;
   std::vector<Rgba> texels(field.values().size(), Rgba{0, 0, 0, 0});
@@ -587,10 +593,10 @@ Status Renderer::setAbstractGraph(const pathing::ClusterAbstraction& abstraction
                                   std::optional<pathing::Agent> agent) {
   const pathing::GridMap& map = abstraction.grid().map();
   if (map.width() != impl_->mapWidth || map.height() != impl_->mapHeight) {
-    return Status::failure("the abstraction was built on a " + std::to_string(map.width()) + "x" +
-                           std::to_string(map.height()) + " map, the renderer's is " +
-                           std::to_string(impl_->mapWidth) + "x" +
-                           std::to_string(impl_->mapHeight));
+    return Error{"", 0, 0,
+                 "the abstraction was built on a " + std::to_string(map.width()) + "x" +
+                     std::to_string(map.height()) + " map, the renderer's is " +
+                     std::to_string(impl_->mapWidth) + "x" + std::to_string(impl_->mapHeight)};
   }
   Batch& edges = impl_->graphLines;
   Batch& nodes = impl_->graphNodes;

@@ -1,4 +1,4 @@
-// The only user of yaml-cpp. Parsing throws ScenarioError internally (at the node it concerns)
+// The only user of yaml-cpp. Parsing throws Error internally (at the node it concerns)
 // and the public functions turn it into a result.
 #include "engine/scenario.h"
 
@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <initializer_list>
 #include <numbers>
 #include <set>
@@ -20,11 +19,6 @@ namespace warpath::engine {
 using namespace pathing;
 namespace fs = std::filesystem;
 
-std::string ScenarioError::describe() const {
-  if (line <= 0) return file + ": " + message;
-  return file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message;
-}
-
 std::int64_t Scenario::durationTicks() const {
   return static_cast<std::int64_t>(std::llround(duration * settings.tickRate));
 }
@@ -37,22 +31,27 @@ class Parser {
 
   [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const {
     const YAML::Mark mark = node.Mark();
-    throw ScenarioError{file_.string(), mark.line + 1, mark.column + 1, message};
+    throw Error{file_.string(), mark.line + 1, mark.column + 1, message};
   }
   [[noreturn]] void fail(const YAML::Mark& mark, const std::string& message) const {
-    throw ScenarioError{file_.string(), mark.line + 1, mark.column + 1, message};
+    throw Error{file_.string(), mark.line + 1, mark.column + 1, message};
   }
 
   const fs::path& file() const { return file_; }
   fs::path resolve(const std::string& relative) const { return file_.parent_path() / relative; }
   // The contents of the file `node` names (resolved against the scenario's folder) through the
-  // file reader; fails at `node` when it has none. `what` is "map" or "catalogue".
-  std::pair<fs::path, std::string> referenced(const YAML::Node& node,
-                                              const std::string& what) const {
+  // file reader; fails at `node` when it has none or cannot read it ("map: FILE: is a
+  // directory"). `what` is "map" or "catalogue".
+  std::pair<fs::path, std::string> referenced(const YAML::Node& node, const std::string& what,
+                                              FileLimit limit) const {
     const fs::path file = resolve(text(node, what));
-    std::optional<std::string> contents = files_(file);
-    if (!contents) fail(node, what + " file '" + file.string() + "' not found");
-    return {file, std::move(*contents)};
+    Result<std::string> contents = files_(file, limit);
+    if (!contents) {
+      if (contents.error().message == kNoSuchFile)
+        fail(node, what + " file '" + file.string() + "' not found");
+      fail(node, what + ": " + contents.error().describe());
+    }
+    return {file, std::move(contents).value()};
   }
 
   void expectMap(const YAML::Node& node, const std::string& what) const {
@@ -135,10 +134,9 @@ Capability parseCapabilityNode(const Parser& p, const YAML::Node& node) {
   } else {
     joined = p.text(node, "capability");
   }
-  std::string error;
-  const std::optional<Capability> c = parseCapability(joined, &error);
-  if (!c) p.fail(node, "capability: " + error);
-  return *c;
+  const Result<Capability> c = parseCapability(joined);
+  if (!c) p.fail(node, "capability: " + c.error().describe());
+  return c.value();
 }
 
 std::string armourList() {
@@ -306,9 +304,8 @@ YAML::Node loadYaml(const Parser& p, std::string_view text) {
 
 GridMap parseMapNode(const Parser& p, const YAML::Node& node) {
   if (node.IsScalar()) {
-    const auto [file, contents] = p.referenced(node, "map");
-    std::istringstream in(contents);
-    Loaded<GridMap> map = parseMap(in, file.string());
+    const auto [file, contents] = p.referenced(node, "map", kMapFileLimit);
+    Result<GridMap> map = parseMap(std::string_view(contents), file.string());
     if (!map) p.fail(node, "map: " + map.error().describe());
     return std::move(map).value();
   }
@@ -321,7 +318,7 @@ GridMap parseMapNode(const Parser& p, const YAML::Node& node) {
   for (const auto& row : rows)
     text += p.text(row, "map row") + "\n";
   std::istringstream in(text);
-  Loaded<GridMap> map = parseMap(in, "inline map");
+  Result<GridMap> map = parseMap(in, "inline map");
   if (!map) {
     constexpr int kHeaderLines = 4;
     const int row = map.error().line - kHeaderLines - 1;
@@ -664,21 +661,22 @@ VictorySpec parseVictory(const Parser& p, const YAML::Node& node, const Scenario
   return v;
 }
 
-ScenarioResult<std::vector<units::UnitType>> parseCatalogue(std::string_view text,
-                                                            const fs::path& file) {
+Result<std::vector<units::UnitType>> parseCatalogue(std::string_view text, const fs::path& file) {
   // A catalogue names no other files.
-  const FileReader none = [](const fs::path&) { return std::optional<std::string>(); };
+  const FileReader none = [](const fs::path& f, FileLimit) -> Result<std::string> {
+    return Error{f.string(), 0, 0, std::string(kNoSuchFile)};
+  };
   const Parser p(file, none);
   try {
     const YAML::Node root = loadYaml(p, text);
     p.checkKeys(root, "the catalogue", {"unit_types"});
     std::vector<units::UnitType> catalogue;
     parseUnitTypes(p, p.need(root, "unit_types", "the catalogue"), catalogue);
-    return {std::move(catalogue), {}};
-  } catch (const ScenarioError& e) {
-    return {std::nullopt, e};
+    return catalogue;
+  } catch (const Error& e) {
+    return e;
   } catch (const YAML::Exception& e) {
-    return {std::nullopt, {file.string(), e.mark.line + 1, e.mark.column + 1, e.msg}};
+    return Error{file.string(), e.mark.line + 1, e.mark.column + 1, e.msg};
   }
 }
 
@@ -696,10 +694,10 @@ Scenario parse(const Parser& p, std::string_view text) {
   const GridMap& map = s.grid->map();
 
   if (const YAML::Node cat = root["catalogue"]) {
-    const auto [file, contents] = p.referenced(cat, "catalogue");
-    ScenarioResult<std::vector<units::UnitType>> loaded = parseCatalogue(contents, file);
-    if (!loaded.ok()) throw loaded.error;
-    s.catalogue = std::move(*loaded.value);
+    const auto [file, contents] = p.referenced(cat, "catalogue", kYamlFileLimit);
+    Result<std::vector<units::UnitType>> loaded = parseCatalogue(contents, file);
+    if (!loaded.ok()) throw loaded.error();
+    s.catalogue = std::move(loaded).value();
   }
   if (root["unit_types"]) parseUnitTypes(p, root["unit_types"], s.catalogue);
   if (s.catalogue.empty()) p.fail(root, "no unit types: give 'catalogue' or 'unit_types'");
@@ -931,41 +929,35 @@ std::vector<Cell> placeUnits(const AnnotatedGrid& grid, Agent agent, CellRect ar
   return anchors;
 }
 
-std::optional<std::string> readDiskFile(const fs::path& file) {
-  std::error_code error;
-  if (!fs::is_regular_file(file, error)) return std::nullopt;
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream out;
-  out << in.rdbuf();
-  return std::move(out).str();
+Result<std::string> readDiskFile(const fs::path& file, FileLimit limit) {
+  return readFileCapped(file, limit);
 }
 
-ScenarioResult<Scenario> parseScenario(std::string_view text, const fs::path& file) {
+Result<Scenario> parseScenario(std::string_view text, const fs::path& file) {
   return parseScenario(text, file, readDiskFile);
 }
 
-ScenarioResult<Scenario> parseScenario(std::string_view text, const fs::path& file,
-                                       const FileReader& files) {
+Result<Scenario> parseScenario(std::string_view text, const fs::path& file,
+                               const FileReader& files) {
   try {
-    return {parse(Parser(file, files), text), {}};
-  } catch (const ScenarioError& e) {
-    return {std::nullopt, e};
+    return parse(Parser(file, files), text);
+  } catch (const Error& e) {
+    return e;
   } catch (const YAML::Exception& e) {
-    return {std::nullopt, {file.string(), e.mark.line + 1, e.mark.column + 1, e.msg}};
+    return Error{file.string(), e.mark.line + 1, e.mark.column + 1, e.msg};
   }
 }
 
-ScenarioResult<Scenario> loadScenario(const fs::path& file) {
-  const std::optional<std::string> text = readDiskFile(file);
-  if (!text) return {std::nullopt, {file.string(), 0, 0, "cannot open the scenario file"}};
-  return parseScenario(*text, file);
+Result<Scenario> loadScenario(const fs::path& file) {
+  const Result<std::string> text = readDiskFile(file, kYamlFileLimit);
+  if (!text) return text.error();
+  return parseScenario(text.value(), file);
 }
 
-ScenarioResult<std::vector<units::UnitType>> loadCatalogue(const fs::path& file) {
-  const std::optional<std::string> text = readDiskFile(file);
-  if (!text) return {std::nullopt, {file.string(), 0, 0, "cannot open the catalogue file"}};
-  return parseCatalogue(*text, file);
+Result<std::vector<units::UnitType>> loadCatalogue(const fs::path& file) {
+  const Result<std::string> text = readDiskFile(file, kYamlFileLimit);
+  if (!text) return text.error();
+  return parseCatalogue(text.value(), file);
 }
 
 }  // namespace warpath::engine

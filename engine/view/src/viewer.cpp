@@ -37,8 +37,8 @@ struct TextureDeleter {
   void operator()(SDL_Texture* t) const { SDL_DestroyTexture(t); }
 };
 
-render::Status sdlFailure(const std::string& what) {
-  return render::Status::failure(what + ": " + SDL_GetError());
+Status sdlFailure(const std::string& what) {
+  return Error{"", 0, 0, what + ": " + SDL_GetError()};
 }
 
 std::string mismatchText(const engine::HashMismatch& m) {
@@ -67,14 +67,14 @@ class Session {
   const engine::World& world() const { return playback_.run().world(); }
   bool playing() const { return playing_; }
   bool quit() const { return quit_; }
-  const render::Status& failure() const { return failure_; }
+  const Status& failure() const { return failure_; }
 
   // Moves to `target` (clamped to the replay), re-simulating from tick 0 to go back.
   void seek(std::int64_t target) {
     target = std::clamp<std::int64_t>(target, 0, playback_.replay().lastTick());
     if (target < world().tick()) playback_.restart();
     while (world().tick() < target && failure_.ok()) {
-      if (const auto m = playback_.step()) failure_ = render::Status::failure(mismatchText(*m));
+      if (const auto m = playback_.step()) failure_ = Error{"", 0, 0, mismatchText(*m)};
     }
   }
 
@@ -147,10 +147,9 @@ class Session {
   // the edges they may use.
   void showType(std::size_t type) {
     const units::UnitType& t = playback_.scenario().catalogue[type];
-    if (render::Status s = renderer_.setClearance(world().grid().clearance(t.capability)); !s)
-      failure_ = s;
+    if (Status s = renderer_.setClearance(world().grid().clearance(t.capability)); !s) failure_ = s;
     if (const pathing::ClusterAbstraction* graph = world().pathService().abstraction()) {
-      if (render::Status s = renderer_.setAbstractGraph(*graph, t.agent()); !s) failure_ = s;
+      if (Status s = renderer_.setAbstractGraph(*graph, t.agent()); !s) failure_ = s;
     }
   }
 
@@ -177,11 +176,11 @@ class Session {
   bool help_ = true;
   bool quit_ = false;
   std::size_t showType_ = 0;  // the catalogue type clearance and graph are shown for
-  render::Status failure_ = render::Status::success();
+  Status failure_ = Status::success();
 };
 
 // The SDL key events `names` stand for, or a failure naming the first unknown one.
-render::Status scriptedKeys(const std::vector<std::string>& names, std::vector<SDL_Keysym>& keys) {
+Status scriptedKeys(const std::vector<std::string>& names, std::vector<SDL_Keysym>& keys) {
   constexpr std::string_view kShift = "shift+";
   for (const std::string& name : names) {
     SDL_Keysym k{};
@@ -194,21 +193,21 @@ render::Status scriptedKeys(const std::vector<std::string>& names, std::vector<S
       key = name.substr(kShift.size());
     }
     k.sym = SDL_GetKeyFromName(key.c_str());
-    if (k.sym == SDLK_UNKNOWN) return render::Status::failure("unknown key '" + name + "'");
+    if (k.sym == SDLK_UNKNOWN) return Error{"", 0, 0, "unknown key '" + name + "'"};
     keys.push_back(k);
   }
-  return render::Status::success();
+  return Status::success();
 }
 
 }  // namespace
 
-render::Status runViewer(engine::ReplayPlayback& playback, const ViewerDef& def) {
-  if (def.size < 16 || def.size > 8192) return render::Status::failure("size must be 16..8192");
-  if (!(def.speed > 0.0)) return render::Status::failure("speed must be positive");
+Status runViewer(engine::ReplayPlayback& playback, const ViewerDef& def) {
+  if (def.size < 16 || def.size > 8192) return Error{"", 0, 0, "size must be 16..8192"};
+  if (!(def.speed > 0.0)) return Error{"", 0, 0, "speed must be positive"};
   const engine::Scenario& scenario = playback.scenario();
   const render::RenderDef renderDef = render::fittedDef(scenario.grid->map(), def.size);
   auto created = render::Renderer::create(scenario.grid->map(), renderDef);
-  if (!created) return created.status();
+  if (!created) return created.error();
   render::Renderer renderer = std::move(created).value();
 
   // No GL anywhere in SDL: a GL context of its own (an OpenGL renderer, or the GL texture SDL
@@ -231,7 +230,7 @@ render::Status runViewer(engine::ReplayPlayback& playback, const ViewerDef& def)
   if (!texture) return sdlFailure("cannot create a texture");
 
   std::vector<SDL_Keysym> script;
-  if (render::Status s = scriptedKeys(def.keys, script); !s) return s;
+  if (Status s = scriptedKeys(def.keys, script); !s) return s;
   Session session(playback, renderer, def);
   session.showType(0);
   const int teams = static_cast<int>(scenario.teams.size());
@@ -246,7 +245,7 @@ render::Status runViewer(engine::ReplayPlayback& playback, const ViewerDef& def)
     }
     SDL_Event event;
     while (SDL_PollEvent(&event) != 0) {
-      if (event.type == SDL_QUIT) return render::Status::success();
+      if (event.type == SDL_QUIT) return Status::success();
       if (event.type == SDL_KEYDOWN) session.key(event.key.keysym);
     }
     if (session.quit()) break;
@@ -260,7 +259,7 @@ render::Status runViewer(engine::ReplayPlayback& playback, const ViewerDef& def)
 
     render::FrameScene scene = render::sceneOf(session.world(), teams);
     scene.caption = session.caption();
-    if (render::Status s = renderer.render(scene); !s) return s;
+    if (Status s = renderer.render(scene); !s) return s;
     const render::Image& image = renderer.image();
     if (SDL_UpdateTexture(texture.get(), nullptr, image.pixels.data(), image.width * 4) != 0)
       return sdlFailure("cannot update the texture");
@@ -270,7 +269,7 @@ render::Status runViewer(engine::ReplayPlayback& playback, const ViewerDef& def)
     SDL_SetWindowTitle(window.get(), ("warpath  " + session.status()).c_str());
     if (def.framesThenExit <= 0 && !session.playing()) SDL_Delay(15);  // idle: spare the CPU
   }
-  return render::Status::success();
+  return Status::success();
 }
 
 }  // namespace warpath::view

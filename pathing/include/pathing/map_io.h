@@ -13,14 +13,16 @@
 #include <string_view>
 #include <vector>
 
+#include "pathing/error.h"
 #include "pathing/grid_map.h"
-#include "pathing/load_error.h"
 
 namespace warpath::pathing {
 
 // `sourceName` is used in error messages (usually the file path).
-Loaded<GridMap> parseMap(std::istream& in, std::string_view sourceName);
-Loaded<GridMap> loadMap(const std::filesystem::path& file);
+Result<GridMap> parseMap(std::string_view text, std::string_view sourceName);
+Result<GridMap> parseMap(std::istream& in, std::string_view sourceName);
+// Through readFileCapped (pathing/file_read.h): at most kMapFileLimit bytes, regular files only.
+Result<GridMap> loadMap(const std::filesystem::path& file);
 
 // The canonical character of a terrain ('.', 'S', 'T', 'W', '@'); '?' for one the format
 // cannot express.
@@ -28,8 +30,8 @@ char mapChar(Terrain t);
 
 // Writes the canonical form ('.', 'S', 'T', 'W', '@'); parseMap reads it back identically.
 void writeMap(const GridMap& map, std::ostream& out);
-// Returns false (and sets `error`) when the file cannot be written.
-bool saveMap(const GridMap& map, const std::filesystem::path& file, std::string* error);
+// Fails ("cannot open 'FILE' for writing: reason") when the file cannot be written.
+Status saveMap(const GridMap& map, const std::filesystem::path& file);
 
 struct ScenQuery {
   int bucket = 0;
@@ -43,12 +45,14 @@ struct ScenQuery {
 };
 
 // Every query's coordinates are checked against the width and height the line declares.
-Loaded<std::vector<ScenQuery>> parseScen(std::istream& in, std::string_view sourceName);
-Loaded<std::vector<ScenQuery>> loadScen(const std::filesystem::path& file);
+Result<std::vector<ScenQuery>> parseScen(std::string_view text, std::string_view sourceName);
+Result<std::vector<ScenQuery>> parseScen(std::istream& in, std::string_view sourceName);
+// Through readFileCapped: at most kScenFileLimit bytes, regular files only.
+Result<std::vector<ScenQuery>> loadScen(const std::filesystem::path& file);
 
 // Checks the queries against the map they are run on: declared size matches, coordinates
 // inside. Errors name the scen file and line.
-std::optional<LoadError> checkScenAgainstMap(const std::vector<ScenQuery>& queries,
-                                             const GridMap& map, std::string_view scenName);
+Status checkScenAgainstMap(const std::vector<ScenQuery>& queries, const GridMap& map,
+                           std::string_view scenName);
 
 }  // namespace warpath::pathing

@@ -6,6 +6,8 @@
 #include <string>
 #include <string_view>
 
+#include "pathing/error.h"
+
 namespace warpath::pathing {
 
 // One byte per cell. Values 0..7 are traversable kinds, so that a capability fits a
@@ -63,8 +65,8 @@ class Capability {
 };
 
 // Parses "ground,swamp" (names, case-insensitive, comma-separated, no duplicates needed).
-// Returns nullopt and sets `error` on an unknown or empty name.
-std::optional<Capability> parseCapability(std::string_view text, std::string* error);
+// Fails (an Error with the message only) on an unknown or empty name.
+Result<Capability> parseCapability(std::string_view text);
 
 // The MovingAI benchmark's movement classes: an agent may move only between cells of the
 // same class, {Ground, Swamp}, {Water} or {Trees}. Empty for Blocked.

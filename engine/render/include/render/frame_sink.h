@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <memory>
 
+#include "pathing/error.h"
 #include "render/image.h"
 #include "render/png_io.h"
-#include "render/status.h"
 
 namespace warpath::render {
 

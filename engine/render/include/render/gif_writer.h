@@ -8,8 +8,8 @@
 #include <memory>
 #include <span>
 
+#include "pathing/error.h"
 #include "render/image.h"
-#include "render/status.h"
 
 namespace warpath::render {
 

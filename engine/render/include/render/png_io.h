@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <vector>
 
+#include "pathing/error.h"
 #include "render/image.h"
-#include "render/status.h"
 
 namespace warpath::render {
 
@@ -23,7 +23,7 @@ Result<std::vector<std::uint8_t>> encodePng(const Image& image, const PngOptions
 Status writeFile(const std::filesystem::path& file, const std::vector<std::uint8_t>& bytes);
 Status writePng(const std::filesystem::path& file, const Image& image,
                 const PngOptions& options = {});
-// Any PNG libpng reads, converted to RGBA8.
+// Any PNG libpng reads, converted to RGBA8: at most kPngFileLimit bytes, at most 8192x8192.
 Result<Image> readPng(const std::filesystem::path& file);
 
 // "frame_000123.png": the name of tick `tick`'s frame, zero-padded to six digits.

@@ -14,10 +14,10 @@
 #include "pathing/annotated_grid.h"
 #include "pathing/clearance.h"
 #include "pathing/cluster_abstraction.h"
+#include "pathing/error.h"
 #include "pathing/grid_map.h"
 #include "render/frame_scene.h"
 #include "render/image.h"
-#include "render/status.h"
 
 namespace warpath::render {
 

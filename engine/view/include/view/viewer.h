@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "engine/replay.h"
-#include "render/status.h"
+#include "pathing/error.h"
 
 namespace warpath::view {
 
@@ -31,6 +31,6 @@ struct ViewerDef {
 // Runs until the window is closed (or framesThenExit frames are drawn). Fails, naming the
 // problem, when SDL, the window or the renderer cannot be set up, or the replay's hashes stop
 // matching (the status names the tick).
-render::Status runViewer(engine::ReplayPlayback& playback, const ViewerDef& def);
+Status runViewer(engine::ReplayPlayback& playback, const ViewerDef& def);
 
 }  // namespace warpath::view
