@@ -21,10 +21,12 @@ struct HaaOptions {
 // A query: (1) start and goal in the same cluster: AA* inside the cluster, done if found;
 // (2) insert start and goal (one Dijkstra each over their cluster reaches every node there);
 // (3) A* over the abstract graph using only edges the agent may use; (4) refine abstract
-// edges to grid cells (cached paths); (5) smooth. Agents the abstraction does not serve
-// (capability not built, size above maxAgentSize) are answered by AA* on the grid, flagged
-// in metrics.usedGridSearch. Unreachable goals are answered at once from the grid's
-// connected components.
+// edges to grid cells (cached paths); (5) smooth. Each phase is one private member working on
+// the query object's scratch, so that the phases can later be sliced across ticks. Agents the
+// abstraction does not serve (capability not built, size above maxAgentSize) are answered by
+// AA* on the grid, flagged in metrics.usedGridSearch. Unreachable goals are answered at once
+// from the grid's connected components. Bad arguments (start or goal off the map or where the
+// agent cannot stand, size 0, empty capability) get InvalidStart / InvalidGoal, never a throw.
 class HierarchicalAStar {
  public:
   explicit HierarchicalAStar(const ClusterAbstraction& abstraction, HaaOptions options = {});
@@ -39,6 +41,12 @@ class HierarchicalAStar {
  private:
   friend class HybridPlanner;
   struct Scratch;
+  // The phases of a query, in order; each adds its effort to `metrics` and leaves its
+  // output in the scratch (the refined path in `refined`).
+  bool searchSameCluster(Agent agent, Cell start, Cell goal, SearchMetrics& metrics);
+  void insertEndpoints(const AgentLayer& layer, Cell start, Cell goal, SearchMetrics& metrics);
+  bool searchAbstract(Agent agent, Cell start, Cell goal, SearchMetrics& metrics);
+  void refine(Agent agent, Cell start, SearchMetrics& metrics);
   void smooth(const AgentLayer& layer);
 
   const ClusterAbstraction& abstraction_;
