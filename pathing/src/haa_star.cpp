@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cluster_dijkstra.h"
+#include "pathing/invariant.h"
 #include "pathing/moves.h"
 #include "pathing/open_list.h"
 
@@ -17,6 +18,19 @@ void appendWalk(Cell from, std::span<const std::uint8_t> steps, std::vector<Cell
     from.y += kDirections[d].dy;
     out->push_back(from);
   }
+}
+
+// True when every step of `cells` is a single move the agent may make (checked on the move
+// masks, which admit only moves between cells the agent can stand on). Allocates nothing.
+[[maybe_unused]] bool isLegalWalk(const AnnotatedGrid& grid, const AgentLayer& layer,
+                                  std::span<const Cell> cells) {
+  const GridMap& map = grid.map();
+  const std::span<const std::uint8_t> masks = layer.moveMasks();
+  for (std::size_t i = 1; i < cells.size(); ++i) {
+    const int d = directionOf(cells[i].x - cells[i - 1].x, cells[i].y - cells[i - 1].y);
+    if (d < 0 || (masks[map.indexOf(cells[i - 1])] & (1u << d)) == 0) return false;
+  }
+  return !cells.empty();
 }
 
 }  // namespace
@@ -167,12 +181,21 @@ PathResult HierarchicalAStar::findPath(Agent agent, Cell start, Cell goal,
   cells.clear();
   if (!searchSameCluster(agent, start, goal, metrics)) {
     insertEndpoints(layer, start, goal, metrics);
-    // The grid's components say a path exists, and the abstraction is complete; this guards
-    // the invariant rather than assuming it.
+    // The grid's components say a path exists and the abstraction is complete, so both
+    // failures below are bugs (checked as invariants). Release builds answer Unreachable
+    // rather than return a path that is not there or is broken.
     if (!searchAbstract(agent, start, goal, metrics)) return finish(PathStatus::Unreachable);
-    refine(agent, start, metrics);
+    if (!refine(agent, start, metrics)) return finish(PathStatus::Unreachable);
+    WARPATH_INVARIANT(
+        cells.front() == start && cells.back() == goal && isLegalWalk(grid, layer, cells),
+        "HAA* refinement must join start to goal by moves legal for the agent");
   }
-  if (options_.smooth) smooth(layer);
+  if (options_.smooth) {
+    smooth(layer);
+    WARPATH_INVARIANT(
+        cells.front() == start && cells.back() == goal && isLegalWalk(grid, layer, cells),
+        "HAA* smoothing must keep a path from start to goal of moves legal for the agent");
+  }
 
   result.cost = pathCost(cells);
   metrics.expanded = metrics.insertionExpanded + metrics.abstractExpanded +
@@ -274,6 +297,7 @@ bool HierarchicalAStar::searchAbstract(Agent agent, Cell start, Cell goal, Searc
     }
     if (s.goalLinkStamp[u] == s.generation) relax(u, goalNode, s.goalLinkCost[u], nullptr, goal);
   }
+  WARPATH_INVARIANT(reached, "HAA* abstract search must reach a goal in the start's component");
   if (!reached) return false;
   for (std::uint32_t at = goalNode; at != Scratch::kNone; at = s.parent[at])
     s.abstractPath.push_back(at);
@@ -283,8 +307,9 @@ bool HierarchicalAStar::searchAbstract(Agent agent, Cell start, Cell goal, Searc
 
 // Refinement: the start link (the start's Dijkstra tree), each abstract edge's cached path
 // (or, without cached paths, AA* re-planned inside its cluster), the goal link (the goal's
-// tree, walked backwards). Fills `refined` from start to goal.
-void HierarchicalAStar::refine(Agent agent, Cell start, SearchMetrics& metrics) {
+// tree, walked backwards). Fills `refined` from start to goal and returns true; false only
+// when re-planning an edge fails, which is a bug (see findPath).
+bool HierarchicalAStar::refine(Agent agent, Cell start, SearchMetrics& metrics) {
   Scratch& s = *scratch_;
   const std::uint32_t startNode = abstraction_.nodeCount();
   const std::uint32_t goalNode = startNode + 1;
@@ -320,10 +345,14 @@ void HierarchicalAStar::refine(Agent agent, Cell start, SearchMetrics& metrics) 
                                                   abstraction_.nodeCell(to), &piece, inCluster);
         metrics.refinementExpanded += r.metrics.expanded;
         metrics.generated += r.metrics.generated;
+        WARPATH_INVARIANT(r.found(),
+                          "an abstract edge the agent may use must refine in its cluster");
+        if (!r.found()) return false;
         cells.insert(cells.end(), piece.begin() + 1, piece.end());
       }
     }
   }
+  return true;
 }
 
 // Smoothing keeps every step legal: (1) cut loops (a cell visited twice), then (2) greedily

@@ -381,6 +381,56 @@ TEST(HaaStarTest, GraphStatistics) {
   EXPECT_EQ(directedEdges, 2 * (hq.stats().interEdges + hq.stats().intraEdges));
 }
 
+// Refinement trusts the graph: an abstract edge an agent may use must turn into grid moves
+// that agent may make (HierarchicalAStar asserts it as an invariant in debug and sanitizer
+// builds). Checked here for every edge and every agent kind that may use it: an inter-edge is
+// one legal step; a cached intra-edge path is legal, ends at the target and costs what the
+// edge says; an uncached one is re-planned inside its cluster at no greater cost.
+TEST(HaaStarTest, EveryAbstractEdgeRefinesForEveryAgentThatMayUseIt) {
+  std::size_t refined = 0;
+  for (int i : {0, 5, 9}) {
+    const AnnotatedGrid grid(randomMap(randomMapCase(i)));
+    AnnotatedAStar search(grid);
+    for (int clusterSize : {8, 10}) {
+      for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
+        for (bool cachePaths : {true, false}) {
+          if (!cachePaths && clusterSize != 10) continue;
+          const ClusterAbstraction graph =
+              ClusterAbstraction::build(grid, catalogueSpec(clusterSize, quality, cachePaths));
+          std::vector<Cell> cells;
+          for (std::uint32_t n = 0; n < graph.nodeCount(); ++n) {
+            const Cell from = graph.nodeCell(n);
+            for (const AbstractEdge& e : graph.edgesOf(n)) {
+              const Cell to = graph.nodeCell(e.target);
+              for (const Agent agent : testing::completenessAgents()) {
+                if (!e.usableBy(agent)) continue;
+                SCOPED_TRACE(testing::describeQuery(agent, from, to) + ", " +
+                             (e.intra ? "intra" : "inter") + ", map " + std::to_string(i) +
+                             ", cluster " + std::to_string(clusterSize));
+                ++refined;
+                if (!e.intra || e.path != AbstractEdge::kNoPath) {
+                  cells.assign(1, from);
+                  graph.appendEdgeCells(n, e, &cells);
+                  ASSERT_EQ(findIllegalStep(grid, agent, cells), "");
+                  ASSERT_EQ(cells.back(), to);
+                  ASSERT_NEAR(pathCost(cells), e.cost, 1e-9);
+                } else {
+                  SearchLimits inCluster;
+                  inCluster.region = graph.clusterBounds(graph.clusterOf(from));
+                  const PathResult r = search.findPath(agent, from, to, &cells, inCluster);
+                  ASSERT_TRUE(r.found());
+                  ASSERT_LE(r.cost, e.cost + 1e-9);
+                }
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(refined, 300000u);
+}
+
 TEST(HaaStarTest, SpecsAreValidated) {
   EXPECT_EQ(problemWith(catalogueSpec(8, AbstractionQuality::High)), "");
   AbstractionSpec spec = catalogueSpec(8, AbstractionQuality::High);

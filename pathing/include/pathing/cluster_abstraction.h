@@ -101,7 +101,8 @@ class ClusterAbstraction {
   }
 
   // Appends the grid cells of `edge`, taken from node `from`, excluding `from`'s cell and
-  // including the target's. [Limit: edge.path != kNoPath or !edge.intra]
+  // including the target's. [Limit: edge.path != kNoPath or !edge.intra; a programming error,
+  // checked as an invariant in debug and sanitizer builds]
   void appendEdgeCells(std::uint32_t from, const AbstractEdge& edge, std::vector<Cell>* out) const;
 
  private:

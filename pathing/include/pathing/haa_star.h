@@ -46,7 +46,7 @@ class HierarchicalAStar {
   bool searchSameCluster(Agent agent, Cell start, Cell goal, SearchMetrics& metrics);
   void insertEndpoints(const AgentLayer& layer, Cell start, Cell goal, SearchMetrics& metrics);
   bool searchAbstract(Agent agent, Cell start, Cell goal, SearchMetrics& metrics);
-  void refine(Agent agent, Cell start, SearchMetrics& metrics);
+  bool refine(Agent agent, Cell start, SearchMetrics& metrics);
   void smooth(const AgentLayer& layer);
 
   const ClusterAbstraction& abstraction_;
