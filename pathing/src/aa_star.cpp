@@ -52,6 +52,7 @@ PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vec
   if (limits.region && (!limits.region->contains(start) || !limits.region->contains(goal))) {
     return finish(PathStatus::Unreachable);
   }
+  if (limits.maxExpanded == 0) return finish(PathStatus::BudgetExhausted);
   const PathStatus status = limits.region ? search<true>(layer, start, goal, limits, result)
                                           : search<false>(layer, start, goal, limits, result);
   if (status == PathStatus::Found && path) {

@@ -8,20 +8,22 @@
 #include <numeric>
 
 #include "cluster_dijkstra.h"
+#include "limit_messages.h"
 #include "pathing/invariant.h"
 #include "pathing/moves.h"
 
 namespace warpath::pathing {
 
 std::string problemWith(const AbstractionSpec& spec) {
-  if (spec.clusterSize < 2) return "cluster size must be at least 2";
-  if (spec.clusterSize > 1024) return "cluster size must be at most 1024";
-  if (spec.maxAgentSize < 1 || spec.maxAgentSize > 255) {
-    return "largest agent size must be between 1 and 255";
-  }
-  if (spec.capabilities.empty()) return "at least one capability is needed";
-  for (Capability c : spec.capabilities) {
-    if (c.empty()) return "a capability must allow at least one terrain";
+  if (spec.clusterSize < 2 || spec.clusterSize > kMaxClusterSize)
+    return limits::between("clusterSize", 2, kMaxClusterSize, spec.clusterSize);
+  if (spec.maxAgentSize < 1 || spec.maxAgentSize > 255)
+    return limits::between("maxAgentSize", 1, 255, spec.maxAgentSize);
+  if (spec.capabilities.empty()) return "capabilities must not be empty (got none)";
+  for (std::size_t i = 0; i < spec.capabilities.size(); ++i) {
+    if (spec.capabilities[i].empty()) {
+      return "capabilities[" + std::to_string(i) + "] must allow at least one terrain (got none)";
+    }
   }
   return {};
 }
@@ -597,6 +599,7 @@ class AbstractionBuilder {
 };
 
 ClusterAbstraction ClusterAbstraction::build(const AnnotatedGrid& grid, AbstractionSpec spec) {
+  limits::require(problemWith(spec));
   return AbstractionBuilder(grid, std::move(spec)).build();
 }
 

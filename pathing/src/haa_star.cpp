@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cluster_dijkstra.h"
+#include "limit_messages.h"
 #include "pathing/invariant.h"
 #include "pathing/moves.h"
 #include "pathing/open_list.h"
@@ -425,9 +426,14 @@ void HierarchicalAStar::smooth(const AgentLayer& layer) {
   cells.swap(out);
 }
 
+std::string problemWith(const HybridOptions& options) {
+  if (options.tau < 1) return limits::atLeast("tau", 1, 0);
+  return {};
+}
+
 HybridPlanner::HybridPlanner(const ClusterAbstraction& abstraction, HybridOptions hybrid,
                              HaaOptions haa)
-    : options_(hybrid),
+    : options_((limits::require(problemWith(hybrid)), hybrid)),
       shortQueryDistance_(std::sqrt(static_cast<double>(hybrid.tau)) / 2.0),
       hierarchical_(abstraction, haa) {}
 

@@ -73,6 +73,8 @@ PreparedPlanner preparePlanner(const AnnotatedGrid& grid, Algorithm algorithm,
   PreparedPlanner prepared;
   prepared.algorithm = algorithm;
   prepared.hybrid.tau = choice.tau;
+  if (const std::string problem = problemWith(prepared.hybrid); !problem.empty())
+    throw BadInput{"--tau: " + problem};
   prepared.haa.smooth = !choice.noSmooth;
   const auto began = std::chrono::steady_clock::now();
   for (const Agent& agent : annotate)

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "pathing/aa_star.h"
@@ -62,8 +63,14 @@ struct HybridOptions {
   std::uint64_t tau = 4096;
 };
 
+// Empty when the options are usable, else what is wrong ("tau must be >= 1 (got 0)").
+// HybridPlanner and Planner throw std::invalid_argument with this message; callers taking
+// user input check it first.
+std::string problemWith(const HybridOptions& options);
+
 class HybridPlanner {
  public:
+  // [Limit: problemWith(hybrid).empty(), else std::invalid_argument]
   HybridPlanner(const ClusterAbstraction& abstraction, HybridOptions hybrid = {},
                 HaaOptions haa = {});
   PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path);

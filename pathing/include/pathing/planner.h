@@ -4,6 +4,7 @@
 // hierarchical algorithms, a shared abstraction of the matching quality.
 
 #include <optional>
+#include <string>
 #include <string_view>
 #include <variant>
 #include <vector>
@@ -26,9 +27,17 @@ std::optional<Algorithm> algorithmFromName(std::string_view name);
 // The abstraction quality an algorithm needs; nullopt for AA*.
 std::optional<AbstractionQuality> abstractionQualityFor(Algorithm algorithm);
 
+// Empty when Planner(grid, algorithm, abstraction, hybrid) can be built, else what is wrong:
+// the abstraction (present, of the quality the algorithm needs, on the same grid) or the
+// hybrid options.
+std::string problemWith(const AnnotatedGrid& grid, Algorithm algorithm,
+                        const ClusterAbstraction* abstraction, const HybridOptions& hybrid = {});
+
 class Planner {
  public:
-  // [Limit: abstraction non-null with the quality abstractionQualityFor(algorithm) unless AA*]
+  // [Limit: abstraction non-null, on `grid`, with the quality abstractionQualityFor(algorithm)
+  // unless AA* (where it is ignored); problemWith(hybrid).empty(). Else std::invalid_argument
+  // with the message of problemWith(grid, algorithm, abstraction, hybrid).]
   Planner(const AnnotatedGrid& grid, Algorithm algorithm, const ClusterAbstraction* abstraction,
           HybridOptions hybrid = {}, HaaOptions haa = {});
 

@@ -35,9 +35,11 @@ struct SearchMetrics {
   bool usedGridSearch = false;     // answered by AA* on the grid (hybrid short query, fallback)
 };
 
-// Caller-set bounds on one search. [Limit: maxExpanded >= 1]
+// Caller-set bounds on one search. Query-time arguments: a search never throws on them.
 struct SearchLimits {
-  std::uint64_t maxExpanded = UINT64_MAX;  // stop with BudgetExhausted after this many
+  // Stop with BudgetExhausted after this many expansions; 0 answers BudgetExhausted at once
+  // (after the checks of start and goal), without expanding anything.
+  std::uint64_t maxExpanded = UINT64_MAX;
   // When set, the agent's anchor never leaves this block (start and goal must lie in it);
   // a goal not reachable inside it is Unreachable.
   std::optional<CellRect> region;
