@@ -9,19 +9,7 @@
 namespace warpath::pathing {
 
 std::string_view toString(PathStatus status) {
-  switch (status) {
-    case PathStatus::Found:
-      return "found";
-    case PathStatus::Unreachable:
-      return "unreachable";
-    case PathStatus::InvalidStart:
-      return "invalid-start";
-    case PathStatus::InvalidGoal:
-      return "invalid-goal";
-    case PathStatus::BudgetExhausted:
-      return "budget-exhausted";
-  }
-  return "unknown";
+  return kPathStatusNames.name(status);
 }
 
 AnnotatedAStar::AnnotatedAStar(const AnnotatedGrid& grid) : grid_(grid) {}

@@ -5,24 +5,11 @@
 namespace warpath::pathing {
 
 std::string_view toString(Algorithm algorithm) {
-  switch (algorithm) {
-    case Algorithm::AStar:
-      return "aa";
-    case Algorithm::HaaHigh:
-      return "haa-hq";
-    case Algorithm::HaaLow:
-      return "haa-lq";
-    case Algorithm::Hybrid:
-      return "hybrid";
-  }
-  return "unknown";
+  return kAlgorithmNames.name(algorithm);
 }
 
 std::optional<Algorithm> algorithmFromName(std::string_view name) {
-  for (Algorithm a : {Algorithm::AStar, Algorithm::HaaHigh, Algorithm::HaaLow, Algorithm::Hybrid}) {
-    if (toString(a) == name) return a;
-  }
-  return std::nullopt;
+  return kAlgorithmNames.parse(name);
 }
 
 std::optional<AbstractionQuality> abstractionQualityFor(Algorithm algorithm) {

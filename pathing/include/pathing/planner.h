@@ -11,6 +11,7 @@
 
 #include "pathing/aa_star.h"
 #include "pathing/cluster_abstraction.h"
+#include "pathing/enum_names.h"
 #include "pathing/haa_star.h"
 
 namespace warpath::pathing {
@@ -21,7 +22,14 @@ enum class Algorithm : std::uint8_t {
   HaaLow,   // "haa-lq": HAA* on the low-quality (weak dominance) graph
   Hybrid,   // "hybrid": AA* within a node budget for short queries, else HAA* (HQ graph)
 };
+inline constexpr EnumNames<Algorithm, 4> kAlgorithmNames{{{
+    {Algorithm::AStar, "aa"},
+    {Algorithm::HaaHigh, "haa-hq"},
+    {Algorithm::HaaLow, "haa-lq"},
+    {Algorithm::Hybrid, "hybrid"},
+}}};
 
+// Names from kAlgorithmNames (kAlgorithmNames.list() for "choose one of" messages).
 std::string_view toString(Algorithm algorithm);
 std::optional<Algorithm> algorithmFromName(std::string_view name);
 // The abstraction quality an algorithm needs; nullopt for AA*.

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string_view>
 
+#include "pathing/enum_names.h"
 #include "pathing/grid_map.h"
 
 namespace warpath::pathing {
@@ -18,6 +19,14 @@ enum class PathStatus : std::uint8_t {
   BudgetExhausted,  // the search stopped at its expansion limit before reaching the goal
 };
 
+inline constexpr EnumNames<PathStatus, 5> kPathStatusNames{{{
+    {PathStatus::Found, "found"},
+    {PathStatus::Unreachable, "unreachable"},
+    {PathStatus::InvalidStart, "invalid-start"},
+    {PathStatus::InvalidGoal, "invalid-goal"},
+    {PathStatus::BudgetExhausted, "budget-exhausted"},
+}}};
+// The name from kPathStatusNames ("found", "invalid-start", …).
 std::string_view toString(PathStatus status);
 
 struct SearchMetrics {
