@@ -1,6 +1,7 @@
 #include "engine/path_service.h"
 
 #include <chrono>
+#include <stdexcept>
 
 namespace warpath::engine {
 
@@ -20,14 +21,19 @@ PlannedPath planned(std::vector<Cell> cells) {
 }
 
 std::string problemWith(const PathServiceSettings& settings) {
-  if (settings.clusterSize < 2) return "cluster_size must be at least 2";
-  if (settings.expansionBudget < 1) return "budget must be at least 1";
+  if (settings.clusterSize < 2 || settings.clusterSize > kMaxClusterSize) {
+    return "clusterSize must be 2.." + std::to_string(kMaxClusterSize) + " (got " +
+           std::to_string(settings.clusterSize) + ")";
+  }
+  if (settings.expansionBudget < 1) return "expansionBudget must be >= 1 (got 0)";
   return {};
 }
 
 PathService::PathService(const AnnotatedGrid& grid, const PathServiceSettings& settings,
                          std::vector<Capability> capabilities, int maxAgentSize)
     : settings_(settings) {
+  if (std::string problem = problemWith(settings); !problem.empty())
+    throw std::invalid_argument(problem);
   const auto began = std::chrono::steady_clock::now();
   if (const auto quality = abstractionQualityFor(settings.algorithm)) {
     AbstractionSpec spec;

@@ -9,19 +9,7 @@
 namespace warpath::pathing {
 
 std::string_view toString(PathStatus status) {
-  switch (status) {
-    case PathStatus::Found:
-      return "found";
-    case PathStatus::Unreachable:
-      return "unreachable";
-    case PathStatus::InvalidStart:
-      return "invalid-start";
-    case PathStatus::InvalidGoal:
-      return "invalid-goal";
-    case PathStatus::BudgetExhausted:
-      return "budget-exhausted";
-  }
-  return "unknown";
+  return kPathStatusNames.name(status);
 }
 
 AnnotatedAStar::AnnotatedAStar(const AnnotatedGrid& grid) : grid_(grid) {}
@@ -52,6 +40,7 @@ PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vec
   if (limits.region && (!limits.region->contains(start) || !limits.region->contains(goal))) {
     return finish(PathStatus::Unreachable);
   }
+  if (limits.maxExpanded == 0) return finish(PathStatus::BudgetExhausted);
   const PathStatus status = limits.region ? search<true>(layer, start, goal, limits, result)
                                           : search<false>(layer, start, goal, limits, result);
   if (status == PathStatus::Found && path) {

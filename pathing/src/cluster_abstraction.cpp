@@ -2,23 +2,28 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <numeric>
 
 #include "cluster_dijkstra.h"
+#include "limit_messages.h"
+#include "pathing/invariant.h"
 #include "pathing/moves.h"
 
 namespace warpath::pathing {
 
 std::string problemWith(const AbstractionSpec& spec) {
-  if (spec.clusterSize < 2) return "cluster size must be at least 2";
-  if (spec.clusterSize > 1024) return "cluster size must be at most 1024";
-  if (spec.maxAgentSize < 1 || spec.maxAgentSize > 255) {
-    return "largest agent size must be between 1 and 255";
-  }
-  if (spec.capabilities.empty()) return "at least one capability is needed";
-  for (Capability c : spec.capabilities) {
-    if (c.empty()) return "a capability must allow at least one terrain";
+  if (spec.clusterSize < 2 || spec.clusterSize > kMaxClusterSize)
+    return limits::between("clusterSize", 2, kMaxClusterSize, spec.clusterSize);
+  if (spec.maxAgentSize < 1 || spec.maxAgentSize > 255)
+    return limits::between("maxAgentSize", 1, 255, spec.maxAgentSize);
+  if (spec.capabilities.empty()) return "capabilities must not be empty (got none)";
+  for (std::size_t i = 0; i < spec.capabilities.size(); ++i) {
+    if (spec.capabilities[i].empty()) {
+      return "capabilities[" + std::to_string(i) + "] must allow at least one terrain (got none)";
+    }
   }
   return {};
 }
@@ -39,6 +44,8 @@ CellRect ClusterAbstraction::clusterBounds(int cluster) const {
 
 void ClusterAbstraction::appendEdgeCells(std::uint32_t from, const AbstractEdge& edge,
                                          std::vector<Cell>* out) const {
+  WARPATH_INVARIANT(!edge.intra || edge.path != AbstractEdge::kNoPath,
+                    "appendEdgeCells: an intra-edge without a cached path must be re-planned");
   if (edge.path == AbstractEdge::kNoPath) {
     out->push_back(nodeCells_[edge.target]);
     return;
@@ -96,6 +103,9 @@ class AbstractionBuilder {
       pruneIntraCircuits();
     }
     assemble();
+#if WARPATH_INVARIANTS_ON
+    checkGraph();
+#endif
     out_.stats_.buildMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
     return std::move(out_);
@@ -521,6 +531,59 @@ class AbstractionBuilder {
     stats.pathBytes = out_.pathBegin_.size() * sizeof(std::uint32_t) + out_.pathSteps_.size();
   }
 
+  // Debug and sanitizer builds: the assembled graph is what queries rely on. Every node lies
+  // in the cluster that lists it; every edge has its reverse with the same annotation; an
+  // inter-edge joins orthogonal neighbours in two clusters; an intra-edge stays in one cluster
+  // and its cached path walks from its source to its target at the edge's cost, by moves legal
+  // for the largest agent it admits.
+  [[maybe_unused]] void checkGraph() const {
+    const ClusterAbstraction& g = out_;
+    for (int k = 0; k < g.clusterCount(); ++k) {
+      for (std::uint32_t n : g.nodesInCluster(k))
+        WARPATH_INVARIANT(g.clusterOf(g.nodeCell(n)) == k, "abstraction: node in wrong cluster");
+    }
+    std::vector<Cell> cells;
+    for (std::uint32_t n = 0; n < g.nodeCount(); ++n) {
+      const Cell from = g.nodeCell(n);
+      for (const AbstractEdge& e : g.edgesOf(n)) {
+        WARPATH_INVARIANT(e.target < g.nodeCount() && e.target != n,
+                          "abstraction: edge target out of range");
+        WARPATH_INVARIANT(e.clearance >= 1 && !e.capability.empty(),
+                          "abstraction: edge serves no agent");
+        const auto back = g.edgesOf(e.target);
+        WARPATH_INVARIANT(std::any_of(back.begin(), back.end(),
+                                      [&](const AbstractEdge& r) {
+                                        return r.target == n && r.intra == e.intra &&
+                                               r.cost == e.cost && r.clearance == e.clearance &&
+                                               r.capability == e.capability;
+                                      }),
+                          "abstraction: edge without its reverse");
+        const Cell to = g.nodeCell(e.target);
+        if (!e.intra) {
+          WARPATH_INVARIANT(std::abs(to.x - from.x) + std::abs(to.y - from.y) == 1 &&
+                                g.clusterOf(to) != g.clusterOf(from) && e.cost == 1.0,
+                            "abstraction: inter-edge must cross a border in one step");
+          continue;
+        }
+        WARPATH_INVARIANT(g.clusterOf(to) == g.clusterOf(from),
+                          "abstraction: intra-edge must stay in its cluster");
+        if (e.path == AbstractEdge::kNoPath) continue;
+        cells.assign(1, from);
+        g.appendEdgeCells(n, e, &cells);
+        const AgentLayer& layer = grid_.layer({e.clearance, e.capability});
+        const CellRect bounds = g.clusterBounds(g.clusterOf(from));
+        for (std::size_t i = 1; i < cells.size(); ++i) {
+          const int d = directionOf(cells[i].x - cells[i - 1].x, cells[i].y - cells[i - 1].y);
+          WARPATH_INVARIANT(d >= 0 && (layer.moveMasks()[map_.indexOf(cells[i - 1])] & (1u << d)),
+                            "abstraction: cached path step illegal for the edge's agents");
+          WARPATH_INVARIANT(bounds.contains(cells[i]), "abstraction: cached path leaves cluster");
+        }
+        WARPATH_INVARIANT(cells.back() == to && std::abs(pathCost(cells) - e.cost) < 1e-6,
+                          "abstraction: cached path must reach the target at the edge's cost");
+      }
+    }
+  }
+
   const AnnotatedGrid& grid_;
   const GridMap& map_;
   int maxSize_;
@@ -536,6 +599,7 @@ class AbstractionBuilder {
 };
 
 ClusterAbstraction ClusterAbstraction::build(const AnnotatedGrid& grid, AbstractionSpec spec) {
+  limits::require(problemWith(spec));
   return AbstractionBuilder(grid, std::move(spec)).build();
 }
 

@@ -2,12 +2,23 @@
 
 #include <array>
 
+#include "limit_messages.h"
+
 namespace warpath::pathing {
+namespace {
+
+// The cell count, once the sides are checked: a negative side would wrap to an enormous
+// allocation.
+std::size_t checkedCellCount(int width, int height) {
+  if (width < 0) throw std::invalid_argument(limits::atLeast("width", 0, width));
+  if (height < 0) throw std::invalid_argument(limits::atLeast("height", 0, height));
+  return static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+}
+
+}  // namespace
 
 GridMap::GridMap(int width, int height, Terrain fill)
-    : width_(width),
-      height_(height),
-      cells_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), fill) {}
+    : width_(width), height_(height), cells_(checkedCellCount(width, height), fill) {}
 
 Capability GridMap::terrainsPresent() const {
   std::array<bool, 256> seen{};

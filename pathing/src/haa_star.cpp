@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "cluster_dijkstra.h"
+#include "limit_messages.h"
+#include "pathing/invariant.h"
 #include "pathing/moves.h"
 #include "pathing/open_list.h"
 
@@ -17,6 +19,19 @@ void appendWalk(Cell from, std::span<const std::uint8_t> steps, std::vector<Cell
     from.y += kDirections[d].dy;
     out->push_back(from);
   }
+}
+
+// True when every step of `cells` is a single move the agent may make (checked on the move
+// masks, which admit only moves between cells the agent can stand on). Allocates nothing.
+[[maybe_unused]] bool isLegalWalk(const AnnotatedGrid& grid, const AgentLayer& layer,
+                                  std::span<const Cell> cells) {
+  const GridMap& map = grid.map();
+  const std::span<const std::uint8_t> masks = layer.moveMasks();
+  for (std::size_t i = 1; i < cells.size(); ++i) {
+    const int d = directionOf(cells[i].x - cells[i - 1].x, cells[i].y - cells[i - 1].y);
+    if (d < 0 || (masks[map.indexOf(cells[i - 1])] & (1u << d)) == 0) return false;
+  }
+  return !cells.empty();
 }
 
 }  // namespace
@@ -156,150 +171,189 @@ PathResult HierarchicalAStar::findPath(Agent agent, Cell start, Cell goal,
     result.metrics.usedGridSearch = true;
     return finish(result.status);
   }
-  const GridMap& map = grid.map();
   const AgentLayer& layer = grid.layer(agent);
   if (start == goal) {
     if (path) path->push_back(start);
     return finish(PathStatus::Found);
   }
 
-  Scratch& s = *scratch_;
-  const int startCluster = abstraction_.clusterOf(start);
-  const int goalCluster = abstraction_.clusterOf(goal);
-  std::vector<Cell>& cells = s.refined;
+  SearchMetrics& metrics = result.metrics;
+  std::vector<Cell>& cells = scratch_->refined;
   cells.clear();
-
-  // Same cluster: a path inside it, when there is one, is found by AA* at local cost.
-  bool refinedLocally = false;
-  if (startCluster == goalCluster) {
-    SearchLimits inCluster;
-    inCluster.region = abstraction_.clusterBounds(startCluster);
-    const PathResult local = gridSearch_.findPath(agent, start, goal, &cells, inCluster);
-    result.metrics.insertionExpanded += local.metrics.expanded;
-    result.metrics.generated += local.metrics.generated;
-    refinedLocally = local.found();
+  if (!searchSameCluster(agent, start, goal, metrics)) {
+    insertEndpoints(layer, start, goal, metrics);
+    // The grid's components say a path exists and the abstraction is complete, so both
+    // failures below are bugs (checked as invariants). Release builds answer Unreachable
+    // rather than return a path that is not there or is broken.
+    if (!searchAbstract(agent, start, goal, metrics)) return finish(PathStatus::Unreachable);
+    if (!refine(agent, start, metrics)) return finish(PathStatus::Unreachable);
+    WARPATH_INVARIANT(
+        cells.front() == start && cells.back() == goal && isLegalWalk(grid, layer, cells),
+        "HAA* refinement must join start to goal by moves legal for the agent");
+  }
+  if (options_.smooth) {
+    smooth(layer);
+    WARPATH_INVARIANT(
+        cells.front() == start && cells.back() == goal && isLegalWalk(grid, layer, cells),
+        "HAA* smoothing must keep a path from start to goal of moves legal for the agent");
   }
 
-  if (!refinedLocally) {
-    const std::uint32_t nodeCount = abstraction_.nodeCount();
-    const std::uint32_t startNode = nodeCount;
-    const std::uint32_t goalNode = nodeCount + 1;
-    s.begin(nodeCount);
-
-    // Insertion: one Dijkstra from each end over its cluster reaches every node there.
-    const auto clusterCells = [&](int cluster) {
-      s.clusterCells.clear();
-      for (std::uint32_t n : abstraction_.nodesInCluster(cluster))
-        s.clusterCells.push_back(abstraction_.nodeCell(n));
-      return std::span<const Cell>(s.clusterCells);
-    };
-    s.startSearch.run(map, layer, abstraction_.clusterBounds(startCluster), start,
-                      clusterCells(startCluster));
-    for (std::uint32_t n : abstraction_.nodesInCluster(startCluster)) {
-      const Cell c = abstraction_.nodeCell(n);
-      if (s.startSearch.reached(c)) s.startLinks.push_back({n, s.startSearch.cost(c)});
-    }
-    s.goalSearch.run(map, layer, abstraction_.clusterBounds(goalCluster), goal,
-                     clusterCells(goalCluster));
-    for (std::uint32_t n : abstraction_.nodesInCluster(goalCluster)) {
-      const Cell c = abstraction_.nodeCell(n);
-      if (!s.goalSearch.reached(c)) continue;
-      s.goalLinkStamp[n] = s.generation;
-      s.goalLinkCost[n] = s.goalSearch.cost(c);
-    }
-    result.metrics.insertionExpanded += s.startSearch.expanded() + s.goalSearch.expanded();
-    result.metrics.generated += s.startSearch.generated() + s.goalSearch.generated();
-
-    // Abstract A* over the edges this agent may use.
-    const auto heuristic = [&](Cell c) { return octileDistance(goal.x - c.x, goal.y - c.y); };
-    const std::uint32_t openStamp = s.generation * 2;
-    const std::uint32_t closedStamp = openStamp + 1;
-    const auto relax = [&](std::uint32_t from, std::uint32_t to, double cost,
-                           const AbstractEdge* edge, Cell toCell) {
-      const double ng = s.g[from] + cost;
-      if (s.stamp[to] == closedStamp || (s.stamp[to] == openStamp && ng >= s.g[to])) return;
-      s.stamp[to] = openStamp;
-      s.g[to] = ng;
-      s.parent[to] = from;
-      s.parentEdge[to] = edge;
-      s.open.push(OpenList::makeKey(ng + heuristic(toCell), ng), to);
-      ++result.metrics.generated;
-    };
-    s.stamp[startNode] = openStamp;
-    s.g[startNode] = 0.0;
-    s.parent[startNode] = Scratch::kNone;
-    s.open.push(OpenList::makeKey(heuristic(start), 0.0), startNode);
-    bool reached = false;
-    while (!s.open.empty()) {
-      const std::uint32_t u = s.open.pop();
-      if (s.stamp[u] == closedStamp) continue;
-      s.stamp[u] = closedStamp;
-      ++result.metrics.abstractExpanded;
-      if (u == goalNode) {
-        reached = true;
-        break;
-      }
-      if (u == startNode) {
-        for (const auto& [n, cost] : s.startLinks)
-          relax(u, n, cost, nullptr, abstraction_.nodeCell(n));
-        continue;
-      }
-      for (const AbstractEdge& e : abstraction_.edgesOf(u)) {
-        if (e.usableBy(agent)) relax(u, e.target, e.cost, &e, abstraction_.nodeCell(e.target));
-      }
-      if (s.goalLinkStamp[u] == s.generation) relax(u, goalNode, s.goalLinkCost[u], nullptr, goal);
-    }
-    // The grid's components say a path exists, and the abstraction is complete; this guards
-    // the invariant rather than assuming it.
-    if (!reached) return finish(PathStatus::Unreachable);
-
-    // Refinement: start link, cached (or re-planned) edge paths, goal link.
-    for (std::uint32_t at = goalNode; at != Scratch::kNone; at = s.parent[at])
-      s.abstractPath.push_back(at);
-    std::reverse(s.abstractPath.begin(), s.abstractPath.end());
-    cells.push_back(start);
-    for (std::size_t i = 1; i < s.abstractPath.size(); ++i) {
-      const std::uint32_t from = s.abstractPath[i - 1];
-      const std::uint32_t to = s.abstractPath[i];
-      if (from == startNode) {
-        s.steps.clear();
-        s.startSearch.appendSteps(abstraction_.nodeCell(to), &s.steps);
-        appendWalk(start, s.steps, &cells);
-      } else if (to == goalNode) {
-        s.steps.clear();
-        s.goalSearch.appendSteps(abstraction_.nodeCell(from), &s.steps);
-        Cell at = abstraction_.nodeCell(from);
-        for (auto it = s.steps.rbegin(); it != s.steps.rend(); ++it) {
-          const Direction& dir = kDirections[static_cast<std::size_t>(oppositeDirection(*it))];
-          at = {at.x + dir.dx, at.y + dir.dy};
-          cells.push_back(at);
-        }
-      } else {
-        const AbstractEdge& edge = *s.parentEdge[to];
-        if (!edge.intra || edge.path != AbstractEdge::kNoPath) {
-          abstraction_.appendEdgeCells(from, edge, &cells);
-        } else {
-          // Paths not cached: the edge promises a path inside the cluster for this agent.
-          SearchLimits inCluster;
-          inCluster.region =
-              abstraction_.clusterBounds(abstraction_.clusterOf(abstraction_.nodeCell(from)));
-          std::vector<Cell>& piece = s.smoothed;
-          const PathResult r = gridSearch_.findPath(agent, abstraction_.nodeCell(from),
-                                                    abstraction_.nodeCell(to), &piece, inCluster);
-          result.metrics.refinementExpanded += r.metrics.expanded;
-          result.metrics.generated += r.metrics.generated;
-          cells.insert(cells.end(), piece.begin() + 1, piece.end());
-        }
-      }
-    }
-  }
-
-  if (options_.smooth) smooth(layer);
   result.cost = pathCost(cells);
-  result.metrics.expanded = result.metrics.insertionExpanded + result.metrics.abstractExpanded +
-                            result.metrics.refinementExpanded + result.metrics.gridExpanded;
+  metrics.expanded = metrics.insertionExpanded + metrics.abstractExpanded +
+                     metrics.refinementExpanded + metrics.gridExpanded;
   if (path) path->assign(cells.begin(), cells.end());
   return finish(PathStatus::Found);
+}
+
+// Start and goal in one cluster: a path inside it, when there is one, is found by AA* at
+// local cost (counted as insertion effort). Fills `refined` and returns true when found.
+bool HierarchicalAStar::searchSameCluster(Agent agent, Cell start, Cell goal,
+                                          SearchMetrics& metrics) {
+  const int cluster = abstraction_.clusterOf(start);
+  if (cluster != abstraction_.clusterOf(goal)) return false;
+  SearchLimits inCluster;
+  inCluster.region = abstraction_.clusterBounds(cluster);
+  const PathResult local = gridSearch_.findPath(agent, start, goal, &scratch_->refined, inCluster);
+  metrics.insertionExpanded += local.metrics.expanded;
+  metrics.generated += local.metrics.generated;
+  return local.found();
+}
+
+// Insertion: one Dijkstra from each end over its cluster reaches every node there. Leaves the
+// start's links (node, cost) in `startLinks` and the goal's in `goalLinkStamp/Cost`, and both
+// search trees for refinement.
+void HierarchicalAStar::insertEndpoints(const AgentLayer& layer, Cell start, Cell goal,
+                                        SearchMetrics& metrics) {
+  Scratch& s = *scratch_;
+  const GridMap& map = abstraction_.grid().map();
+  const int startCluster = abstraction_.clusterOf(start);
+  const int goalCluster = abstraction_.clusterOf(goal);
+  s.begin(abstraction_.nodeCount());
+  const auto clusterCells = [&](int cluster) {
+    s.clusterCells.clear();
+    for (std::uint32_t n : abstraction_.nodesInCluster(cluster))
+      s.clusterCells.push_back(abstraction_.nodeCell(n));
+    return std::span<const Cell>(s.clusterCells);
+  };
+  s.startSearch.run(map, layer, abstraction_.clusterBounds(startCluster), start,
+                    clusterCells(startCluster));
+  for (std::uint32_t n : abstraction_.nodesInCluster(startCluster)) {
+    const Cell c = abstraction_.nodeCell(n);
+    if (s.startSearch.reached(c)) s.startLinks.push_back({n, s.startSearch.cost(c)});
+  }
+  s.goalSearch.run(map, layer, abstraction_.clusterBounds(goalCluster), goal,
+                   clusterCells(goalCluster));
+  for (std::uint32_t n : abstraction_.nodesInCluster(goalCluster)) {
+    const Cell c = abstraction_.nodeCell(n);
+    if (!s.goalSearch.reached(c)) continue;
+    s.goalLinkStamp[n] = s.generation;
+    s.goalLinkCost[n] = s.goalSearch.cost(c);
+  }
+  metrics.insertionExpanded += s.startSearch.expanded() + s.goalSearch.expanded();
+  metrics.generated += s.startSearch.generated() + s.goalSearch.generated();
+}
+
+// Abstract A* with the octile heuristic over the edges this agent may use, from the start
+// (node nodeCount()) to the goal (nodeCount() + 1) through their links. When the goal is
+// reached, leaves the node sequence start..goal in `abstractPath` and returns true.
+bool HierarchicalAStar::searchAbstract(Agent agent, Cell start, Cell goal, SearchMetrics& metrics) {
+  Scratch& s = *scratch_;
+  const std::uint32_t startNode = abstraction_.nodeCount();
+  const std::uint32_t goalNode = startNode + 1;
+  const auto heuristic = [&](Cell c) { return octileDistance(goal.x - c.x, goal.y - c.y); };
+  const std::uint32_t openStamp = s.generation * 2;
+  const std::uint32_t closedStamp = openStamp + 1;
+  const auto relax = [&](std::uint32_t from, std::uint32_t to, double cost,
+                         const AbstractEdge* edge, Cell toCell) {
+    const double ng = s.g[from] + cost;
+    if (s.stamp[to] == closedStamp || (s.stamp[to] == openStamp && ng >= s.g[to])) return;
+    s.stamp[to] = openStamp;
+    s.g[to] = ng;
+    s.parent[to] = from;
+    s.parentEdge[to] = edge;
+    s.open.push(OpenList::makeKey(ng + heuristic(toCell), ng), to);
+    ++metrics.generated;
+  };
+  s.stamp[startNode] = openStamp;
+  s.g[startNode] = 0.0;
+  s.parent[startNode] = Scratch::kNone;
+  s.open.push(OpenList::makeKey(heuristic(start), 0.0), startNode);
+  bool reached = false;
+  while (!s.open.empty()) {
+    const std::uint32_t u = s.open.pop();
+    if (s.stamp[u] == closedStamp) continue;
+    s.stamp[u] = closedStamp;
+    ++metrics.abstractExpanded;
+    if (u == goalNode) {
+      reached = true;
+      break;
+    }
+    if (u == startNode) {
+      for (const auto& [n, cost] : s.startLinks)
+        relax(u, n, cost, nullptr, abstraction_.nodeCell(n));
+      continue;
+    }
+    for (const AbstractEdge& e : abstraction_.edgesOf(u)) {
+      if (e.usableBy(agent)) relax(u, e.target, e.cost, &e, abstraction_.nodeCell(e.target));
+    }
+    if (s.goalLinkStamp[u] == s.generation) relax(u, goalNode, s.goalLinkCost[u], nullptr, goal);
+  }
+  WARPATH_INVARIANT(reached, "HAA* abstract search must reach a goal in the start's component");
+  if (!reached) return false;
+  for (std::uint32_t at = goalNode; at != Scratch::kNone; at = s.parent[at])
+    s.abstractPath.push_back(at);
+  std::reverse(s.abstractPath.begin(), s.abstractPath.end());
+  return true;
+}
+
+// Refinement: the start link (the start's Dijkstra tree), each abstract edge's cached path
+// (or, without cached paths, AA* re-planned inside its cluster), the goal link (the goal's
+// tree, walked backwards). Fills `refined` from start to goal and returns true; false only
+// when re-planning an edge fails, which is a bug (see findPath).
+bool HierarchicalAStar::refine(Agent agent, Cell start, SearchMetrics& metrics) {
+  Scratch& s = *scratch_;
+  const std::uint32_t startNode = abstraction_.nodeCount();
+  const std::uint32_t goalNode = startNode + 1;
+  std::vector<Cell>& cells = s.refined;
+  cells.push_back(start);
+  for (std::size_t i = 1; i < s.abstractPath.size(); ++i) {
+    const std::uint32_t from = s.abstractPath[i - 1];
+    const std::uint32_t to = s.abstractPath[i];
+    if (from == startNode) {
+      s.steps.clear();
+      s.startSearch.appendSteps(abstraction_.nodeCell(to), &s.steps);
+      appendWalk(start, s.steps, &cells);
+    } else if (to == goalNode) {
+      s.steps.clear();
+      s.goalSearch.appendSteps(abstraction_.nodeCell(from), &s.steps);
+      Cell at = abstraction_.nodeCell(from);
+      for (auto it = s.steps.rbegin(); it != s.steps.rend(); ++it) {
+        const Direction& dir = kDirections[static_cast<std::size_t>(oppositeDirection(*it))];
+        at = {at.x + dir.dx, at.y + dir.dy};
+        cells.push_back(at);
+      }
+    } else {
+      const AbstractEdge& edge = *s.parentEdge[to];
+      if (!edge.intra || edge.path != AbstractEdge::kNoPath) {
+        abstraction_.appendEdgeCells(from, edge, &cells);
+      } else {
+        // Paths not cached: the edge promises a path inside the cluster for this agent.
+        SearchLimits inCluster;
+        inCluster.region =
+            abstraction_.clusterBounds(abstraction_.clusterOf(abstraction_.nodeCell(from)));
+        std::vector<Cell>& piece = s.smoothed;
+        const PathResult r = gridSearch_.findPath(agent, abstraction_.nodeCell(from),
+                                                  abstraction_.nodeCell(to), &piece, inCluster);
+        metrics.refinementExpanded += r.metrics.expanded;
+        metrics.generated += r.metrics.generated;
+        WARPATH_INVARIANT(r.found(),
+                          "an abstract edge the agent may use must refine in its cluster");
+        if (!r.found()) return false;
+        cells.insert(cells.end(), piece.begin() + 1, piece.end());
+      }
+    }
+  }
+  return true;
 }
 
 // Smoothing keeps every step legal: (1) cut loops (a cell visited twice), then (2) greedily
@@ -372,9 +426,14 @@ void HierarchicalAStar::smooth(const AgentLayer& layer) {
   cells.swap(out);
 }
 
+std::string problemWith(const HybridOptions& options) {
+  if (options.tau < 1) return limits::atLeast("tau", 1, 0);
+  return {};
+}
+
 HybridPlanner::HybridPlanner(const ClusterAbstraction& abstraction, HybridOptions hybrid,
                              HaaOptions haa)
-    : options_(hybrid),
+    : options_((limits::require(problemWith(hybrid)), hybrid)),
       shortQueryDistance_(std::sqrt(static_cast<double>(hybrid.tau)) / 2.0),
       hierarchical_(abstraction, haa) {}
 

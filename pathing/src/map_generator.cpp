@@ -5,11 +5,33 @@
 #include <span>
 #include <vector>
 
+#include "limit_messages.h"
 #include "pathing/random.h"
 
 namespace warpath::pathing {
 
+std::string problemWith(const RandomMapSpec& spec) {
+  if (spec.width < 1) return limits::atLeast("width", 1, spec.width);
+  if (spec.height < 1) return limits::atLeast("height", 1, spec.height);
+  const std::array<std::pair<const char*, int>, 4> shares{{{"blockedPercent", spec.blockedPercent},
+                                                           {"swampPercent", spec.swampPercent},
+                                                           {"treesPercent", spec.treesPercent},
+                                                           {"waterPercent", spec.waterPercent}}};
+  int sum = 0;
+  for (const auto& [field, percent] : shares) {
+    if (percent < 0 || percent > 100) return limits::between(field, 0, 100, percent);
+    sum += percent;
+  }
+  if (sum > 100) {
+    return "blockedPercent + swampPercent + treesPercent + waterPercent must be <= 100 (got " +
+           std::to_string(sum) + ")";
+  }
+  if (spec.maxPatch < 1) return limits::atLeast("maxPatch", 1, spec.maxPatch);
+  return {};
+}
+
 GridMap generateRandomMap(const RandomMapSpec& spec) {
+  limits::require(problemWith(spec));
   GridMap map(spec.width, spec.height, Terrain::Ground);
   SplitMix64 rng(spec.seed);
   const std::array<std::pair<Terrain, int>, 4> shares{{{Terrain::Blocked, spec.blockedPercent},
@@ -17,10 +39,10 @@ GridMap generateRandomMap(const RandomMapSpec& spec) {
                                                        {Terrain::Trees, spec.treesPercent},
                                                        {Terrain::Water, spec.waterPercent}}};
   const long long cells = static_cast<long long>(spec.width) * spec.height;
-  const int maxPatch = std::max(1, spec.maxPatch);
+  const int maxPatch = spec.maxPatch;
   for (const auto& [terrain, percent] : shares) {
     // Paint patches until roughly `percent` of the map has been painted with this terrain.
-    long long budget = cells * std::clamp(percent, 0, 100) / 100;
+    long long budget = cells * percent / 100;
     while (budget > 0) {
       const int w = rng.between(1, maxPatch);
       const int h = rng.between(1, maxPatch);
@@ -37,6 +59,12 @@ GridMap generateRandomMap(const RandomMapSpec& spec) {
 }
 
 GridMap withSoftObstacles(const GridMap& map, int percent, Terrain soft, std::uint64_t seed) {
+  if (percent < 0 || percent > 100)
+    throw std::invalid_argument(limits::between("percent", 0, 100, percent));
+  if (!isTraversable(soft)) {
+    throw std::invalid_argument("soft must be a traversable terrain (got " +
+                                std::string(terrainName(soft)) + ")");
+  }
   GridMap out = map;
   const std::span<const Terrain> cells = map.cells();
   std::vector<std::uint32_t> candidates;  // traversable cells not yet `soft`
@@ -46,7 +74,7 @@ GridMap withSoftObstacles(const GridMap& map, int percent, Terrain soft, std::ui
     ++traversable;
     if (cells[i] != soft) candidates.push_back(i);
   }
-  const std::size_t share = static_cast<std::size_t>(std::clamp(percent, 0, 100));
+  const std::size_t share = static_cast<std::size_t>(percent);
   std::size_t remaining = std::min(candidates.size(), (traversable * share + 50) / 100);
 
   SplitMix64 rng(seed);
@@ -106,6 +134,9 @@ QuerySampler::QuerySampler(const AnnotatedGrid& grid, Agent agent) : map_(&grid.
 }
 
 Query QuerySampler::anyPair(SplitMix64& rng) const {
+  if (!canStandAnywhere()) {
+    throw std::invalid_argument("anyPair: the agent can stand nowhere on the map");
+  }
   const auto n = static_cast<std::uint32_t>(cells_.size());
   const Cell start = map_->cellAt(cells_[rng.below(n)]);
   const Cell goal = map_->cellAt(cells_[rng.below(n)]);
@@ -113,6 +144,9 @@ Query QuerySampler::anyPair(SplitMix64& rng) const {
 }
 
 Query QuerySampler::reachablePair(SplitMix64& rng) const {
+  if (!hasReachablePair()) {
+    throw std::invalid_argument("reachablePair: no two distinct cells are mutually reachable");
+  }
   // A component is chosen with probability proportional to its ordered pairs n(n-1), then two
   // distinct cells in it. The modulo bias is below 2^-25 for any map that fits in memory.
   const std::uint64_t r = rng.next() % pairWeights_.back();

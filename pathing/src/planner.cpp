@@ -1,26 +1,15 @@
 #include "pathing/planner.h"
 
+#include "limit_messages.h"
+
 namespace warpath::pathing {
 
 std::string_view toString(Algorithm algorithm) {
-  switch (algorithm) {
-    case Algorithm::AStar:
-      return "aa";
-    case Algorithm::HaaHigh:
-      return "haa-hq";
-    case Algorithm::HaaLow:
-      return "haa-lq";
-    case Algorithm::Hybrid:
-      return "hybrid";
-  }
-  return "unknown";
+  return kAlgorithmNames.name(algorithm);
 }
 
 std::optional<Algorithm> algorithmFromName(std::string_view name) {
-  for (Algorithm a : {Algorithm::AStar, Algorithm::HaaHigh, Algorithm::HaaLow, Algorithm::Hybrid}) {
-    if (toString(a) == name) return a;
-  }
-  return std::nullopt;
+  return kAlgorithmNames.parse(name);
 }
 
 std::optional<AbstractionQuality> abstractionQualityFor(Algorithm algorithm) {
@@ -36,6 +25,22 @@ std::optional<AbstractionQuality> abstractionQualityFor(Algorithm algorithm) {
   return std::nullopt;
 }
 
+std::string problemWith(const AnnotatedGrid& grid, Algorithm algorithm,
+                        const ClusterAbstraction* abstraction, const HybridOptions& hybrid) {
+  if (std::string problem = problemWith(hybrid); !problem.empty()) return problem;
+  const std::optional<AbstractionQuality> quality = abstractionQualityFor(algorithm);
+  if (!quality) return {};
+  const std::string needed(toString(algorithm));
+  if (!abstraction) return "abstraction must be given for " + needed + " (got none)";
+  if (abstraction->spec().quality != *quality) {
+    return "abstraction must be of quality " +
+           std::string(kAbstractionQualityNames.name(*quality)) + " for " + needed + " (got " +
+           std::string(kAbstractionQualityNames.name(abstraction->spec().quality)) + ")";
+  }
+  if (&abstraction->grid() != &grid) return "abstraction must be built on the planner's grid";
+  return {};
+}
+
 namespace {
 
 using Impl = std::variant<AnnotatedAStar, HierarchicalAStar, HybridPlanner>;
@@ -45,6 +50,7 @@ using Impl = std::variant<AnnotatedAStar, HierarchicalAStar, HybridPlanner>;
 Planner::Planner(const AnnotatedGrid& grid, Algorithm algorithm,
                  const ClusterAbstraction* abstraction, HybridOptions hybrid, HaaOptions haa)
     : algorithm_(algorithm), impl_([&]() -> Impl {
+        limits::require(problemWith(grid, algorithm, abstraction, hybrid));
         switch (algorithm) {
           case Algorithm::HaaHigh:
           case Algorithm::HaaLow:

@@ -1,30 +1,9 @@
 #include "pathing/terrain.h"
 
-#include <array>
 #include <cctype>
 
 namespace warpath::pathing {
 namespace {
-
-struct NamedTerrain {
-  std::string_view name;
-  Terrain terrain;
-};
-constexpr std::array<NamedTerrain, 5> kNames{{
-    {"ground", Terrain::Ground},
-    {"swamp", Terrain::Swamp},
-    {"trees", Terrain::Trees},
-    {"water", Terrain::Water},
-    {"blocked", Terrain::Blocked},
-}};
-
-bool equalsIgnoreCase(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (std::tolower(static_cast<unsigned char>(a[i])) != b[i]) return false;
-  }
-  return true;
-}
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front())))
@@ -37,25 +16,32 @@ std::string_view trim(std::string_view s) {
 }  // namespace
 
 std::string_view terrainName(Terrain t) {
-  for (const auto& entry : kNames) {
-    if (entry.terrain == t) return entry.name;
-  }
-  return "unknown";
+  return kTerrainNames.name(t);
 }
 
 std::optional<Terrain> terrainFromName(std::string_view name) {
-  for (const auto& entry : kNames) {
-    if (equalsIgnoreCase(name, entry.name)) return entry.terrain;
+  std::string lower(name);
+  for (char& c : lower)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return kTerrainNames.parse(lower);
+}
+
+std::string traversableTerrainNames(std::string_view separator) {
+  std::string out;
+  for (const auto& row : kTerrainNames.rows()) {
+    if (!isTraversable(row.value)) continue;
+    if (!out.empty()) out.append(separator);
+    out.append(row.name);
   }
-  return std::nullopt;
+  return out;
 }
 
 std::string Capability::toString() const {
   std::string out;
-  for (const auto& entry : kNames) {
-    if (!allows(entry.terrain)) continue;
+  for (const auto& row : kTerrainNames.rows()) {
+    if (!allows(row.value)) continue;
     if (!out.empty()) out += ',';
-    out += entry.name;
+    out += row.name;
   }
   return out.empty() ? "none" : out;
 }
@@ -71,8 +57,8 @@ Result<Capability> parseCapability(std::string_view text) {
       Error error;
       error.message.assign(name.empty() ? "empty terrain name in capability" : "'");
       if (!name.empty()) {
-        error.message.append(name).append(
-            "' is not a traversable terrain (ground, swamp, trees, water)");
+        error.message.append(name).append("' is not a traversable terrain (");
+        error.message.append(traversableTerrainNames()).append(")");
       }
       return error;
     }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "engine/physics.h"
@@ -252,6 +253,36 @@ TEST(PathService, BudgetSpreadsRequestsAndCacheAnswersRepeats) {
   EXPECT_EQ(out[0].status, pathing::PathStatus::Found);
   EXPECT_EQ(service.metrics().requests, 3u);
   EXPECT_EQ(service.metrics().searches, 2u);
+}
+
+TEST(PathService, SettingsAreValidatedByTheConstructor) {
+  auto grid = std::make_shared<const pathing::AnnotatedGrid>(pathing::GridMap(32, 32));
+  const pathing::Capability ground = pathing::Capability::of({Terrain::Ground});
+  EXPECT_EQ(problemWith(PathServiceSettings{}), "");
+  const auto check = [&](PathServiceSettings settings, const std::string& message) {
+    EXPECT_EQ(problemWith(settings), message);
+    try {
+      PathService service(*grid, settings, {ground}, 1);
+      ADD_FAILURE() << "accepted; expected: " << message;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()), message);
+    }
+  };
+  check({.clusterSize = 1}, "clusterSize must be 2..4096 (got 1)");
+  check({.clusterSize = 4097}, "clusterSize must be 2..4096 (got 4097)");
+  check({.expansionBudget = 0}, "expansionBudget must be >= 1 (got 0)");
+  // Even for AA*, which builds no abstraction: the settings are wrong either way.
+  check({.algorithm = pathing::Algorithm::AStar, .clusterSize = 0},
+        "clusterSize must be 2..4096 (got 0)");
+  // The abstraction's own limits surface from the same constructor.
+  try {
+    PathService service(*grid, {}, {ground}, 0);
+    ADD_FAILURE() << "maxAgentSize 0 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "maxAgentSize must be 1..255 (got 0)");
+  }
+  PathService usable(*grid, {.clusterSize = 2, .expansionBudget = 1}, {ground}, 1);
+  EXPECT_EQ(usable.settings().clusterSize, 2);
 }
 
 TEST(World, AnUnreachableGoalIsReportedOnceAndNotRetried) {

@@ -171,6 +171,26 @@ TEST(AnnotatedAStarTest, StatusForBadEndsAndTrivialQueries) {
   EXPECT_EQ(path, (std::vector<Cell>{{2, 2}}));
 }
 
+TEST(AnnotatedAStarTest, AZeroBudgetIsExhaustedAtOnce) {
+  const AnnotatedGrid grid(GridMap(6, 6, Terrain::Ground));
+  AnnotatedAStar search(grid);
+  std::vector<Cell> path;
+  SearchLimits none;
+  none.maxExpanded = 0;
+  PathResult r = search.findPath({1, kGround}, {0, 0}, {5, 5}, &path, none);
+  EXPECT_EQ(r.status, PathStatus::BudgetExhausted);
+  EXPECT_EQ(r.metrics.expanded, 0u);
+  EXPECT_TRUE(path.empty());
+  // The ends are checked first.
+  EXPECT_EQ(search.findPath({1, kGround}, {0, 0}, {6, 6}, &path, none).status,
+            PathStatus::InvalidGoal);
+  SearchLimits one;
+  one.maxExpanded = 1;
+  r = search.findPath({1, kGround}, {0, 0}, {5, 5}, &path, one);
+  EXPECT_EQ(r.status, PathStatus::BudgetExhausted);
+  EXPECT_EQ(r.metrics.expanded, 1u);
+}
+
 TEST(AnnotatedAStarTest, RepeatedQueriesGiveIdenticalPaths) {
   RandomMapSpec spec;
   spec.width = 96;

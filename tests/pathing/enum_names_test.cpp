@@ -2,6 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include "pathing/cluster_abstraction.h"
+#include "pathing/planner.h"
+#include "pathing/search.h"
+#include "pathing/terrain.h"
+#include "support/enum_round_trip.h"
+
 namespace warpath {
 namespace {
 
@@ -34,6 +40,40 @@ TEST(EnumNames, ListShowsCanonicalNamesOnly) {
 TEST(EnumNames, WorksAtCompileTime) {
   static_assert(kColours.parse("red") == Colour::Red);
   static_assert(kColours.name(Colour::Blue) == "blue");
+}
+
+// Every enum of pathing names each of its values through its table, and the names parse back.
+TEST(EnumNames, PathingTablesRoundTrip) {
+  using namespace pathing;
+  testing::expectRoundTrip(kTerrainNames, {Terrain::Ground, Terrain::Swamp, Terrain::Trees,
+                                           Terrain::Water, Terrain::Blocked});
+  testing::expectRoundTrip(kAlgorithmNames, {Algorithm::AStar, Algorithm::HaaHigh,
+                                             Algorithm::HaaLow, Algorithm::Hybrid});
+  testing::expectRoundTrip(kPathStatusNames,
+                           {PathStatus::Found, PathStatus::Unreachable, PathStatus::InvalidStart,
+                            PathStatus::InvalidGoal, PathStatus::BudgetExhausted});
+  testing::expectRoundTrip(kAbstractionQualityNames,
+                           {AbstractionQuality::High, AbstractionQuality::Low});
+}
+
+// The named functions are the tables.
+TEST(EnumNames, PathingFunctionsReadTheTables) {
+  using namespace pathing;
+  for (const auto& row : kTerrainNames.rows()) {
+    EXPECT_EQ(terrainName(row.value), row.name);
+    EXPECT_EQ(terrainFromName(row.name), row.value);
+  }
+  EXPECT_EQ(terrainFromName("WaTeR"), Terrain::Water);  // terrain names ignore case
+  EXPECT_FALSE(terrainFromName("lava"));
+  EXPECT_EQ(terrainName(static_cast<Terrain>(9)), "?");
+  EXPECT_EQ(traversableTerrainNames(), "ground, swamp, trees, water");
+  for (const auto& row : kAlgorithmNames.rows()) {
+    EXPECT_EQ(toString(row.value), row.name);
+    EXPECT_EQ(algorithmFromName(row.name), row.value);
+  }
+  EXPECT_FALSE(algorithmFromName("HAA-HQ"));
+  for (const auto& row : kPathStatusNames.rows())
+    EXPECT_EQ(toString(row.value), row.name);
 }
 
 }  // namespace

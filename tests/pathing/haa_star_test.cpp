@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -381,19 +382,159 @@ TEST(HaaStarTest, GraphStatistics) {
   EXPECT_EQ(directedEdges, 2 * (hq.stats().interEdges + hq.stats().intraEdges));
 }
 
+// Refinement trusts the graph: an abstract edge an agent may use must turn into grid moves
+// that agent may make (HierarchicalAStar asserts it as an invariant in debug and sanitizer
+// builds). Checked here for every edge and every agent kind that may use it: an inter-edge is
+// one legal step; a cached intra-edge path is legal, ends at the target and costs what the
+// edge says; an uncached one is re-planned inside its cluster at no greater cost.
+TEST(HaaStarTest, EveryAbstractEdgeRefinesForEveryAgentThatMayUseIt) {
+  std::size_t refined = 0;
+  for (int i : {0, 5, 9}) {
+    const AnnotatedGrid grid(randomMap(randomMapCase(i)));
+    AnnotatedAStar search(grid);
+    for (int clusterSize : {8, 10}) {
+      for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
+        for (bool cachePaths : {true, false}) {
+          if (!cachePaths && clusterSize != 10) continue;
+          const ClusterAbstraction graph =
+              ClusterAbstraction::build(grid, catalogueSpec(clusterSize, quality, cachePaths));
+          std::vector<Cell> cells;
+          for (std::uint32_t n = 0; n < graph.nodeCount(); ++n) {
+            const Cell from = graph.nodeCell(n);
+            for (const AbstractEdge& e : graph.edgesOf(n)) {
+              const Cell to = graph.nodeCell(e.target);
+              for (const Agent agent : testing::completenessAgents()) {
+                if (!e.usableBy(agent)) continue;
+                SCOPED_TRACE(testing::describeQuery(agent, from, to) + ", " +
+                             (e.intra ? "intra" : "inter") + ", map " + std::to_string(i) +
+                             ", cluster " + std::to_string(clusterSize));
+                ++refined;
+                if (!e.intra || e.path != AbstractEdge::kNoPath) {
+                  cells.assign(1, from);
+                  graph.appendEdgeCells(n, e, &cells);
+                  ASSERT_EQ(findIllegalStep(grid, agent, cells), "");
+                  ASSERT_EQ(cells.back(), to);
+                  ASSERT_NEAR(pathCost(cells), e.cost, 1e-9);
+                } else {
+                  SearchLimits inCluster;
+                  inCluster.region = graph.clusterBounds(graph.clusterOf(from));
+                  const PathResult r = search.findPath(agent, from, to, &cells, inCluster);
+                  ASSERT_TRUE(r.found());
+                  ASSERT_LE(r.cost, e.cost + 1e-9);
+                }
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(refined, 300000u);
+}
+
+// Expects `make()` to throw std::invalid_argument whose message is `message`.
+template <class Make>
+void expectRejected(const Make& make, const std::string& message) {
+  try {
+    make();
+    ADD_FAILURE() << "accepted; expected: " << message;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), message);
+  }
+}
+
 TEST(HaaStarTest, SpecsAreValidated) {
+  const AnnotatedGrid grid(GridMap(20, 20));
   EXPECT_EQ(problemWith(catalogueSpec(8, AbstractionQuality::High)), "");
+  const auto check = [&](const AbstractionSpec& spec, const std::string& message) {
+    EXPECT_EQ(problemWith(spec), message);
+    expectRejected([&] { ClusterAbstraction::build(grid, spec); }, message);
+  };
   AbstractionSpec spec = catalogueSpec(8, AbstractionQuality::High);
   spec.clusterSize = 1;
-  EXPECT_NE(problemWith(spec), "");
+  check(spec, "clusterSize must be 2..4096 (got 1)");
+  spec.clusterSize = kMaxClusterSize + 1;
+  check(spec, "clusterSize must be 2..4096 (got 4097)");
+  spec.clusterSize = kMaxClusterSize;  // the largest allowed: one cluster holds the map
+  EXPECT_EQ(ClusterAbstraction::build(grid, spec).clusterCount(), 1);
   spec = catalogueSpec(8, AbstractionQuality::High);
   spec.maxAgentSize = 0;
-  EXPECT_NE(problemWith(spec), "");
+  check(spec, "maxAgentSize must be 1..255 (got 0)");
   spec.maxAgentSize = 256;
-  EXPECT_NE(problemWith(spec), "");
+  check(spec, "maxAgentSize must be 1..255 (got 256)");
   spec = catalogueSpec(8, AbstractionQuality::High);
   spec.capabilities.clear();
-  EXPECT_NE(problemWith(spec), "");
+  check(spec, "capabilities must not be empty (got none)");
+  spec.capabilities = {kGround, Capability{}};
+  check(spec, "capabilities[1] must allow at least one terrain (got none)");
+}
+
+TEST(HaaStarTest, HybridOptionsAndPlannerArgumentsAreValidated) {
+  const AnnotatedGrid grid(GridMap(20, 20));
+  const AnnotatedGrid other(GridMap(20, 20));
+  const ClusterAbstraction hq =
+      ClusterAbstraction::build(grid, catalogueSpec(8, AbstractionQuality::High));
+  const ClusterAbstraction lq =
+      ClusterAbstraction::build(grid, catalogueSpec(8, AbstractionQuality::Low));
+  EXPECT_EQ(problemWith(HybridOptions{}), "");
+  EXPECT_EQ(problemWith(HybridOptions{.tau = 1}), "");
+  EXPECT_EQ(problemWith(HybridOptions{.tau = 0}), "tau must be >= 1 (got 0)");
+  expectRejected([&] { HybridPlanner(hq, HybridOptions{.tau = 0}); }, "tau must be >= 1 (got 0)");
+  expectRejected([&] { Planner(grid, Algorithm::Hybrid, &hq, HybridOptions{.tau = 0}); },
+                 "tau must be >= 1 (got 0)");
+
+  EXPECT_EQ(problemWith(grid, Algorithm::AStar, nullptr), "");
+  EXPECT_EQ(problemWith(grid, Algorithm::HaaHigh, &hq), "");
+  EXPECT_EQ(problemWith(grid, Algorithm::HaaLow, &lq), "");
+  EXPECT_EQ(problemWith(grid, Algorithm::Hybrid, &hq), "");
+  const auto check = [&](Algorithm algorithm, const ClusterAbstraction* abstraction,
+                         const AnnotatedGrid& on, const std::string& message) {
+    EXPECT_EQ(problemWith(on, algorithm, abstraction), message);
+    expectRejected([&] { Planner(on, algorithm, abstraction); }, message);
+  };
+  check(Algorithm::HaaHigh, nullptr, grid, "abstraction must be given for haa-hq (got none)");
+  check(Algorithm::Hybrid, nullptr, grid, "abstraction must be given for hybrid (got none)");
+  check(Algorithm::HaaLow, &hq, grid, "abstraction must be of quality LQ for haa-lq (got HQ)");
+  check(Algorithm::HaaHigh, &lq, grid, "abstraction must be of quality HQ for haa-hq (got LQ)");
+  check(Algorithm::HaaHigh, &hq, other, "abstraction must be built on the planner's grid");
+}
+
+// Query-time arguments never throw: every entry point answers bad ends, agent sizes below 1
+// and empty capabilities with a status.
+TEST(HaaStarTest, EveryEntryPointAnswersBadQueryArgumentsWithAStatus) {
+  const AnnotatedGrid grid(GridMap(30, 30));
+  const ClusterAbstraction hq =
+      ClusterAbstraction::build(grid, catalogueSpec(8, AbstractionQuality::High));
+  const ClusterAbstraction lq =
+      ClusterAbstraction::build(grid, catalogueSpec(8, AbstractionQuality::Low));
+  AnnotatedAStar aa(grid);
+  HierarchicalAStar haa(hq);
+  HybridPlanner hybrid(hq);
+  Planner viaAa(grid, Algorithm::AStar, nullptr);
+  Planner viaHq(grid, Algorithm::HaaHigh, &hq);
+  Planner viaLq(grid, Algorithm::HaaLow, &lq);
+  Planner viaHybrid(grid, Algorithm::Hybrid, &hq);
+  std::vector<Cell> path{{7, 7}};
+  const auto checkAll = [&](Agent agent, Cell start, Cell goal, PathStatus expected) {
+    SCOPED_TRACE(testing::describeQuery(agent, start, goal));
+    EXPECT_EQ(aa.findPath(agent, start, goal, &path).status, expected);
+    EXPECT_TRUE(path.empty());
+    EXPECT_EQ(haa.findPath(agent, start, goal, &path).status, expected);
+    EXPECT_EQ(hybrid.findPath(agent, start, goal, &path).status, expected);
+    for (Planner* p : {&viaAa, &viaHq, &viaLq, &viaHybrid})
+      EXPECT_EQ(p->findPath(agent, start, goal, &path).status, expected);
+    EXPECT_TRUE(path.empty());
+  };
+  const Capability none;
+  checkAll({0, kGround}, {1, 1}, {20, 20}, PathStatus::InvalidStart);
+  checkAll({-3, kGround}, {1, 1}, {20, 20}, PathStatus::InvalidStart);
+  checkAll({1, none}, {1, 1}, {20, 20}, PathStatus::InvalidStart);
+  checkAll({1, kGround}, {-1, 1}, {20, 20}, PathStatus::InvalidStart);
+  checkAll({1, kGround}, {1, 30}, {20, 20}, PathStatus::InvalidStart);
+  checkAll({1, kGround}, {1, 1}, {30, 20}, PathStatus::InvalidGoal);
+  checkAll({1, kGround}, {1, 1}, {20, -7}, PathStatus::InvalidGoal);
+  checkAll({31, kGround}, {0, 0}, {0, 0}, PathStatus::InvalidStart);  // larger than the map
+  checkAll({1000, kGround}, {0, 0}, {1, 1}, PathStatus::InvalidStart);
 }
 
 TEST(HaaStarTest, PlannerFacadeRunsEveryAlgorithm) {

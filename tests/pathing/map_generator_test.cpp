@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "pathing/aa_star.h"
 #include "pathing/map_io.h"
@@ -141,6 +143,74 @@ TEST(QuerySamplerTest, ReachablePairsAreUniformOverPairs) {
   EXPECT_TRUE(QuerySampler(islands, {1, kGround}).canStandAnywhere());
   EXPECT_FALSE(QuerySampler(islands, {1, kGround}).hasReachablePair());
   EXPECT_FALSE(QuerySampler(islands, {1, Capability::of({Terrain::Water})}).canStandAnywhere());
+}
+
+template <class Make>
+void expectRejected(const Make& make, const std::string& message) {
+  try {
+    make();
+    ADD_FAILURE() << "accepted; expected: " << message;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), message);
+  }
+}
+
+TEST(RandomMapSpecTest, EveryLimitIsEnforcedWithItsMessage) {
+  EXPECT_EQ(problemWith(RandomMapSpec{}), "");
+  const auto check = [](RandomMapSpec spec, const std::string& message) {
+    EXPECT_EQ(problemWith(spec), message);
+    expectRejected([&] { generateRandomMap(spec); }, message);
+  };
+  check({.width = 0}, "width must be >= 1 (got 0)");
+  check({.height = -4}, "height must be >= 1 (got -4)");
+  check({.blockedPercent = -1}, "blockedPercent must be 0..100 (got -1)");
+  check({.swampPercent = 101}, "swampPercent must be 0..100 (got 101)");
+  check({.treesPercent = 200}, "treesPercent must be 0..100 (got 200)");
+  check({.waterPercent = -5}, "waterPercent must be 0..100 (got -5)");
+  check({.blockedPercent = 40, .swampPercent = 30, .treesPercent = 20, .waterPercent = 20},
+        "blockedPercent + swampPercent + treesPercent + waterPercent must be <= 100 (got 110)");
+  check({.maxPatch = 0}, "maxPatch must be >= 1 (got 0)");
+  // The limits themselves are usable.
+  const GridMap full = generateRandomMap({.width = 1,
+                                          .height = 1,
+                                          .blockedPercent = 100,
+                                          .swampPercent = 0,
+                                          .treesPercent = 0,
+                                          .waterPercent = 0,
+                                          .maxPatch = 1});
+  EXPECT_EQ(full.at({0, 0}), Terrain::Blocked);
+}
+
+TEST(SoftObstaclesTest, ArgumentsOutsideTheirLimitsAreRejected) {
+  const GridMap map = sampleMap();
+  expectRejected([&] { withSoftObstacles(map, -1, Terrain::Trees, 1); },
+                 "percent must be 0..100 (got -1)");
+  expectRejected([&] { withSoftObstacles(map, 101, Terrain::Trees, 1); },
+                 "percent must be 0..100 (got 101)");
+  expectRejected([&] { withSoftObstacles(map, 10, Terrain::Blocked, 1); },
+                 "soft must be a traversable terrain (got blocked)");
+}
+
+TEST(GridMapTest, NegativeSidesAreRejected) {
+  EXPECT_EQ(GridMap(0, 5).cellCount(), 0u);
+  expectRejected([] { GridMap(-1, 5); }, "width must be >= 0 (got -1)");
+  expectRejected([] { GridMap(5, -2); }, "height must be >= 0 (got -2)");
+}
+
+TEST(QuerySamplerTest, DrawingWithoutCandidatesIsRejected) {
+  const AnnotatedGrid walls(GridMap(8, 8, Terrain::Blocked));
+  const QuerySampler nowhere(walls, {1, kGround});
+  SplitMix64 rng(1);
+  expectRejected([&] { nowhere.anyPair(rng); }, "anyPair: the agent can stand nowhere on the map");
+  expectRejected([&] { nowhere.reachablePair(rng); },
+                 "reachablePair: no two distinct cells are mutually reachable");
+  GridMap single(8, 8, Terrain::Blocked);
+  single.set({3, 3}, Terrain::Ground);
+  const AnnotatedGrid one(single);
+  const QuerySampler lonely(one, {1, kGround});
+  EXPECT_EQ(lonely.anyPair(rng).start, (Cell{3, 3}));
+  expectRejected([&] { lonely.reachablePair(rng); },
+                 "reachablePair: no two distinct cells are mutually reachable");
 }
 
 }  // namespace

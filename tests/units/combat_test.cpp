@@ -12,6 +12,8 @@
 #include <random>
 #include <vector>
 
+#include "support/enum_round_trip.h"
+
 namespace warpath::units {
 namespace {
 
@@ -102,6 +104,16 @@ TEST(Damage, NamesRoundTrip) {
   EXPECT_EQ(damageKindName(DamageKind::MachineGun), "machine_gun");
   EXPECT_FALSE(armourClassFromName("Heavy"));
   EXPECT_FALSE(damageKindFromName("laser"));
+  EXPECT_EQ(armourClassName(static_cast<ArmourClass>(kArmourClasses)), "?");
+}
+
+TEST(Damage, NameTablesCoverEveryValue) {
+  testing::expectRoundTrip(kArmourClassNames, {ArmourClass::Infantry, ArmourClass::Light,
+                                               ArmourClass::Heavy, ArmourClass::Amphibious});
+  testing::expectRoundTrip(kDamageKindNames, {DamageKind::Rifle, DamageKind::MachineGun,
+                                              DamageKind::Cannon, DamageKind::LightGun});
+  EXPECT_EQ(kArmourClassNames.list(), "infantry, light, heavy, amphibious");
+  EXPECT_EQ(kDamageKindNames.list(), "rifle, machine_gun, cannon, light_gun");
 }
 
 TEST(Damage, WeaponProblemsAreNamed) {

@@ -142,7 +142,7 @@ nlohmann::json measureAbstraction(const AnnotatedGrid& grid, const std::vector<A
     if (!problem.empty()) {
       failures.add(fmt::format("cluster {} {}: size {} {} {},{} -> {},{}: {}",
                                abstraction.spec().clusterSize,
-                               abstraction.spec().quality == AbstractionQuality::High ? "HQ" : "LQ",
+                               kAbstractionQualityNames.name(abstraction.spec().quality),
                                q.agent.size, q.agent.capability.toString(), q.query.start.x,
                                q.query.start.y, q.query.goal.x, q.query.goal.y, problem));
     }
@@ -249,7 +249,7 @@ int runPaperBench(const PaperBenchOptions& options) {
           row["map"] = name;
           row["soft_percent"] = percent;
           row["cluster_size"] = clusterSize;
-          row["quality"] = quality == AbstractionQuality::High ? "HQ" : "LQ";
+          row["quality"] = std::string(kAbstractionQualityNames.name(quality));
           row["grid_nodes"] = gridNodes;
           row["grid_edges"] = gridEdges;
           row["failures"] = failures.count - failuresBefore;

@@ -15,8 +15,9 @@ void addAgentOptions(CLI::App& cmd, AgentChoice& choice) {
   cmd.add_option("--size", choice.size, "agent size in cells (occupies size x size)")
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
-  cmd.add_option("--capability", choice.capability,
-                 "terrains the agent may stand on, comma-separated: ground,swamp,trees,water")
+  cmd.add_option(
+         "--capability", choice.capability,
+         "terrains the agent may stand on, comma-separated: " + traversableTerrainNames(","))
       ->capture_default_str();
 }
 
@@ -50,7 +51,7 @@ void addPlannerOptions(CLI::App& cmd, PlannerChoice& choice) {
 
 Algorithm parseAlgorithm(const std::string& name) {
   if (const auto algorithm = algorithmFromName(name)) return *algorithm;
-  throw BadInput{"--algo: unknown planner '" + name + "' (choose aa, haa-hq, haa-lq or hybrid)"};
+  throw BadInput{"--algo: unknown planner '" + name + "' (choose " + kAlgorithmNames.list() + ")"};
 }
 
 void checkSpecOrThrow(const AbstractionSpec& spec) {
@@ -72,6 +73,8 @@ PreparedPlanner preparePlanner(const AnnotatedGrid& grid, Algorithm algorithm,
   PreparedPlanner prepared;
   prepared.algorithm = algorithm;
   prepared.hybrid.tau = choice.tau;
+  if (const std::string problem = problemWith(prepared.hybrid); !problem.empty())
+    throw BadInput{"--tau: " + problem};
   prepared.haa.smooth = !choice.noSmooth;
   const auto began = std::chrono::steady_clock::now();
   for (const Agent& agent : annotate)

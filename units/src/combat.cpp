@@ -13,11 +13,6 @@ using pathing::Terrain;
 
 namespace {
 
-constexpr std::array<std::string_view, kArmourClasses> kArmourNames = {"infantry", "light", "heavy",
-                                                                       "amphibious"};
-constexpr std::array<std::string_view, kDamageKinds> kDamageNames = {"rifle", "machine_gun",
-                                                                     "cannon", "light_gun"};
-
 // Sight cost of one cell: trees thin sight, walls (and the map's outside) stop it.
 constexpr int kWall = std::numeric_limits<int>::max() / 4;
 int sightCost(const GridMap& map, Cell c) {
@@ -39,25 +34,19 @@ const Combatant* findById(std::span<const Combatant> units, std::uint32_t id) {
 }  // namespace
 
 std::string_view armourClassName(ArmourClass a) {
-  const auto i = static_cast<std::size_t>(a);
-  return i < kArmourNames.size() ? kArmourNames[i] : std::string_view("?");
+  return kArmourClassNames.name(a);
 }
 
 std::optional<ArmourClass> armourClassFromName(std::string_view name) {
-  for (std::size_t i = 0; i < kArmourNames.size(); ++i)
-    if (kArmourNames[i] == name) return static_cast<ArmourClass>(i);
-  return std::nullopt;
+  return kArmourClassNames.parse(name);
 }
 
 std::string_view damageKindName(DamageKind k) {
-  const auto i = static_cast<std::size_t>(k);
-  return i < kDamageNames.size() ? kDamageNames[i] : std::string_view("?");
+  return kDamageKindNames.name(k);
 }
 
 std::optional<DamageKind> damageKindFromName(std::string_view name) {
-  for (std::size_t i = 0; i < kDamageNames.size(); ++i)
-    if (kDamageNames[i] == name) return static_cast<DamageKind>(i);
-  return std::nullopt;
+  return kDamageKindNames.parse(name);
 }
 
 ArmourTable defaultArmourTable() {

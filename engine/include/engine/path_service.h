@@ -24,7 +24,7 @@ namespace warpath::engine {
 
 struct PathServiceSettings {
   pathing::Algorithm algorithm = pathing::Algorithm::Hybrid;
-  int clusterSize = 16;                   // [Unit: cells] [Limit: >= 2]
+  int clusterSize = 16;                   // [Unit: cells] [Limit: 2..pathing::kMaxClusterSize]
   std::uint64_t expansionBudget = 20000;  // [Limit: >= 1] node expansions per tick
   std::size_t cacheCapacity = 4096;       // answers kept; the oldest go first
 };
@@ -72,7 +72,10 @@ struct PathServiceMetrics {
 class PathService {
  public:
   // Builds the abstraction the algorithm needs for these capabilities and agent sizes up to
-  // maxAgentSize. The grid must outlive the service.
+  // maxAgentSize. The grid must outlive the service. Throws std::invalid_argument when
+  // problemWith(settings) is not empty, or (for the hierarchical algorithms) when the
+  // abstraction's spec is not usable (pathing::problemWith(AbstractionSpec): capabilities
+  // empty, maxAgentSize outside 1..255); callers taking user input check problemWith first.
   PathService(const pathing::AnnotatedGrid& grid, const PathServiceSettings& settings,
               std::vector<pathing::Capability> capabilities, int maxAgentSize);
   ~PathService();
@@ -109,7 +112,8 @@ class PathService {
   PathServiceMetrics metrics_;
 };
 
-// Empty when the settings can be used, else what is wrong.
+// Empty when the settings can be used, else what is wrong, naming the field, its limit and
+// the value ("clusterSize must be 2..4096 (got 1)").
 std::string problemWith(const PathServiceSettings& settings);
 
 }  // namespace warpath::engine

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "pathing/annotated_grid.h"
+#include "pathing/enum_names.h"
 
 namespace warpath::pathing {
 
@@ -30,19 +31,29 @@ enum class AbstractionQuality : std::uint8_t {
   High,  // strong dominance only: abstract paths as short as the full annotated graph's
   Low,   // weak dominance, clearances truncated to the largest agent: smaller, slightly worse
 };
+inline constexpr EnumNames<AbstractionQuality, 2> kAbstractionQualityNames{{{
+    {AbstractionQuality::High, "HQ"},
+    {AbstractionQuality::Low, "LQ"},
+}}};
+
+// Largest cluster side a spec may ask for (a cluster larger than the map is cut to the map).
+inline constexpr int kMaxClusterSize = 4096;
 
 struct AbstractionSpec {
-  int clusterSize =
-      16;  // [Unit: cells] [Limit: >= 2] side of a cluster; edge clusters may be smaller
+  // [Unit: cells] [Limit: 2..kMaxClusterSize] side of a cluster; edge clusters may be smaller
+  int clusterSize = 16;
   int maxAgentSize = 3;  // [Unit: cells] [Limit: 1..255] largest agent the graph serves
-  // Capabilities the graph serves; an agent's capability must be one of them. [Limit: non-empty]
+  // Capabilities the graph serves; an agent's capability must be one of them.
+  // [Limit: non-empty, and no capability empty]
   std::vector<Capability> capabilities;
   AbstractionQuality quality = AbstractionQuality::High;
   // Keep every intra-edge's grid path for refinement (memory for speed; see stats()).
   bool cachePaths = true;
 };
 
-// Empty when the spec can be built, else what is wrong with it.
+// Empty when the spec can be built, else what is wrong with it, naming the field, its limit and
+// the value (e.g. "clusterSize must be 2..4096 (got 1)"). build() throws std::invalid_argument
+// with this message, so callers taking user input check it first.
 std::string problemWith(const AbstractionSpec& spec);
 
 struct AbstractEdge {
@@ -73,7 +84,8 @@ struct AbstractionStats {
 
 class ClusterAbstraction {
  public:
-  // [Limit: problemWith(spec).empty()] The grid must outlive the abstraction.
+  // [Limit: problemWith(spec).empty(), else std::invalid_argument] The grid must outlive the
+  // abstraction.
   static ClusterAbstraction build(const AnnotatedGrid& grid, AbstractionSpec spec);
 
   const AnnotatedGrid& grid() const { return *grid_; }
@@ -101,7 +113,8 @@ class ClusterAbstraction {
   }
 
   // Appends the grid cells of `edge`, taken from node `from`, excluding `from`'s cell and
-  // including the target's. [Limit: edge.path != kNoPath or !edge.intra]
+  // including the target's. [Limit: edge.path != kNoPath or !edge.intra; a programming error,
+  // checked as an invariant in debug and sanitizer builds]
   void appendEdgeCells(std::uint32_t from, const AbstractEdge& edge, std::vector<Cell>* out) const;
 
  private:

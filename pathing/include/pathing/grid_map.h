@@ -31,7 +31,7 @@ struct CellRect {
 class GridMap {
  public:
   GridMap() = default;
-  // [Limit: width, height >= 0]
+  // [Limit: width, height >= 0, else std::invalid_argument ("width must be >= 0 (got -1)")]
   GridMap(int width, int height, Terrain fill = Terrain::Ground);
 
   int width() const { return width_; }

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "pathing/aa_star.h"
@@ -21,10 +22,12 @@ struct HaaOptions {
 // A query: (1) start and goal in the same cluster: AA* inside the cluster, done if found;
 // (2) insert start and goal (one Dijkstra each over their cluster reaches every node there);
 // (3) A* over the abstract graph using only edges the agent may use; (4) refine abstract
-// edges to grid cells (cached paths); (5) smooth. Agents the abstraction does not serve
-// (capability not built, size above maxAgentSize) are answered by AA* on the grid, flagged
-// in metrics.usedGridSearch. Unreachable goals are answered at once from the grid's
-// connected components.
+// edges to grid cells (cached paths); (5) smooth. Each phase is one private member working on
+// the query object's scratch, so that the phases can later be sliced across ticks. Agents the
+// abstraction does not serve (capability not built, size above maxAgentSize) are answered by
+// AA* on the grid, flagged in metrics.usedGridSearch. Unreachable goals are answered at once
+// from the grid's connected components. Bad arguments (start or goal off the map or where the
+// agent cannot stand, size 0, empty capability) get InvalidStart / InvalidGoal, never a throw.
 class HierarchicalAStar {
  public:
   explicit HierarchicalAStar(const ClusterAbstraction& abstraction, HaaOptions options = {});
@@ -39,6 +42,12 @@ class HierarchicalAStar {
  private:
   friend class HybridPlanner;
   struct Scratch;
+  // The phases of a query, in order; each adds its effort to `metrics` and leaves its
+  // output in the scratch (the refined path in `refined`).
+  bool searchSameCluster(Agent agent, Cell start, Cell goal, SearchMetrics& metrics);
+  void insertEndpoints(const AgentLayer& layer, Cell start, Cell goal, SearchMetrics& metrics);
+  bool searchAbstract(Agent agent, Cell start, Cell goal, SearchMetrics& metrics);
+  bool refine(Agent agent, Cell start, SearchMetrics& metrics);
   void smooth(const AgentLayer& layer);
 
   const ClusterAbstraction& abstraction_;
@@ -54,8 +63,14 @@ struct HybridOptions {
   std::uint64_t tau = 4096;
 };
 
+// Empty when the options are usable, else what is wrong ("tau must be >= 1 (got 0)").
+// HybridPlanner and Planner throw std::invalid_argument with this message; callers taking
+// user input check it first.
+std::string problemWith(const HybridOptions& options);
+
 class HybridPlanner {
  public:
+  // [Limit: problemWith(hybrid).empty(), else std::invalid_argument]
   HybridPlanner(const ClusterAbstraction& abstraction, HybridOptions hybrid = {},
                 HaaOptions haa = {});
   PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path);

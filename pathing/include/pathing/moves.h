@@ -40,7 +40,8 @@ constexpr int oppositeDirection(int direction) {
   return direction < 4 ? (direction + 2) % 4 : 4 + (direction - 2) % 4;
 }
 
-// The direction of a single move from (0, 0) to (dx, dy), or -1. [Limit: dx, dy in -1..1]
+// The direction of a single move from (0, 0) to (dx, dy); -1 when (dx, dy) is not one (0, 0
+// or any component outside -1..1).
 constexpr int directionOf(int dx, int dy) {
   for (int d = 0; d < kDirectionCount; ++d) {
     if (kDirections[static_cast<std::size_t>(d)].dx == dx &&

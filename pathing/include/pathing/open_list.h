@@ -22,6 +22,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "pathing/invariant.h"
+
 namespace warpath::pathing {
 
 class OpenList {
@@ -46,6 +48,11 @@ class OpenList {
   bool empty() const { return size_ == 0 && sameF_.empty(); }
 
   void push(std::uint64_t key, std::uint32_t node) {
+    // Monotone: with a consistent heuristic no f falls below the last popped. A larger drop
+    // than rounding (kFSlack) means an inconsistent heuristic or a negative edge cost, which
+    // would silently cost optimality (the entry would be expanded next, out of order).
+    WARPATH_INVARIANT((key >> kTieBits) + kFSlack >= poppedF_,
+                      "open list: f must not decrease (heuristic inconsistent?)");
     // Rounding of g + h may put an equal f one unit below the last popped: treat it as equal.
     if ((key >> kTieBits) <= poppedF_) {
       sameF_.push_back(node);
@@ -55,8 +62,10 @@ class OpenList {
     ++size_;
   }
 
-  // [Limit: !empty()]
+  // [Limit: !empty(); a programming error, checked as an invariant in debug and sanitizer
+  // builds]
   std::uint32_t pop() {
+    WARPATH_INVARIANT(!empty(), "open list: pop() on an empty list");
     if (!sameF_.empty()) {
       const std::uint32_t node = sameF_.back();
       sameF_.pop_back();
@@ -80,6 +89,9 @@ class OpenList {
   static constexpr std::uint64_t kTieMask = (std::uint64_t{1} << kTieBits) - 1;
   static constexpr double kFScale = 16777216.0;  // 2^24
   static constexpr double kTieScale = 64.0;      // g resolution of the tie-break: 1/64 cell
+  // Fixed-point f units (2^-24 cell each) by which a pushed f may undercut the last popped
+  // through floating-point rounding alone: 2^-20 cell, far above any rounding of g + h.
+  static constexpr std::uint64_t kFSlack = 16;
   // Bucket 0 holds keys equal to the last popped; bucket b > 0 keys whose highest bit
   // differing from it is bit b - 1.
   static constexpr std::size_t kBucketCount = 65;

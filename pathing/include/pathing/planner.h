@@ -4,12 +4,14 @@
 // hierarchical algorithms, a shared abstraction of the matching quality.
 
 #include <optional>
+#include <string>
 #include <string_view>
 #include <variant>
 #include <vector>
 
 #include "pathing/aa_star.h"
 #include "pathing/cluster_abstraction.h"
+#include "pathing/enum_names.h"
 #include "pathing/haa_star.h"
 
 namespace warpath::pathing {
@@ -20,15 +22,30 @@ enum class Algorithm : std::uint8_t {
   HaaLow,   // "haa-lq": HAA* on the low-quality (weak dominance) graph
   Hybrid,   // "hybrid": AA* within a node budget for short queries, else HAA* (HQ graph)
 };
+inline constexpr EnumNames<Algorithm, 4> kAlgorithmNames{{{
+    {Algorithm::AStar, "aa"},
+    {Algorithm::HaaHigh, "haa-hq"},
+    {Algorithm::HaaLow, "haa-lq"},
+    {Algorithm::Hybrid, "hybrid"},
+}}};
 
+// Names from kAlgorithmNames (kAlgorithmNames.list() for "choose one of" messages).
 std::string_view toString(Algorithm algorithm);
 std::optional<Algorithm> algorithmFromName(std::string_view name);
 // The abstraction quality an algorithm needs; nullopt for AA*.
 std::optional<AbstractionQuality> abstractionQualityFor(Algorithm algorithm);
 
+// Empty when Planner(grid, algorithm, abstraction, hybrid) can be built, else what is wrong:
+// the abstraction (present, of the quality the algorithm needs, on the same grid) or the
+// hybrid options.
+std::string problemWith(const AnnotatedGrid& grid, Algorithm algorithm,
+                        const ClusterAbstraction* abstraction, const HybridOptions& hybrid = {});
+
 class Planner {
  public:
-  // [Limit: abstraction non-null with the quality abstractionQualityFor(algorithm) unless AA*]
+  // [Limit: abstraction non-null, on `grid`, with the quality abstractionQualityFor(algorithm)
+  // unless AA* (where it is ignored); problemWith(hybrid).empty(). Else std::invalid_argument
+  // with the message of problemWith(grid, algorithm, abstraction, hybrid).]
   Planner(const AnnotatedGrid& grid, Algorithm algorithm, const ClusterAbstraction* abstraction,
           HybridOptions hybrid = {}, HaaOptions haa = {});
 

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string_view>
 
+#include "pathing/enum_names.h"
 #include "pathing/grid_map.h"
 
 namespace warpath::pathing {
@@ -18,6 +19,14 @@ enum class PathStatus : std::uint8_t {
   BudgetExhausted,  // the search stopped at its expansion limit before reaching the goal
 };
 
+inline constexpr EnumNames<PathStatus, 5> kPathStatusNames{{{
+    {PathStatus::Found, "found"},
+    {PathStatus::Unreachable, "unreachable"},
+    {PathStatus::InvalidStart, "invalid-start"},
+    {PathStatus::InvalidGoal, "invalid-goal"},
+    {PathStatus::BudgetExhausted, "budget-exhausted"},
+}}};
+// The name from kPathStatusNames ("found", "invalid-start", …).
 std::string_view toString(PathStatus status);
 
 struct SearchMetrics {
@@ -35,9 +44,11 @@ struct SearchMetrics {
   bool usedGridSearch = false;     // answered by AA* on the grid (hybrid short query, fallback)
 };
 
-// Caller-set bounds on one search. [Limit: maxExpanded >= 1]
+// Caller-set bounds on one search. Query-time arguments: a search never throws on them.
 struct SearchLimits {
-  std::uint64_t maxExpanded = UINT64_MAX;  // stop with BudgetExhausted after this many
+  // Stop with BudgetExhausted after this many expansions; 0 answers BudgetExhausted at once
+  // (after the checks of start and goal), without expanding anything.
+  std::uint64_t maxExpanded = UINT64_MAX;
   // When set, the agent's anchor never leaves this block (start and goal must lie in it);
   // a goal not reachable inside it is Unreachable.
   std::optional<CellRect> region;

@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "pathing/enum_names.h"
 #include "pathing/error.h"
 
 namespace warpath::pathing {
@@ -26,9 +27,22 @@ constexpr bool isTraversable(Terrain t) {
   return static_cast<std::uint8_t>(t) < kTraversableTerrainSlots;
 }
 
-// Lower-case name ("ground", "swamp", "trees", "water", "blocked").
+// Names, in terrain order; the traversable kinds first.
+inline constexpr EnumNames<Terrain, 5> kTerrainNames{{{
+    {Terrain::Ground, "ground"},
+    {Terrain::Swamp, "swamp"},
+    {Terrain::Trees, "trees"},
+    {Terrain::Water, "water"},
+    {Terrain::Blocked, "blocked"},
+}}};
+
+// Lower-case name from kTerrainNames ("ground", …, "blocked"; "?" for a value not in it).
 std::string_view terrainName(Terrain t);
+// kTerrainNames' names, ignoring case.
 std::optional<Terrain> terrainFromName(std::string_view name);
+// The names of the traversable terrains in kTerrainNames, e.g. "ground, swamp, trees, water":
+// what a capability may list.
+std::string traversableTerrainNames(std::string_view separator = ", ");
 
 // The set of terrains an agent may stand on, as a bitmask over traversable kinds.
 class Capability {

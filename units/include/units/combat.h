@@ -15,6 +15,7 @@
 #include <string>
 #include <string_view>
 
+#include "pathing/enum_names.h"
 #include "pathing/grid_map.h"
 #include "units/steering.h"
 
@@ -38,7 +39,20 @@ enum class DamageKind : std::uint8_t {
 };
 inline constexpr int kDamageKinds = 4;
 
-// Lower-case names for catalogues and reports ("infantry", "light", …; "rifle", …) and back.
+// Lower-case names for catalogues and reports, one table per enum (list() for "choose one of"
+// messages); the functions below read them ("?" for a value not in the table).
+inline constexpr EnumNames<ArmourClass, kArmourClasses> kArmourClassNames{{{
+    {ArmourClass::Infantry, "infantry"},
+    {ArmourClass::Light, "light"},
+    {ArmourClass::Heavy, "heavy"},
+    {ArmourClass::Amphibious, "amphibious"},
+}}};
+inline constexpr EnumNames<DamageKind, kDamageKinds> kDamageKindNames{{{
+    {DamageKind::Rifle, "rifle"},
+    {DamageKind::MachineGun, "machine_gun"},
+    {DamageKind::Cannon, "cannon"},
+    {DamageKind::LightGun, "light_gun"},
+}}};
 std::string_view armourClassName(ArmourClass a);
 std::optional<ArmourClass> armourClassFromName(std::string_view name);
 std::string_view damageKindName(DamageKind k);
