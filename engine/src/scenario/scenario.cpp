@@ -954,6 +954,27 @@ Result<Scenario> loadScenario(const fs::path& file) {
   return parseScenario(text.value(), file);
 }
 
+Result<std::int64_t> scenarioDurationTicks(std::string_view text, const fs::path& file) {
+  const FileReader none = [](const fs::path& f, FileLimit) -> Result<std::string> {
+    return Error{f.string(), 0, 0, std::string(kNoSuchFile)};
+  };
+  const Parser p(file, none);
+  try {
+    // The same keys and ranges as parse(); only the root's two scalars are looked at.
+    const YAML::Node root = loadYaml(p, text);
+    p.expectMap(root, "the scenario");
+    Scenario s;
+    if (root["tick_rate"])
+      s.settings.tickRate = p.number(root["tick_rate"], "tick_rate", 1.0, 1000.0);
+    s.duration = p.number(p.need(root, "duration", "the scenario"), "duration", 0.0, 1e6);
+    return s.durationTicks();
+  } catch (const Error& e) {
+    return e;
+  } catch (const YAML::Exception& e) {
+    return Error{file.string(), e.mark.line + 1, e.mark.column + 1, e.msg};
+  }
+}
+
 Result<std::vector<units::UnitType>> loadCatalogue(const fs::path& file) {
   const Result<std::string> text = readDiskFile(file, kYamlFileLimit);
   if (!text) return text.error();
