@@ -119,9 +119,7 @@ ReplaySource decodeSource(Decoder& d) {
   s.scenarioPath = d.str();
   s.scenarioText = d.str();
   if (s.scenarioText.size() > kYamlFileLimit.maxBytes)
-    throw Malformed{"the embedded scenario is larger than the " +
-                    std::to_string(kYamlFileLimit.maxBytes / kMiB) + " MiB limit for " +
-                    std::string(kYamlFileLimit.kind)};
+    throw Malformed{"the embedded scenario is " + fileTooLarge("", kYamlFileLimit).message};
   s.seed = d.u64();
   s.hashEvery = d.i64();
   if (s.hashEvery < 1) throw Malformed{"the hash interval must be at least 1"};
@@ -385,11 +383,7 @@ Result<Scenario> replayScenario(const Replay& replay) {
                                             FileLimit limit) -> Result<std::string> {
     const auto it = embedded.find(f.generic_string());
     if (it == embedded.end()) return Error{f.string(), 0, 0, std::string(kNoSuchFile)};
-    if (it->second->size() > limit.maxBytes) {
-      return Error{f.string(), 0, 0,
-                   "larger than the " + std::to_string(limit.maxBytes / kMiB) + " MiB limit for " +
-                       std::string(limit.kind)};
-    }
+    if (it->second->size() > limit.maxBytes) return fileTooLarge(f.string(), limit);
     return *it->second;
   };
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay);
