@@ -53,6 +53,11 @@ class Encoder {
 struct Malformed {
   std::string problem;
 };
+// A well-formed record that cannot be true of the embedded scenario (a tick past its end, an
+// end before an order): "FILE: record N: problem".
+struct Impossible {
+  std::string problem;
+};
 
 class Decoder {
  public:
@@ -114,13 +119,12 @@ ReplaySource decodeSource(Decoder& d) {
   s.scenarioPath = d.str();
   s.scenarioText = d.str();
   if (s.scenarioText.size() > kYamlFileLimit.maxBytes)
-    throw Malformed{"the embedded scenario is larger than the " +
-                    std::to_string(kYamlFileLimit.maxBytes / kMiB) + " MiB limit for " +
-                    std::string(kYamlFileLimit.kind)};
+    throw Malformed{"the embedded scenario is " + fileTooLarge("", kYamlFileLimit).message};
   s.seed = d.u64();
   s.hashEvery = d.i64();
   if (s.hashEvery < 1) throw Malformed{"the hash interval must be at least 1"};
   const std::uint32_t n = d.u32();
+  if (n > d.left() / 8) throw Malformed{"the scenario record lists more files than it holds"};
   for (std::uint32_t i = 0; i < n; ++i) {
     ReplayFile f;
     f.path = d.str();
@@ -199,8 +203,15 @@ std::string endPayload(const ReplayEndRecord& end) {
   return e.bytes();
 }
 
-// Adds one record's contents to `replay`, checking the order records must come in.
-void addRecord(Replay& replay, bool& haveSource, char kind, Decoder& d) {
+// "an order at tick 5000000000, after the scenario's last tick 1800".
+std::string pastTheEnd(const char* what, std::int64_t tick, std::int64_t lastTick) {
+  return std::string(what) + " at tick " + std::to_string(tick) +
+         ", after the scenario's last tick " + std::to_string(lastTick);
+}
+
+// Adds one record's contents to `replay`, checking the order records must come in and that no
+// tick lies past `lastTick` (the embedded scenario's duration, once the scenario record is in).
+void addRecord(Replay& replay, bool& haveSource, char kind, Decoder& d, std::int64_t lastTick) {
   if (replay.end) throw Malformed{"a record follows the end record"};
   if (!haveSource && kind != 'S') throw Malformed{"the first record is not the scenario"};
   switch (kind) {
@@ -213,6 +224,7 @@ void addRecord(Replay& replay, bool& haveSource, char kind, Decoder& d) {
       IssuedOrder o = decodeOrder(d);
       if (o.tick < 0 || (!replay.orders.empty() && o.tick < replay.orders.back().tick))
         throw Malformed{"order ticks out of sequence"};
+      if (o.tick > lastTick) throw Impossible{pastTheEnd("an order", o.tick, lastTick)};
       replay.orders.push_back(std::move(o));
       break;
     }
@@ -220,6 +232,7 @@ void addRecord(Replay& replay, bool& haveSource, char kind, Decoder& d) {
       const TickHash h{d.i64(), d.u64()};
       if (h.tick <= (replay.hashes.empty() ? 0 : replay.hashes.back().tick))
         throw Malformed{"hash ticks out of sequence"};
+      if (h.tick > lastTick) throw Impossible{pastTheEnd("a state hash", h.tick, lastTick)};
       replay.hashes.push_back(h);
       break;
     }
@@ -230,6 +243,11 @@ void addRecord(Replay& replay, bool& haveSource, char kind, Decoder& d) {
       ReplayEndRecord end{static_cast<ReplayEnd>(reason), {d.i64(), d.u64()}};
       if (end.last.tick < (replay.hashes.empty() ? 0 : replay.hashes.back().tick))
         throw Malformed{"the end record's tick precedes a recorded hash"};
+      if (end.last.tick > lastTick)
+        throw Impossible{pastTheEnd("the end record", end.last.tick, lastTick)};
+      if (!replay.orders.empty() && end.last.tick < replay.orders.back().tick)
+        throw Impossible{"the end record's tick " + std::to_string(end.last.tick) +
+                         " precedes an order at tick " + std::to_string(replay.orders.back().tick)};
       replay.end = end;
       break;
     }
@@ -301,7 +319,8 @@ Result<Replay> readReplay(const fs::path& file) {
   // Then record by record: only one record's bytes are held at a time.
   bool haveSource = false;
   std::string record;
-  while (true) {
+  std::int64_t lastTick = kMaxScenarioTicks;  // until the scenario record says otherwise
+  for (std::int64_t number = 1;; ++number) {
     const std::uint64_t at = in.offset();
     record.clear();
     Result<std::size_t> got = in.read(record, kRecordHead);
@@ -339,9 +358,18 @@ Result<Replay> readReplay(const fs::path& file) {
       return fail(where + " is corrupted (checksum mismatch)");
     try {
       Decoder d(payload);
-      addRecord(replay, haveSource, kind, d);
+      addRecord(replay, haveSource, kind, d, lastTick);
     } catch (const Malformed& m) {
       return fail(where + " is malformed: " + m.problem);
+    } catch (const Impossible& m) {
+      return fail("record " + std::to_string(number) + ": " + m.problem);
+    }
+    if (kind == 'S') {
+      // Every later tick must lie within the embedded scenario's duration. A scenario whose
+      // duration cannot be read is refused at playback; until then the schema's maximum holds.
+      const Result<std::int64_t> ticks =
+          scenarioDurationTicks(replay.source.scenarioText, replay.source.scenarioPath);
+      if (ticks) lastTick = ticks.value();
     }
   }
   if (!haveSource) return fail("truncated: no scenario record");
@@ -356,11 +384,7 @@ Result<Scenario> replayScenario(const Replay& replay) {
                                             FileLimit limit) -> Result<std::string> {
     const auto it = embedded.find(f.generic_string());
     if (it == embedded.end()) return Error{f.string(), 0, 0, std::string(kNoSuchFile)};
-    if (it->second->size() > limit.maxBytes) {
-      return Error{f.string(), 0, 0,
-                   "larger than the " + std::to_string(limit.maxBytes / kMiB) + " MiB limit for " +
-                       std::string(limit.kind)};
-    }
+    if (it->second->size() > limit.maxBytes) return fileTooLarge(f.string(), limit);
     return *it->second;
   };
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay);
@@ -432,6 +456,12 @@ namespace {
 // reinforcement as it comes), areas inside the map, reinforcement groups that exist and come
 // in once, winners that are teams.
 std::string scriptProblem(const Replay& replay, const Scenario& scenario) {
+  // readReplay has checked this against the scenario's duration already; a Replay built or
+  // changed in memory has not.
+  if (replay.lastTick() > scenario.durationTicks() ||
+      (!replay.orders.empty() && replay.orders.back().tick > scenario.durationTicks()))
+    return "the replay goes on past the scenario's last tick " +
+           std::to_string(scenario.durationTicks());
   std::uint32_t spawned = 0;
   std::vector<bool> in(scenario.groups.size(), false);
   for (std::size_t g = 0; g < scenario.groups.size(); ++g) {
@@ -495,8 +525,12 @@ void ReplayPlayback::restart() {
   nextHash_ = 0;
 }
 
+std::int64_t ReplayPlayback::lastTick() const {
+  return std::min(replay_->lastTick(), scenario_->durationTicks());
+}
+
 bool ReplayPlayback::done() const {
-  return run_->world().tick() >= replay_->lastTick() || run_->ended();
+  return run_->world().tick() >= lastTick() || run_->ended();
 }
 
 std::uint64_t ReplayPlayback::recordedHash() const {
@@ -539,7 +573,7 @@ VerifyOutcome verifyReplay(ReplayPlayback& playback) {
   playback.restart();
   VerifyOutcome outcome;
   const Replay& replay = playback.replay();
-  while (playback.run().world().tick() < replay.lastTick()) {
+  while (playback.run().world().tick() < playback.lastTick()) {
     outcome.mismatch = playback.step();
     outcome.ticks = playback.run().world().tick();
     if (outcome.mismatch) return outcome;

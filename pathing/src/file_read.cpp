@@ -20,18 +20,6 @@ Error cannotRead(const std::filesystem::path& file, int error) {
   return problem(file, std::move(message));
 }
 
-// "64 MiB" (or "1.5 MiB", or "100 bytes" for limits under a MiB).
-std::string describeLimit(std::uint64_t bytes) {
-  if (bytes < kMiB) return std::to_string(bytes) + " bytes";
-  std::string out = std::to_string(bytes / kMiB);
-  if (const std::uint64_t tenths = (bytes % kMiB) * 10 / kMiB; tenths != 0) {
-    out.append(".");
-    out.append(std::to_string(tenths));
-  }
-  out.append(" MiB");
-  return out;
-}
-
 }  // namespace
 
 Result<CappedFile> CappedFile::open(const std::filesystem::path& file, FileLimit limit) {
@@ -55,11 +43,22 @@ Result<CappedFile> CappedFile::open(const std::filesystem::path& file, FileLimit
 }
 
 Error CappedFile::tooLarge() const {
+  return fileTooLarge(name_, limit_);
+}
+
+std::string describeSize(std::uint64_t bytes) {
+  constexpr std::uint64_t kKiB = 1024;
+  if (bytes % kMiB == 0 && bytes != 0) return std::to_string(bytes / kMiB) + " MiB";
+  if (bytes % kKiB == 0 && bytes != 0) return std::to_string(bytes / kKiB) + " KiB";
+  return std::to_string(bytes) + " bytes";
+}
+
+Error fileTooLarge(const std::string& file, FileLimit limit) {
   std::string message = "larger than the ";
-  message.append(describeLimit(limit_.maxBytes));
+  message.append(describeSize(limit.maxBytes));
   message.append(" limit for ");
-  message.append(limit_.kind);
-  return Error{name_, 0, 0, std::move(message)};
+  message.append(limit.kind);
+  return Error{file, 0, 0, std::move(message)};
 }
 
 Result<std::size_t> CappedFile::read(std::string& out, std::size_t count) {

@@ -53,6 +53,27 @@ std::vector<std::size_t> recordOffsets(const std::string& bytes) {
   return at;
 }
 
+std::uint32_t recordLength(const std::string& bytes, std::size_t record) {
+  std::uint32_t length = 0;
+  for (int b = 0; b < 4; ++b)
+    length |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[record + 1 + b]))
+              << (8 * b);
+  return length;
+}
+
+// Writes `value` little-endian at byte `at` of the payload of the record at `record`, and puts
+// the payload's CRC-32 right, so the change passes the checksums.
+void rewritePayload(std::string& bytes, std::size_t record, std::size_t at, std::int64_t value) {
+  for (int b = 0; b < 8; ++b)
+    bytes[record + 9 + at + static_cast<std::size_t>(b)] =
+        static_cast<char>(static_cast<std::uint64_t>(value) >> (8 * b));
+  const std::uint32_t length = recordLength(bytes, record);
+  const auto c = static_cast<std::uint32_t>(
+      crc32(0L, reinterpret_cast<const Bytef*>(bytes.data() + record + 9), length));
+  for (int b = 0; b < 4; ++b)
+    bytes[record + 9 + length + static_cast<std::size_t>(b)] = static_cast<char>(c >> (8 * b));
+}
+
 std::string idsText(const std::vector<UnitId>& ids) {
   std::string t;
   for (UnitId id : ids)
@@ -524,6 +545,92 @@ TEST_F(Replays, BattleCommandStreamsAreChecked) {
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() + ": record at byte " + std::to_string(o) +
                                  " is malformed: unknown order kind 9");
+}
+
+// A replay whose records claim ticks the scenario never reaches passes its checksums, but is
+// refused on reading, naming the record: before, `replay verify` simulated "forever".
+TEST_F(Replays, TicksPastTheScenarioEndAreRefused) {
+  const fs::path file = record(1);  // 12 s at 30 Hz: ticks 0..360
+  const std::string good = slurp(file);
+  const std::vector<std::size_t> records = recordOffsets(good);
+  const std::size_t end = records.back();
+  ASSERT_EQ(good[end], 'E');
+  const std::string number = std::to_string(records.size());
+
+  std::string bad = good;
+  rewritePayload(bad, end, 1, 5'000'000'000);  // the end record's tick, after its reason
+  spit(file, bad);
+  const std::string expected = file.string() + ": record " + number +
+                               ": the end record at tick 5000000000, after the scenario's last "
+                               "tick 360";
+  EXPECT_EQ(readError(file), expected);
+  for (const char* command : {"info", "verify"}) {
+    const RtsResult r = rts(std::string("replay ") + command + " " + file.string());
+    EXPECT_EQ(r.status, 2) << r.out;
+    EXPECT_NE(r.out.find(expected), std::string::npos) << r.out;
+  }
+  const RtsResult render =
+      rts("replay render " + file.string() + " --frames " + (dir_ / "frames").string());
+  EXPECT_EQ(render.status, 2) << render.out;
+  EXPECT_FALSE(fs::exists(dir_ / "frames" / "frame_000000.png"));
+
+  // The last state hash (the record before the end) claims a tick past the end.
+  bad = good;
+  const std::size_t hash = records[records.size() - 2];
+  ASSERT_EQ(bad[hash], 'H');
+  rewritePayload(bad, hash, 0, 361);
+  spit(file, bad);
+  EXPECT_EQ(readError(file), file.string() + ": record " + std::to_string(records.size() - 1) +
+                                 ": a state hash at tick 361, after the scenario's last tick 360");
+
+  // Ticks going backwards.
+  bad = good;
+  rewritePayload(bad, hash, 0, 3);
+  spit(file, bad);
+  EXPECT_EQ(readError(file), file.string() + ": record at byte " + std::to_string(hash) +
+                                 " is malformed: hash ticks out of sequence");
+
+  // An end before the ticks it follows.
+  bad = good;
+  const std::size_t order = records[1];
+  ASSERT_EQ(bad[order], 'O');
+  rewritePayload(bad, order, 0, 0);
+  rewritePayload(bad, end, 1, 0);
+  spit(file, bad);
+  EXPECT_NE(readError(file).find(": the end record's tick precedes a recorded hash"),
+            std::string::npos);
+}
+
+TEST_F(Replays, PlaybackStopsAtTheScenarioEnd) {
+  const fs::path file = record(1);
+  Result<Replay> replay = readReplay(file);
+  ASSERT_TRUE(replay.ok()) << replay.error().describe();
+  Replay changed = replay.value();
+  changed.end->last.tick = 1'000'000'000;  // made in memory, never checked by readReplay
+  const Result<ReplayPlayback> playback = ReplayPlayback::open(changed, file.string());
+  ASSERT_FALSE(playback.ok());
+  EXPECT_EQ(playback.error().describe(),
+            file.string() + ": the replay goes on past the scenario's last tick 360");
+}
+
+// Files that are not replays are refused before they are read: quickly and in little memory.
+TEST_F(Replays, NonReplayFilesAreRefusedAtOnce) {
+  const fs::path sparse = dir_ / "sparse.rpl";
+  { std::ofstream create(sparse); }
+  fs::resize_file(sparse, 300 * warpath::kMiB);  // no disk blocks: a sparse file of zeros
+  EXPECT_EQ(readError(sparse), sparse.string() + ": larger than the 256 MiB limit for replays");
+  fs::resize_file(sparse, 200 * warpath::kMiB);  // within the cap: the header says no
+  EXPECT_EQ(readError(sparse), sparse.string() + ": not a warpath replay (no WPREPLAY header)");
+  EXPECT_EQ(readError("/dev/zero"), "/dev/zero: not a regular file");
+  EXPECT_EQ(readError(dir_), dir_.string() + ": is a directory");
+  EXPECT_EQ(readError(dir_ / "none.rpl"), (dir_ / "none.rpl").string() + ": no such file");
+  for (const fs::path& f : {sparse, fs::path("/dev/zero"), dir_}) {
+    for (const char* command : {"info", "verify"}) {
+      const RtsResult r = rts(std::string("replay ") + command + " " + f.string());
+      EXPECT_EQ(r.status, 2) << r.out;  // was 134: an uncaught std::ios_failure for a folder
+      EXPECT_NE(r.out.find("rts: error: " + f.string() + ": "), std::string::npos) << r.out;
+    }
+  }
 }
 
 }  // namespace

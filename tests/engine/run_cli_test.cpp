@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -206,6 +207,57 @@ TEST_F(RunCli, ATravelRunHasNoBattleSummary) {
   ASSERT_EQ(j["battle"].size(), 1u);
   EXPECT_EQ(j["battle"][0]["units"], 3);
   EXPECT_EQ(j["battle"][0]["alive"], 3);
+}
+
+// Bad input of every kind: exit 2 with the file and the problem, quickly (before, a directory
+// aborted with exit 134, an alias bomb built an 8192x8192 map, `--until -1` printed a 300-digit
+// range and `--until 99999999999999999999` was accepted).
+TEST_F(RunCli, BadInputIsRefusedQuicklyNamingFileAndProblem) {
+  const std::string ok = write("ok.yaml", "  - max_stuck: 0\n");
+  std::string bomb = "map:\n  rows: [&r '" + std::string(8192, '.') + "'";
+  for (int i = 0; i < 8191; ++i)
+    bomb += ", *r";
+  std::ofstream(dir_ / "bomb.yaml") << bomb << "]\nduration: 1\nteams: [a]\ngroups: []\n";
+  std::ofstream(dir_ / "deep.yaml")
+      << "expectations: " << std::string(5000, '[') << std::string(5000, ']') << "\n";
+  std::ofstream(dir_ / "zero_map.yaml") << "map: /dev/zero\nduration: 1\nteams: [a]\n";
+  const std::string bombFile = (dir_ / "bomb.yaml").string();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"run /dev/zero", "rts: error: /dev/zero: not a regular file"},
+      {"run " + dir_.string(), "rts: error: " + dir_.string() + ": is a directory"},
+      {"run " + bombFile,
+       "rts: error: " + bombFile +
+           ":2:9: the inline map has 8192 rows of 8192 cells, more than the 1048576 cells "
+           "allowed: give a .map file"},
+      {"run " + (dir_ / "deep.yaml").string(),
+       (dir_ / "deep.yaml").string() + ":1:"},  // then the column and the problem
+      {"run " + (dir_ / "deep.yaml").string(), ": nesting deeper than 64 levels"},
+      {"run " + (dir_ / "zero_map.yaml").string(),
+       (dir_ / "zero_map.yaml").string() + ":1:6: map: /dev/zero: not a regular file"},
+      {"run " + ok + " --until -1", "--until: must be a whole number between 0 and 1000000000"},
+      {"run " + ok + " --until 99999999999999999999",
+       "--until: must be a whole number between 0 and 1000000000, got '99999999999999999999'"},
+      {"run " + ok + " --until 601",
+       "--until: must be between 0 and 600 (the scenario's duration in ticks), got 601"},
+      {"run " + ok + " --replay-every 0",
+       "--replay-every: must be a whole number between 1 and 1000000000, got '0'"},
+      {"run " + ok + " --frame-every 0", "--frame-every: must be a whole number between 1"},
+      {"test /dev/zero", "/dev/zero"},
+  };
+  for (const auto& [args, message] : cases) {
+    const auto began = std::chrono::steady_clock::now();
+    const Result r = rts(args);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << args << "\n" << r.out;
+    EXPECT_EQ(r.out.find("179769313486231570814527423731704356798070567525844996598917476803157"),
+              std::string::npos)
+        << r.out;
+    EXPECT_LT(seconds, 5.0) << args;  // in practice well under 0.1 s
+  }
+  // --until at the duration is fine.
+  EXPECT_EQ(rts("run " + ok + " --until 600 --quiet").status, 0);
 }
 
 }  // namespace

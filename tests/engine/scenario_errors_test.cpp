@@ -111,6 +111,77 @@ TEST(Errors, ScenarioFileThatIsNotAFile) {
   }
 }
 
+// Anchors and aliases: a small file that stands for a huge one is refused before anything big
+// is built, naming the limit and the place.
+std::string repeated(const std::string& alias, int times) {
+  std::string out;
+  for (int i = 0; i < times; ++i)
+    out += ", " + alias;
+  return out;
+}
+
+TEST(Errors, AliasedInlineMapIsBoundedByCells) {
+  // 41 KB of text, an 8192x8192 map once expanded.
+  const std::string text = "map:\n  rows: [&r '" + std::string(8192, '.') + "'" +
+                           repeated("*r", 8191) +
+                           "]\ncatalogue: ../assets/units.yaml\nduration: 1\nteams: [a]\n"
+                           "groups: []\n";
+  EXPECT_EQ(errorOf(text).describe(),
+            kFile +
+                ":2:9: the inline map has 8192 rows of 8192 cells, more than the 1048576 "
+                "cells allowed: give a .map file");
+  // Rows may still be repeated within the limit.
+  const std::string small = "map:\n  rows: [&r '....'" + repeated("*r", 3) +
+                            "]\ncatalogue: ../assets/units.yaml\nduration: 1\nteams: [a]\n"
+                            "groups: []\n";
+  EXPECT_TRUE(parseScenario(small, kFile).ok());
+}
+
+TEST(Errors, AliasedGroupsAreBoundedByUnitsAndEntries) {
+  const std::string head = scenario("", "");
+  const std::string group =
+      "{team: blue, type: infantry, count: 1000000, spawn: {x: 0, y: 0, w: 3, h: 3}}";
+  std::string text = head.substr(0, head.size() - std::string("groups:\n").size()) +
+                     "groups: [&g " + group + repeated("*g", 30) + "]\n";
+  Error e = errorOf(text);
+  EXPECT_EQ(e.message, "the groups have more than 20000 units in all (the limit for one scenario)");
+  EXPECT_EQ(e.line, 13);
+  const std::string one = "{team: blue, type: infantry, count: 1, spawn: {x: 0, y: 0, w: 3, h: 3}}";
+  text = head.substr(0, head.size() - std::string("groups:\n").size()) + "groups: [&g " + one +
+         repeated("*g", 1500) + "]\n";
+  e = errorOf(text);
+  EXPECT_EQ(e.message, "'groups' has 1501 entries, more than the 1000 allowed");
+  EXPECT_EQ(e.line, 13);
+  EXPECT_EQ(e.column, 9);
+}
+
+TEST(Errors, AliasBombIsBoundedByNodes) {
+  // Nine levels of ten aliases each: a billion nodes once expanded, 0.4 KB of text.
+  std::string text = "l0: &l0 [a, a, a, a, a, a, a, a, a, a]\n";
+  for (int i = 1; i < 9; ++i) {
+    const std::string alias = "*l" + std::to_string(i - 1);
+    text += "l" + std::to_string(i) + ": &l" + std::to_string(i) + " [" + alias +
+            repeated(alias, 9) + "]\n";
+  }
+  const Error e = errorOf(text);
+  EXPECT_EQ(e.message,
+            "the file expands to more than 250000 YAML nodes (anchors and aliases repeat what they "
+            "name)");
+  EXPECT_EQ(e.file, kFile);
+  EXPECT_GT(e.line, 0);
+}
+
+TEST(Errors, DeepNestingNamesTheLimit) {
+  for (int depth : {100, 5000}) {  // past our limit; past yaml-cpp's own depth guard
+    const std::string text =
+        "map: x\nexpectations: " + std::string(static_cast<std::size_t>(depth), '[') +
+        std::string(static_cast<std::size_t>(depth), ']') + "\n";
+    const Error e = errorOf(text);
+    EXPECT_EQ(e.message, "nesting deeper than 64 levels") << depth;
+    EXPECT_EQ(e.line, 2) << depth;
+  }
+}
+
 TEST(Errors, YamlSyntaxError) {
   const Error e = errorOf("map: [unclosed\nduration: 1\n");
   EXPECT_GT(e.line, 0);

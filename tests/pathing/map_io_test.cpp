@@ -527,6 +527,10 @@ TEST(ReadFileCappedTest, StopsAtTheCapWhileReading) {
   ASSERT_TRUE(opened.value().read(head, 4));
   EXPECT_EQ(head, "0123");
   fs::remove(file);
+  // /proc files are regular but stat gives them size 0: the cap stops the read itself.
+  const Result<std::string> proc = readFileCapped("/proc/self/maps", {16, "tests"});
+  ASSERT_FALSE(proc);
+  EXPECT_EQ(proc.error().describe(), "/proc/self/maps: larger than the 16 bytes limit for tests");
   const Result<std::string> gone = readFileCapped(file, {10, "tests"});
   ASSERT_FALSE(gone);
   EXPECT_EQ(gone.error().describe(), file.string() + ": no such file");

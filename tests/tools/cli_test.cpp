@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -248,7 +251,40 @@ TEST(RtsCliTest, BenchPaperRejectsBadInput) {
   const std::string paper = "bench paper " + fixture("terrain.map") + " --queries 5";
   expectBadInput(paper + " --percents 0,x", "--percents: expected comma-separated whole numbers");
   expectBadInput(paper + " --percents 150", "--percents: 150 is not in 0..100");
-  expectBadInput(paper + " --cluster-sizes 1", "--cluster-size 1");
+  expectBadInput(paper + " --cluster-sizes 1", "--cluster-sizes: 1: cluster size must be");
+  expectBadInput(paper + " --cluster-sizes 10,0", "--cluster-sizes: 0: cluster size must be");
+}
+
+// Files that cannot be maps are refused at once, naming the file and the problem. Before,
+// `rts path /dev/zero` read until it had grown past 4 GB.
+TEST(RtsCliTest, SpecialFilesDirectoriesAndHugeFilesAreRefusedQuickly) {
+  const fs::path dir = fs::temp_directory_path() / ("rts_cli_huge_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path huge = dir / "huge.map";
+  { std::ofstream create(huge); }
+  fs::resize_file(huge, std::uintmax_t{2} << 30);  // 2 GiB of zeros, sparse: no disk used
+  const fs::path scen = dir / "huge.scen";
+  { std::ofstream create(scen); }
+  fs::resize_file(scen, std::uintmax_t{100} << 20);
+  const std::string path = " --from 0,0 --to 1,1";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"path /dev/zero" + path, "/dev/zero: not a regular file"},
+      {"path '" + dir.string() + "'" + path, dir.string() + ": is a directory"},
+      {"path '" + huge.string() + "'" + path,
+       huge.string() + ": larger than the 64 MiB limit for maps"},
+      {"bench scen " + fixture("small.map") + " '" + scen.string() + "'",
+       scen.string() + ": larger than the 64 MiB limit for scen files"},
+      {"bench scen " + fixture("small.map") + " /dev/zero", "/dev/zero: not a regular file"},
+      {"bench random /dev/zero", "/dev/zero: not a regular file"},
+  };
+  for (const auto& [args, message] : cases) {
+    const auto began = std::chrono::steady_clock::now();
+    expectBadInput(args, "rts: error: " + message);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    EXPECT_LT(seconds, 5.0) << args;  // in practice a few milliseconds
+  }
+  fs::remove_all(dir);
 }
 
 TEST(RtsCliTest, PathWithTheHierarchicalPlanners) {

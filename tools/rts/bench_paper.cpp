@@ -217,8 +217,11 @@ int runPaperBench(const PaperBenchOptions& options) {
   for (int p : percents) {
     if (p < 0 || p > 100) throw BadInput{fmt::format("--percents: {} is not in 0..100", p)};
   }
-  for (int clusterSize : clusterSizes)
-    checkSpecOrThrow(experimentSpec(clusterSize, AbstractionQuality::High));
+  for (int clusterSize : clusterSizes) {
+    const std::string problem = problemWith(experimentSpec(clusterSize, AbstractionQuality::High));
+    if (!problem.empty())
+      throw BadInput{fmt::format("--cluster-sizes: {}: {}", clusterSize, problem)};
+  }
   std::vector<GridMap> maps;
   for (const std::string& file : options.mapFiles)
     maps.push_back(loadMapOrThrow(file));

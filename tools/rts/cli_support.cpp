@@ -1,6 +1,9 @@
 #include "rts/cli_support.h"
 
 #include <charconv>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
 
 #include "pathing/map_io.h"
 
@@ -11,6 +14,36 @@ std::optional<int> parseInt(std::string_view text) {
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (text.empty() || ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
   return value;
+}
+
+CLI::Validator wholeNumberIn(std::int64_t lo, std::int64_t hi) {
+  const std::string range = std::to_string(lo) + " and " + std::to_string(hi);
+  return CLI::Validator(
+      [lo, hi, range](std::string& text) -> std::string {
+        std::int64_t value = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (text.empty() || ec != std::errc() || end != text.data() + text.size() || value < lo ||
+            value > hi)
+          return "must be a whole number between " + range + ", got '" + text + "'";
+        return {};
+      },
+      "INT in " + std::to_string(lo) + ".." + std::to_string(hi));
+}
+
+CLI::Validator positiveNumberUpTo(double hi) {
+  std::ostringstream bound;
+  bound << std::fixed << std::setprecision(hi == std::floor(hi) ? 0 : 3) << hi;
+  const std::string limit = bound.str();
+  return CLI::Validator(
+      [hi, limit](std::string& text) -> std::string {
+        double value = 0.0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (text.empty() || ec != std::errc() || end != text.data() + text.size() ||
+            !(value > 0.0 && value <= hi))
+          return "must be a number greater than 0 and at most " + limit + ", got '" + text + "'";
+        return {};
+      },
+      "NUMBER in (0, " + limit + "]");
 }
 
 pathing::Cell parseCell(std::string_view text, std::string_view option) {

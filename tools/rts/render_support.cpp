@@ -62,7 +62,7 @@ void addFrameOptions(CLI::App& cmd, FrameOptions& options, const std::string& ev
   cmd.add_option("--frames", options.framesDir,
                  "Write a PNG frame (frame_000123.png, by tick) into this folder");
   cmd.add_option(everyFlag, options.every, "A frame every N ticks (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(wholeNumberIn(1, 1'000'000'000));
   cmd.add_option("--gif", options.gif, "Write the frames as an animated GIF");
   cmd.add_option("--frame-size", options.size, "Pixels along the frame's longer side (default 512)")
       ->check(CLI::Range(16, 8192));

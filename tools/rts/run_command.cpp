@@ -152,6 +152,10 @@ int runRun(const RunOptions& options) {
   engine::ReplaySource source;
   const engine::Scenario scenario =
       loadScenarioOrThrow(options.scenario, options.replay.empty() ? nullptr : &source);
+  if (options.until && *options.until > scenario.durationTicks()) {
+    throw BadInput{"--until: must be between 0 and " + std::to_string(scenario.durationTicks()) +
+                   " (the scenario's duration in ticks), got " + std::to_string(*options.until)};
+  }
   prepareOutputPath(options.report, "--report");
   prepareOutputPath(options.replay, "--replay");
   engine::ScenarioRun run(scenario, options.seed);
@@ -243,14 +247,16 @@ void registerRunCommand(CLI::App& app, CommandRunner& run) {
   cmd->add_option("scenario", options->scenario, "Scenario YAML file")->required();
   cmd->add_option("--seed", options->seed, "Replace the scenario's seed");
   cmd->add_option("--report", options->report, "Write the report (JSON) to this file");
-  cmd->add_option("--until", options->until, "Stop after this tick")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--until", options->until,
+                  "Stop after this tick (at most the scenario's duration in ticks)")
+      ->check(wholeNumberIn(0, engine::kMaxScenarioTicks));
   cmd->add_flag("--quiet", options->quiet, "Print nothing but errors");
   addFrameOptions(*cmd, options->frames, "--frame-every");
   cmd->add_option("--replay", options->replay,
                   "Write a self-contained replay (scenario, files, seed, orders, state hashes)");
   cmd->add_option("--replay-every", options->replayEvery,
                   "Record the state hash every N ticks (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(wholeNumberIn(1, engine::kMaxScenarioTicks));
 }
 
 }  // namespace warpath::tools

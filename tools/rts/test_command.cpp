@@ -25,9 +25,13 @@ int runTest(const TestOptions& options) {
   if (!fs::is_directory(options.folder, error))
     throw BadInput{"'" + options.folder + "' is not a folder"};
   std::vector<fs::path> files;
-  for (const fs::directory_entry& entry : fs::directory_iterator(options.folder)) {
+  // The error_code forms: an unreadable folder is bad input, not an uncaught exception.
+  fs::directory_iterator entries(options.folder, error);
+  if (error) throw BadInput{options.folder + ": cannot read: " + error.message()};
+  for (const fs::directory_entry& entry : entries) {
     const fs::path& p = entry.path();
-    if (entry.is_regular_file() && (p.extension() == ".yaml" || p.extension() == ".yml"))
+    std::error_code ignored;
+    if (entry.is_regular_file(ignored) && (p.extension() == ".yaml" || p.extension() == ".yml"))
       files.push_back(p);
   }
   std::sort(files.begin(), files.end());

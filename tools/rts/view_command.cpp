@@ -41,14 +41,14 @@ void registerViewCommand(CLI::App& app, CommandRunner& run) {
   cmd->add_option("--size", options->def.size, "Pixels along the window's longer side (768)")
       ->check(CLI::Range(16, 8192));
   cmd->add_option("--speed", options->def.speed, "Simulated seconds per second at the start (1)")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumberUpTo(1e6));
   cmd->add_flag("--paused", options->def.paused, "Start paused");
   cmd->add_option("--keys", options->def.keys,
                   "Keys to press one a frame from the start (SDL names, Shift+ to hold shift)")
       ->delimiter(',');
   cmd->add_option("--frames-then-exit", options->def.framesThenExit,
                   "Draw N frames, then quit (for tests under SDL_VIDEODRIVER=offscreen)")
-      ->check(CLI::PositiveNumber);
+      ->check(wholeNumberIn(1, 1'000'000'000));
 }
 
 }  // namespace warpath::tools

@@ -75,7 +75,9 @@ struct Replay {
 // every file it read (seed and hash interval are left to the caller).
 Result<Scenario> loadRecordedScenario(const std::filesystem::path& file, ReplaySource& source);
 
-// Reads and checks a whole replay. Errors: "FILE: problem" (an Error with line 0).
+// Reads and checks a whole replay, the header first, then record by record (through
+// CappedFile, at most kReplayFileLimit bytes). Errors: "FILE: problem" (an Error with line 0);
+// a tick past the embedded scenario's duration: "FILE: record N: problem".
 Result<Replay> readReplay(const std::filesystem::path& file);
 
 // The embedded scenario, its map and catalogue read from the replay, never from disk.
@@ -127,7 +129,9 @@ class ReplayPlayback {
   std::optional<HashMismatch> step();
   // Starts again from tick 0 (scrubbing back: worlds cannot be copied, so re-simulate).
   void restart();
-  // At the replay's last tick, or the battle ended.
+  // The last tick playback goes to: the replay's, never past the scenario's duration.
+  std::int64_t lastTick() const;
+  // At lastTick(), or the battle ended.
   bool done() const;
   const ScenarioRun& run() const { return *run_; }
   const Scenario& scenario() const { return *scenario_; }

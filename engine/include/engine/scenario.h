@@ -144,6 +144,13 @@ Result<Scenario> parseScenario(std::string_view text, const std::filesystem::pat
 Result<Scenario> parseScenario(std::string_view text, const std::filesystem::path& file,
                                const FileReader& files);
 Result<Scenario> loadScenario(const std::filesystem::path& file);
+// The scenario's length in ticks (duration x tick rate, as Scenario::durationTicks()) from its
+// `duration` and `tick_rate` alone, without loading its map or anything else: what a replay's
+// ticks are checked against before anything is simulated. [Limit: <= kMaxScenarioTicks]
+Result<std::int64_t> scenarioDurationTicks(std::string_view text,
+                                           const std::filesystem::path& file);
+// The longest scenario the schema allows: duration 1e6 s at tick_rate 1000. [Unit: ticks]
+inline constexpr std::int64_t kMaxScenarioTicks = 1'000'000'000;
 // A catalogue file: `unit_types:` mapping type names to their fields.
 Result<std::vector<units::UnitType>> loadCatalogue(const std::filesystem::path& file);
 

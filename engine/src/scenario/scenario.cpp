@@ -2,14 +2,17 @@
 // and the public functions turn it into a result.
 #include "engine/scenario.h"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <map>
 #include <numbers>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "pathing/map_io.h"
 #include "pathing/planner.h"
@@ -120,6 +123,13 @@ class Parser {
     out << v;
     return out.str();
   }
+
+  // What checkReachable has worked out already: the map components a unit type can reach in an
+  // area, and the (group, area) pairs found reachable. Aliases can repeat one order or goal
+  // thousands of times; each is checked once.
+  using AreaKey = std::tuple<int, int, int, int, int>;
+  mutable std::map<AreaKey, std::set<std::uint32_t>> reachableComponents;
+  mutable std::set<std::pair<std::string, AreaKey>> reachableGroups;
 
  private:
   fs::path file_;
@@ -294,11 +304,69 @@ void parseUnitTypes(const Parser& p, const YAML::Node& node,
   }
 }
 
+// Bounds on what a scenario or catalogue may expand to. yaml-cpp keeps one node for an anchor
+// and every alias of it, but reading walks each alias in full: an 80 KB file can stand for an
+// 8192x8192 map or millions of groups. The limits are checked before anything is built from the
+// file (docs/scenarios.md, "Limits").
+constexpr int kMaxNesting = 64;                 // levels of mappings and lists
+constexpr std::size_t kMaxYamlNodes = 250'000;  // nodes, every alias counted in full
+constexpr std::size_t kMaxListEntries = 1'000;  // entries of one list or mapping (map rows: cells)
+constexpr std::size_t kMaxInlineMapCells = std::size_t{1} << 20;  // 1024x1024
+constexpr long long kMaxUnits = 20'000;  // the sum of every group's count, reinforcements included
+
+// Walks the document as the parser will read it, aliases expanded, and fails at the first node
+// past a limit. `key` is the mapping key the node sits under (empty at the root), to name the
+// list in messages.
+void checkExpansion(const Parser& p, const YAML::Node& node, const std::string& key, int depth,
+                    std::size_t& nodes) {
+  if (++nodes > kMaxYamlNodes)
+    p.fail(node, "the file expands to more than " + std::to_string(kMaxYamlNodes) +
+                     " YAML nodes (anchors and aliases repeat what they name)");
+  if (depth > kMaxNesting)
+    p.fail(node, "nesting deeper than " + std::to_string(kMaxNesting) + " levels");
+  if (!node.IsSequence() && !node.IsMap()) return;
+  if (key != "rows" && node.size() > kMaxListEntries)
+    p.fail(node, (key.empty() ? "the file" : "'" + key + "'") + " has " +
+                     std::to_string(node.size()) + " entries, more than the " +
+                     std::to_string(kMaxListEntries) + " allowed");
+  if (node.IsSequence()) {
+    for (const auto& item : node)
+      checkExpansion(p, item, key, depth + 1, nodes);
+    return;
+  }
+  for (const auto& entry : node) {
+    checkExpansion(p, entry.first, key, depth + 1, nodes);
+    const std::string inner = entry.first.IsScalar() ? entry.first.Scalar() : key;
+    checkExpansion(p, entry.second, inner, depth + 1, nodes);
+  }
+}
+
 YAML::Node loadYaml(const Parser& p, std::string_view text) {
+  YAML::Node root;
   try {
-    return YAML::Load(std::string(text));
+    root = YAML::Load(std::string(text));
+  } catch (const YAML::DeepRecursion& e) {
+    p.fail(e.mark, "nesting deeper than " + std::to_string(kMaxNesting) + " levels");
   } catch (const YAML::ParserException& e) {
     p.fail(e.mark, e.msg);
+  }
+  std::size_t nodes = 0;
+  checkExpansion(p, root, "", 0, nodes);
+  return root;
+}
+
+// Before any unit is placed: the groups' counts (each read as parse() will) add up to at most
+// kMaxUnits. Counts that do not read as integers are left for parse() to report.
+void checkUnitTotal(const Parser& p, const YAML::Node& groups) {
+  long long total = 0;
+  for (const auto& node : groups) {
+    if (!node.IsMap() || !node["count"] || !node["count"].IsScalar()) continue;
+    long long count = 0;
+    if (!YAML::convert<long long>::decode(node["count"], count) || count < 1) continue;
+    total += std::min<long long>(count, kMaxUnits + 1);
+    if (total > kMaxUnits)
+      p.fail(node["count"], "the groups have more than " + std::to_string(kMaxUnits) +
+                                " units in all (the limit for one scenario)");
   }
 }
 
@@ -313,12 +381,24 @@ GridMap parseMapNode(const Parser& p, const YAML::Node& node) {
   const YAML::Node rows = p.need(node, "rows", "map");
   if (!rows.IsSequence() || rows.size() == 0) p.fail(rows, "map rows must be a non-empty list");
   // Inline rows use the .map glyphs; reading them through the .map parser keeps one reader.
+  // Aliases may repeat a row: the cells are counted before the map is built.
+  const std::size_t width = p.text(rows[0], "map row").size();
+  const auto tooMany = [&] {
+    p.fail(rows, "the inline map has " + std::to_string(rows.size()) + " rows of " +
+                     std::to_string(width) + " cells, more than the " +
+                     std::to_string(kMaxInlineMapCells) + " cells allowed: give a .map file");
+  };
+  if (rows.size() > kMaxInlineMapCells / std::max<std::size_t>(width, 1)) tooMany();
   std::string text = "type octile\nheight " + std::to_string(rows.size()) + "\nwidth " +
-                     std::to_string(p.text(rows[0], "map row").size()) + "\nmap\n";
-  for (const auto& row : rows)
-    text += p.text(row, "map row") + "\n";
-  std::istringstream in(text);
-  Result<GridMap> map = parseMap(in, "inline map");
+                     std::to_string(width) + "\nmap\n";
+  std::size_t cells = 0;
+  for (const auto& row : rows) {
+    const std::string glyphs = p.text(row, "map row");
+    cells += glyphs.size();
+    if (cells > kMaxInlineMapCells) tooMany();
+    text += glyphs + "\n";
+  }
+  Result<GridMap> map = parseMap(std::string_view(text), "inline map");
   if (!map) {
     constexpr int kHeaderLines = 4;
     const int row = map.error().line - kHeaderLines - 1;
@@ -360,13 +440,19 @@ std::string describeRect(const CellRect& r) {
 // Every spawn cell of `group` must reach some cell of `area` where its type can stand.
 void checkReachable(const Parser& p, const YAML::Node& where, const Scenario& s,
                     const GroupSpec& group, const CellRect& area) {
+  const Parser::AreaKey key{group.type, area.x, area.y, area.width, area.height};
+  if (p.reachableGroups.contains({group.name, key})) return;
   const units::UnitType& type = s.catalogue[static_cast<std::size_t>(group.type)];
   const auto& components = s.grid->layer(type.agent()).components();
   const GridMap& map = s.grid->map();
-  std::set<std::uint32_t> reachable;
-  for (int y = area.y; y < area.y + area.height; ++y) {
-    for (int x = area.x; x < area.x + area.width; ++x) {
-      if (s.grid->canStand(type.agent(), {x, y})) reachable.insert(components[map.indexOf({x, y})]);
+  auto [found, isNew] = p.reachableComponents.try_emplace(key);
+  std::set<std::uint32_t>& reachable = found->second;
+  if (isNew) {
+    for (int y = area.y; y < area.y + area.height; ++y) {
+      for (int x = area.x; x < area.x + area.width; ++x) {
+        if (s.grid->canStand(type.agent(), {x, y}))
+          reachable.insert(components[map.indexOf({x, y})]);
+      }
     }
   }
   if (reachable.empty())
@@ -379,6 +465,7 @@ void checkReachable(const Parser& p, const YAML::Node& where, const Scenario& s,
                         " of group '" + group.name + "' spawned at " + std::to_string(c.x) + "," +
                         std::to_string(c.y));
   }
+  p.reachableGroups.insert({group.name, key});
 }
 
 std::vector<std::string> groupNamesOf(const Scenario& s) {
@@ -779,6 +866,7 @@ Scenario parse(const Parser& p, std::string_view text) {
 
   const YAML::Node groups = p.need(root, "groups", "the scenario");
   if (!groups.IsSequence()) p.fail(groups, "groups must be a list");
+  checkUnitTotal(p, groups);
   std::vector<std::uint8_t> occupied(map.cellCount(), 0);
   std::vector<std::string> groupNames;
   std::vector<YAML::Node> goalNodes;
@@ -952,6 +1040,27 @@ Result<Scenario> loadScenario(const fs::path& file) {
   const Result<std::string> text = readDiskFile(file, kYamlFileLimit);
   if (!text) return text.error();
   return parseScenario(text.value(), file);
+}
+
+Result<std::int64_t> scenarioDurationTicks(std::string_view text, const fs::path& file) {
+  const FileReader none = [](const fs::path& f, FileLimit) -> Result<std::string> {
+    return Error{f.string(), 0, 0, std::string(kNoSuchFile)};
+  };
+  const Parser p(file, none);
+  try {
+    // The same keys and ranges as parse(); only the root's two scalars are looked at.
+    const YAML::Node root = loadYaml(p, text);
+    p.expectMap(root, "the scenario");
+    Scenario s;
+    if (root["tick_rate"])
+      s.settings.tickRate = p.number(root["tick_rate"], "tick_rate", 1.0, 1000.0);
+    s.duration = p.number(p.need(root, "duration", "the scenario"), "duration", 0.0, 1e6);
+    return s.durationTicks();
+  } catch (const Error& e) {
+    return e;
+  } catch (const YAML::Exception& e) {
+    return Error{file.string(), e.mark.line + 1, e.mark.column + 1, e.msg};
+  }
 }
 
 Result<std::vector<units::UnitType>> loadCatalogue(const fs::path& file) {

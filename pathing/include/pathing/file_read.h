@@ -30,10 +30,11 @@ struct FileLimit {
 inline constexpr FileLimit kMapFileLimit{64 * kMiB, "maps"};
 // MovingAI .scen files: the shared ones are under 100 KiB, MovingAI's largest a few MiB.
 inline constexpr FileLimit kScenFileLimit{64 * kMiB, "scen files"};
-// Scenario and catalogue YAML: the bundled ones are under 3 KiB; 4 MiB leaves room for inline
-// maps of about 1400x1400 cells (larger maps belong in a .map file).
-inline constexpr FileLimit kYamlFileLimit{4 * kMiB, "scenario and catalogue files"};
-// Replays embed the scenario, its map and catalogue (at most 64 + 2 x 4 MiB) and add about 30
+// Scenario and catalogue YAML: the bundled ones are under 3 KiB. yaml-cpp holds about 450 bytes
+// per node, so 256 KiB of the densest YAML (`[1,1,1,...]`, 130,000 nodes) stays near 60 MB;
+// inline maps up to about 500x500 cells fit (larger maps belong in a .map file).
+inline constexpr FileLimit kYamlFileLimit{256 * 1024, "scenario and catalogue files"};
+// Replays embed the scenario, its map and catalogue (at most 64 MiB + 2 x 256 KiB) and add 29
 // bytes per recorded state hash and 40 + 8 per unit per order: the bundled battles record
 // 0.1-1 MiB; 256 MiB leaves room for hours of a 2,000-unit run hashed every tick.
 inline constexpr FileLimit kReplayFileLimit{256 * kMiB, "replays"};
@@ -74,6 +75,11 @@ class CappedFile {
   std::uint64_t offset_ = 0;
   FileLimit limit_;
 };
+
+// "64 MiB", "256 KiB" or "100 bytes".
+std::string describeSize(std::uint64_t bytes);
+// "FILE: larger than the 64 MiB limit for maps".
+Error fileTooLarge(const std::string& file, FileLimit limit);
 
 // The whole of a regular file, at most `limit.maxBytes`.
 Result<std::string> readFileCapped(const std::filesystem::path& file, FileLimit limit);
