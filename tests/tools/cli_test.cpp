@@ -251,8 +251,8 @@ TEST(RtsCliTest, BenchPaperRejectsBadInput) {
   const std::string paper = "bench paper " + fixture("terrain.map") + " --queries 5";
   expectBadInput(paper + " --percents 0,x", "--percents: expected comma-separated whole numbers");
   expectBadInput(paper + " --percents 150", "--percents: 150 is not in 0..100");
-  expectBadInput(paper + " --cluster-sizes 1", "--cluster-sizes: 1: cluster size must be");
-  expectBadInput(paper + " --cluster-sizes 10,0", "--cluster-sizes: 0: cluster size must be");
+  expectBadInput(paper + " --cluster-sizes 1", "--cluster-sizes: 1: clusterSize must be 2..4096 (got 1)");
+  expectBadInput(paper + " --cluster-sizes 10,0", "--cluster-sizes: 0: clusterSize must be 2..4096 (got 0)");
 }
 
 // Files that cannot be maps are refused at once, naming the file and the problem. Before,
