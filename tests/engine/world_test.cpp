@@ -14,6 +14,7 @@
 #include "engine/scenario_run.h"
 #include "pathing/map_io.h"
 #include "support/event_history.h"
+#include "support/expect_rejected.h"
 
 namespace warpath::engine {
 namespace {
@@ -261,12 +262,8 @@ TEST(PathService, SettingsAreValidatedByTheConstructor) {
   EXPECT_EQ(problemWith(PathServiceSettings{}), "");
   const auto check = [&](PathServiceSettings settings, const std::string& message) {
     EXPECT_EQ(problemWith(settings), message);
-    try {
-      PathService service(*grid, settings, {ground}, 1);
-      ADD_FAILURE() << "accepted; expected: " << message;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_EQ(std::string(e.what()), message);
-    }
+    warpath::testing::expectRejected([&] { PathService service(*grid, settings, {ground}, 1); },
+                                     message);
   };
   check({.clusterSize = 1}, "clusterSize must be 2..4096 (got 1)");
   check({.clusterSize = 4097}, "clusterSize must be 2..4096 (got 4097)");
@@ -275,12 +272,8 @@ TEST(PathService, SettingsAreValidatedByTheConstructor) {
   check({.algorithm = pathing::Algorithm::AStar, .clusterSize = 0},
         "clusterSize must be 2..4096 (got 0)");
   // The abstraction's own limits surface from the same constructor.
-  try {
-    PathService service(*grid, {}, {ground}, 0);
-    ADD_FAILURE() << "maxAgentSize 0 accepted";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()), "maxAgentSize must be 1..255 (got 0)");
-  }
+  warpath::testing::expectRejected([&] { PathService service(*grid, {}, {ground}, 0); },
+                                   "maxAgentSize must be 1..255 (got 0)");
   PathService usable(*grid, {.clusterSize = 2, .expansionBudget = 1}, {ground}, 1);
   EXPECT_EQ(usable.settings().clusterSize, 2);
 }

@@ -19,6 +19,7 @@
 #include "pathing/moves.h"
 #include "pathing/planner.h"
 #include "support/completeness.h"
+#include "support/expect_rejected.h"
 
 namespace warpath::pathing {
 namespace {
@@ -432,16 +433,7 @@ TEST(HaaStarTest, EveryAbstractEdgeRefinesForEveryAgentThatMayUseIt) {
   EXPECT_GT(refined, 300000u);
 }
 
-// Expects `make()` to throw std::invalid_argument whose message is `message`.
-template <class Make>
-void expectRejected(const Make& make, const std::string& message) {
-  try {
-    make();
-    ADD_FAILURE() << "accepted; expected: " << message;
-  } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()), message);
-  }
-}
+using warpath::testing::expectRejected;
 
 TEST(HaaStarTest, SpecsAreValidated) {
   const AnnotatedGrid grid(GridMap(20, 20));

@@ -9,6 +9,7 @@
 #include "pathing/aa_star.h"
 #include "pathing/map_io.h"
 #include "support/brute_force.h"
+#include "support/expect_rejected.h"
 
 namespace warpath::pathing {
 namespace {
@@ -145,15 +146,7 @@ TEST(QuerySamplerTest, ReachablePairsAreUniformOverPairs) {
   EXPECT_FALSE(QuerySampler(islands, {1, Capability::of({Terrain::Water})}).canStandAnywhere());
 }
 
-template <class Make>
-void expectRejected(const Make& make, const std::string& message) {
-  try {
-    make();
-    ADD_FAILURE() << "accepted; expected: " << message;
-  } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()), message);
-  }
-}
+using warpath::testing::expectRejected;
 
 TEST(RandomMapSpecTest, EveryLimitIsEnforcedWithItsMessage) {
   EXPECT_EQ(problemWith(RandomMapSpec{}), "");
