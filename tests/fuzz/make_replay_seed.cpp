@@ -14,6 +14,7 @@
 #include "engine/scenario_run.h"
 
 int main(int argc, char** argv) {
+  using namespace warpath;
   using namespace warpath::engine;
   if (argc != 4 && argc != 5) {
     std::fprintf(stderr, "usage: %s SCENARIO OUT TICKS [HASH_EVERY]\n", argv[0]);
