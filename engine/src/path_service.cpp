@@ -3,6 +3,8 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "pathing/moves.h"
+
 namespace warpath::engine {
 
 using namespace pathing;
@@ -17,7 +19,12 @@ PlannedPath planned(std::vector<Cell> cells) {
       }
     }
   }
-  return {std::move(cells), h};
+  std::vector<double> remaining(cells.size(), 0.0);
+  for (std::size_t i = cells.size(); i-- > 1;) {
+    const bool diagonal = cells[i].x != cells[i - 1].x && cells[i].y != cells[i - 1].y;
+    remaining[i - 1] = remaining[i] + (diagonal ? kSqrt2 : 1.0);
+  }
+  return {std::move(cells), std::move(remaining), h};
 }
 
 std::string problemWith(const PathServiceSettings& settings) {
@@ -26,6 +33,12 @@ std::string problemWith(const PathServiceSettings& settings) {
            std::to_string(settings.clusterSize) + ")";
   }
   if (settings.expansionBudget < 1) return "expansionBudget must be >= 1 (got 0)";
+  if (settings.window < 1 || settings.window > kMaxCooperativeWindow) {
+    return "window must be 1.." + std::to_string(kMaxCooperativeWindow) + " (got " +
+           std::to_string(settings.window) + ")";
+  }
+  if (settings.corridor < 1 || settings.corridor > 64)
+    return "corridor must be 1..64 (got " + std::to_string(settings.corridor) + ")";
   return {};
 }
 
@@ -60,7 +73,7 @@ void PathService::cancel(UnitId unit) {
   std::erase_if(queue_, [&](const PathRequest& r) { return r.unit == unit; });
 }
 
-void PathService::serve(std::vector<PathDelivery>& out) {
+std::uint64_t PathService::serve(std::vector<PathDelivery>& out) {
   std::uint64_t spent = 0;
   while (!queue_.empty()) {
     const PathRequest& front = queue_.front();
@@ -97,6 +110,7 @@ void PathService::serve(std::vector<PathDelivery>& out) {
     }
     out.push_back({request.unit, request.serial, hit->second.status, hit->second.path});
   }
+  return spent;
 }
 
 }  // namespace warpath::engine

@@ -437,8 +437,7 @@ Status ReplayWriter::record(const ScenarioRun& run) {
 
 Status ReplayWriter::finish(const ScenarioRun& run, ReplayEnd reason) {
   if (Status s = record(run); !s) return s;
-  if (Status s = append('E', endPayload({reason, {run.world().tick(), run.stateHash()}}));
-      !s)
+  if (Status s = append('E', endPayload({reason, {run.world().tick(), run.stateHash()}})); !s)
     return s;
   if (std::fflush(out_.get()) != 0) return Error{file_, 0, 0, "cannot write the replay"};
   return Status::success();
@@ -517,7 +516,13 @@ Result<ReplayPlayback> ReplayPlayback::open(const Replay& replay, const std::str
     return Error{file, 0, 0, "the embedded scenario does not load: " + loaded.error().describe()};
   if (const std::string problem = scriptProblem(replay, loaded.value()); !problem.empty())
     return Error{file, 0, 0, problem};
-  return ReplayPlayback(replay, std::make_unique<Scenario>(std::move(loaded).value()));
+  auto scenario = std::make_unique<Scenario>(std::move(loaded).value());
+  if (replay.version < kFirstCooperativeReplayVersion) {
+    // Recorded before cooperative movement: replayed under the movement of its time.
+    scenario->settings.movement = MovementRules::FirstRelease;
+    scenario->settings.pathing.cooperative = false;
+  }
+  return ReplayPlayback(replay, std::move(scenario));
 }
 
 void ReplayPlayback::restart() {
@@ -534,7 +539,8 @@ bool ReplayPlayback::done() const {
 }
 
 std::uint64_t ReplayPlayback::recordedHash() const {
-  return replay_->version >= 3 ? run_->stateHash() : run_->world().legacyStateHash();
+  return replay_->version >= 3 ? run_->stateHash(replay_->version)
+                               : run_->world().legacyStateHash();
 }
 
 std::optional<HashMismatch> ReplayPlayback::step() {

@@ -64,9 +64,34 @@ RunState initialState(const Scenario& scenario) {
 
 }  // namespace
 
+namespace {
+
+DelayStats delayOf(const std::vector<Unit>& units, int team, int type) {
+  std::vector<double> delays;
+  for (const Unit& u : units) {
+    if (u.team != team || u.type != type || u.arrivalTick < 0 || u.plannedTicks <= 0) continue;
+    delays.push_back(static_cast<double>(u.arrivalTick - u.orderTick) /
+                     static_cast<double>(u.plannedTicks));
+  }
+  DelayStats d;
+  d.arrived = static_cast<int>(delays.size());
+  if (delays.empty()) return d;
+  std::sort(delays.begin(), delays.end());
+  d.p50 = percentile(delays, 50);
+  d.p90 = percentile(delays, 90);
+  d.max = delays.back();
+  return d;
+}
+
+}  // namespace
+
 std::uint64_t ScenarioRun::stateHash() const {
-  StateHasher h;
-  h.addWord(world_.stateHash());
+  return stateHash(kStateFormat);
+}
+
+std::uint64_t ScenarioRun::stateHash(std::uint32_t format) const {
+  StateHasher h(format);
+  h.addWord(world_.stateHash(format));
   describe(h, state_);
   h.addWord(issued_.size());
   return h.value();
@@ -374,8 +399,16 @@ Report ScenarioRun::report() const {
       }
       r.arrivals.push_back(s);
       r.battle.push_back(b);
+      r.movement.delay.push_back(delayOf(units, static_cast<int>(team), static_cast<int>(type)));
+      r.movement.delay.back().team = s.team;
+      r.movement.delay.back().type = s.type;
     }
   }
+  const PathServiceSettings& pathing = world_.settings().pathing;
+  r.movement.cooperative = pathing.cooperative;
+  r.movement.window = pathing.window;
+  r.movement.counters = world_.state().movement;
+  r.movement.maxWaitSeconds = static_cast<double>(r.movement.counters.maxWaitTicks) / rate;
   for (const Unit& u : units) {
     if (u.everStuck) r.stuckUnits.push_back(u.id.index);
     r.noPath += u.state == UnitState::NoPath ? 1 : 0;

@@ -46,6 +46,10 @@ struct CountingVisitor {
   void operator()(const char*, const F&) {
     ++fields;
   }
+  template <class F>
+  void operator()(Since, const char*, const F&) {
+    ++fields;
+  }
 };
 
 template <class T>
@@ -113,6 +117,10 @@ struct Perturber {
   void operator()(const char*, const F& field) {
     if (seen++ == target) changed = change(const_cast<F&>(field));
   }
+  template <class F>
+  void operator()(Since, const char* name, const F& field) {
+    (*this)(name, field);
+  }
 
   template <class F>
   static bool change(F& f) {
@@ -129,6 +137,9 @@ struct Perturber {
       f.take(GoalLayer::Parked, {1, 1}, 1, UnitId{0, 0});
     } else if constexpr (std::is_same_v<F, SharedPath>) {
       f = std::make_shared<const PlannedPath>(planned({{1, 2}}));
+    } else if constexpr (std::is_same_v<F, SharedPlan>) {
+      f = std::make_shared<const TimedPlan>(
+          timedPlan({{{1, 2}, 3}}, pathing::CooperativeStatus::Windowed));
     } else if constexpr (requires { f.push_back({}); }) {
       f.push_back({});
     } else if constexpr (requires { f.get(); }) {
@@ -175,7 +186,25 @@ TEST(StateDescription, EveryFieldReachesTheHash) {
   expectEveryFieldChangesTheHash<RunState>("RunState", hashOf<RunState>);
   // Physics and the path service are owned through pointers: their own fields are described.
   expectEveryFieldChangesTheHash<WorldState>(
-      "WorldState", [](const WorldState& s) { return hashState(s); }, 2);
+      "WorldState", [](const WorldState& s) { return hashState(s); }, 3);
+}
+
+TEST(StateDescription, OlderFormatsLeaveOutTheFieldsAddedSince) {
+  // A replay of format 3 recorded hashes without cooperative movement's fields: they must not
+  // reach its hash, and the fields it had must.
+  Unit a;
+  Unit b;
+  b.waitedTicks = 5;
+  b.plannedTicks = 7;
+  const auto format3 = [](const Unit& u) {
+    StateHasher h(3);
+    describe(h, u);
+    return h.value();
+  };
+  EXPECT_EQ(format3(a), format3(b));
+  EXPECT_NE(hashOf(a), hashOf(b));
+  b.hp = 1;
+  EXPECT_NE(format3(a), format3(b));
 }
 
 TEST(StateDescription, PositionsAreQuantisedTo1Over1024Cell) {

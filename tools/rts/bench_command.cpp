@@ -165,6 +165,7 @@ void registerBenchCommand(CLI::App& app, CommandRunner& run) {
 
   registerBenchRandomCommand(*bench, run);
   registerBenchPaperCommand(*bench, run);
+  registerBenchMovementCommand(*bench, run);
 }
 
 }  // namespace warpath::tools

@@ -118,6 +118,27 @@ nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& 
                   {"search_us", m.microseconds},
                   {"preprocess_ms", m.preprocessMilliseconds}};
 
+  const engine::MovementReport& mv = r.movement;
+  json delay = json::array();
+  for (const engine::DelayStats& d : mv.delay) {
+    delay.push_back({{"team", d.team},
+                     {"type", d.type},
+                     {"arrived", d.arrived},
+                     {"p50", secondsOrNull(d.p50)},
+                     {"p90", secondsOrNull(d.p90)},
+                     {"max", secondsOrNull(d.max)}});
+  }
+  j["movement"] = {{"cooperative", mv.cooperative},
+                   {"window", mv.window},
+                   {"windows", mv.counters.windows},
+                   {"blocked_windows", mv.counters.blockedWindows},
+                   {"waits", mv.counters.waits},
+                   {"give_ways", mv.counters.giveWays},
+                   {"deadlocks_broken", mv.counters.deadlocksBroken},
+                   {"max_wait_s", mv.maxWaitSeconds},
+                   {"expanded", mv.counters.expanded},
+                   {"delay", delay}};
+
   json battle = json::array();
   for (const engine::BattleStats& s : r.battle) {
     battle.push_back({{"team", s.team},

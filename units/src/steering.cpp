@@ -1,7 +1,9 @@
 #include "units/steering.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace warpath::units {
 
@@ -30,6 +32,59 @@ SteeringResult steer(std::span<const pathing::Cell> path, std::size_t next, int 
   double speed = maxSpeed;
   if (next == last) speed *= std::min(1.0, distance / params.slowdownDistance);
   result.desiredVelocity = offset * (speed / distance);
+  return result;
+}
+
+double turnLimitedSpeed(Vec2 velocity, Vec2 offset, double turnRate) {
+  const double speed = velocity.length();
+  const double distance = offset.length();
+  if (speed < 1e-6 || distance < 1e-9) return INFINITY;
+  const double cross = velocity.x * offset.y - velocity.y * offset.x;
+  const double sinTheta = std::abs(cross) / (speed * distance);
+  const bool ahead = velocity.x * offset.x + velocity.y * offset.y > 0.0;
+  // Behind the unit the needed circle is the tightest one (θ near 180° has sin near 0).
+  const double s = ahead ? sinTheta : 1.0;
+  if (s < 0.0175) return INFINITY;  // within a degree of straight ahead
+  return turnRate * distance / (2.0 * s);
+}
+
+namespace {
+
+// Where the plan puts the body centre at `tick` (fractional), and whether that is a hold.
+std::pair<Vec2, bool> scheduledAt(std::span<const pathing::TimedCell> steps, double tick,
+                                  int size) {
+  if (tick <= static_cast<double>(steps.front().tick))
+    return {anchorToCentre(steps.front().cell, size), steps.size() == 1};
+  for (std::size_t i = 0; i + 1 < steps.size(); ++i) {
+    const double t0 = static_cast<double>(steps[i].tick);
+    const double t1 = static_cast<double>(steps[i + 1].tick);
+    if (tick >= t1) continue;
+    const Vec2 a = anchorToCentre(steps[i].cell, size);
+    const Vec2 b = anchorToCentre(steps[i + 1].cell, size);
+    return {a + (b - a) * ((tick - t0) / (t1 - t0)), steps[i].cell == steps[i + 1].cell};
+  }
+  return {anchorToCentre(steps.back().cell, size), true};
+}
+
+}  // namespace
+
+ScheduleResult followPlan(std::span<const pathing::TimedCell> steps, std::int64_t tick, int size,
+                          Vec2 centre, double maxSpeed, double ticksPerSecond,
+                          double lookaheadSeconds) {
+  ScheduleResult result;
+  const double now = static_cast<double>(tick);
+  const auto [here, waiting] = scheduledAt(steps, now, size);
+  result.scheduled = here;
+  result.waiting = waiting;
+  result.finished = tick >= steps.back().tick;
+  const Vec2 ahead = scheduledAt(steps, now + lookaheadSeconds * ticksPerSecond, size).first;
+  const Vec2 offset = ahead - centre;
+  // Closer than a hair to where it should be: stand still rather than jitter.
+  if (offset.length() < 0.02) return result;
+  Vec2 desired = offset * (1.0 / lookaheadSeconds);
+  const double speed = desired.length();
+  if (speed > maxSpeed) desired = desired * (maxSpeed / speed);
+  result.desiredVelocity = desired;
   return result;
 }
 

@@ -27,7 +27,20 @@ struct PathServiceSettings {
   int clusterSize = 16;                   // [Unit: cells] [Limit: 2..pathing::kMaxClusterSize]
   std::uint64_t expansionBudget = 20000;  // [Limit: >= 1] node expansions per tick
   std::size_t cacheCapacity = 4096;       // answers kept; the oldest go first
+  // Cooperative movement (docs/cooperative.md): moving units plan space-time windows against
+  // each other's reservations; false: each unit follows its spatial path alone and Box2D
+  // settles every conflict (the first release's behaviour).
+  bool cooperative = true;
+  // [Unit: moves] [Limit: 1..kMaxCooperativeWindow] how far ahead a unit reserves: this many
+  // cardinal moves at its top speed; re-planned when half of it is left.
+  int window = 16;
+  // How a window is searched: true: CPRA*(k), inside a corridor of `corridor` cells around the
+  // unit's HAA* path, with exact distances in the corridor as the heuristic; false: WHCA* with
+  // a reverse resumable A* (exact distances on the whole map) as the heuristic.
+  bool corridorSearch = true;
+  int corridor = 4;  // [Unit: cells] [Limit: 1..64] the CPRA*(k) corridor's half-width k
 };
+inline constexpr int kMaxCooperativeWindow = 256;
 
 struct PathRequest {
   UnitId unit;
@@ -41,7 +54,8 @@ struct PathRequest {
 // path is planned, so that the state hash covers every unit's path without walking it each tick.
 struct PlannedPath {
   std::vector<pathing::Cell> cells;
-  std::uint64_t digest = 0;  // FNV-1a over the cells
+  std::vector<double> remaining;  // [Unit: cells] path cost from cells[i] to the end
+  std::uint64_t digest = 0;       // FNV-1a over the cells
 };
 PlannedPath planned(std::vector<pathing::Cell> cells);
 using SharedPath = std::shared_ptr<const PlannedPath>;
@@ -85,8 +99,9 @@ class PathService {
   void request(const PathRequest& request);
   // Drops the unit's queued requests (it died): its searches are not run.
   void cancel(UnitId unit);
-  // Serves queued requests in order within the budget, appending one delivery each.
-  void serve(std::vector<PathDelivery>& out);
+  // Serves queued requests in order within the budget, appending one delivery each. Returns
+  // the node expansions spent (what is left of the budget goes to cooperative windows).
+  std::uint64_t serve(std::vector<PathDelivery>& out);
 
   std::size_t queued() const { return queue_.size(); }
   // The requests waiting, in the order they will be served.

@@ -45,6 +45,10 @@ class Physics {
   BodyId addBody(units::Vec2 centre, double radius, pathing::Capability capability);
   // Turns a body into a fixed obstacle (a wreck): it stops and no longer moves when pushed.
   void freeze(BodyId body);
+  // A braced body (a unit holding its position) weighs kBracedMassFactor times its own: others
+  // slide around it instead of driving through it. Unbraced, it weighs what its area does.
+  void setBraced(BodyId body, bool braced);
+  static constexpr float kBracedMassFactor = 1000.0f;
   // Takes a body out of the simulation. Its last position and a zero velocity stay readable.
   void removeBody(BodyId body);
   void setVelocity(BodyId body, units::Vec2 velocity);

@@ -22,9 +22,14 @@ namespace warpath::engine {
 // 2: orders of every kind (move, attack-move, attack, hold, stop), reinforcements and the end of
 // the battle. 3: the same records; the hashes are ScenarioRun::stateHash (the whole world and
 // run state) instead of format 2's hand-picked field list, which is still computed
-// (World::legacyStateHash) so that format-2 files verify. Version-1 files (move orders only)
-// are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 3;
+// (World::legacyStateHash) so that format-2 files verify. 4: the same records, recorded with
+// cooperative movement (docs/cooperative.md); the hashes cover its state too (a format-3 file's
+// hashes are computed without it: engine/state_description.h's Since). Version-1 files (move
+// orders only) are refused with a message saying so.
+inline constexpr std::uint32_t kReplayVersion = 4;
+// Formats before this one were recorded under MovementRules::FirstRelease without cooperative
+// pathing, and play back so.
+inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

@@ -43,6 +43,28 @@ struct BattleStats {
   bool operator==(const BattleStats&) const = default;
 };
 
+// Per (team, type): delay = time to arrive / planned time, the planned time being what the
+// unit alone needed along its order's first path at its top speeds. -1 when none arrived.
+struct DelayStats {
+  std::string team;
+  std::string type;
+  int arrived = 0;  // units the delays are taken over
+  double p50 = -1.0;
+  double p90 = -1.0;
+  double max = -1.0;
+  bool operator==(const DelayStats&) const = default;
+};
+
+// The report's `movement` section (docs/cooperative.md).
+struct MovementReport {
+  bool cooperative = false;
+  int window = 0;  // [Unit: moves]
+  MovementStats counters;
+  double maxWaitSeconds = 0.0;
+  std::vector<DelayStats> delay;  // per (team, type) with units, team-major
+  bool operator==(const MovementReport&) const = default;
+};
+
 struct ExpectationResult {
   std::string text;
   double actual = 0.0;  // rate, count or seconds; +inf when a percentile has not arrived
@@ -63,6 +85,7 @@ struct Report {
   int noPath = 0;                         // units whose goal could not be reached
   int repaths = 0;
   PathServiceMetrics pathing;
+  MovementReport movement;
   std::vector<BattleStats> battle;  // per (team, type) with units, team-major
   std::string winner;               // team name; empty when no team has won (yet)
   std::string victory;              // the condition (or trigger) that decided it
@@ -142,6 +165,8 @@ class ScenarioRun {
   // The world's state hash combined with the run's (triggers, victory, groups): what replays
   // record and verify, and the report's state_hash.
   std::uint64_t stateHash() const;
+  // As replays of `format` (3 or later) recorded it.
+  std::uint64_t stateHash(std::uint32_t format) const;
   const Scenario& scenario() const { return scenario_; }
   Report report() const;
   // Everything done to the world so far (orders, reinforcements, the end), in the order done.

@@ -15,6 +15,14 @@
 
 namespace warpath::engine {
 
+// The layout of the state that replays of format N recorded hashes of: fields added later are
+// described with Since{N}, and a hasher for an older format leaves them out, so that replays
+// recorded before a field existed still verify.
+struct Since {
+  std::uint32_t format;
+};
+inline constexpr std::uint32_t kStateFormat = 4;
+
 template <class V>
 void describe(V& v, const pathing::Cell& c) {
   v("x", c.x);
@@ -51,6 +59,7 @@ void describe(V& v, const units::ProgressMonitor& m) {
   v("origin", m.origin);
   v("originTick", m.originTick);
   v("stuckInARow", m.stuckInARow);
+  v(Since{4}, "originRemaining", m.originRemaining);
 }
 template <class V>
 void describe(V& v, const pathing::SplitMix64& rng) {
@@ -62,8 +71,36 @@ void describe(V& v, const GoalBoard& board) {
 }
 template <class V>
 void describe(V& v, const PlannedPath& p) {
-  v("cells", p.cells.size());  // the cells themselves through their digest
+  v("cells", p.cells.size());                    // the cells themselves through their digest
+  v(Since{4}, "remaining", p.remaining.size());  // a function of the cells
   v("digest", p.digest);
+}
+template <class V>
+void describe(V& v, const pathing::TimedCell& c) {
+  v("cell", c.cell);
+  v("tick", c.tick);
+}
+template <class V>
+void describe(V& v, const TimedPlan& p) {
+  v("steps", p.steps.size());  // the steps themselves through their digest
+  v("status", p.status);
+  v("digest", p.digest);
+}
+template <class V>
+void describe(V& v, const MovementStats& m) {
+  v("windows", m.windows);
+  v("blockedWindows", m.blockedWindows);
+  v("waits", m.waits);
+  v("giveWays", m.giveWays);
+  v("deadlocksBroken", m.deadlocksBroken);
+  v("maxWaitTicks", m.maxWaitTicks);
+  v("expanded", m.expanded);
+}
+// What each owner holds follows from its unit's plan and held footprint (both described); the
+// count of intervals stored covers what forget() has dropped.
+template <class V>
+void describe(V& v, const pathing::ReservationTable& table) {
+  v("intervals", table.intervalCount());
 }
 template <class V>
 void describe(V& v, const CombatStats& c) {
@@ -94,6 +131,12 @@ void describe(V& v, const Unit& u) {
   v("progress", u.progress);
   v("everStuck", u.everStuck);
   v("repaths", u.repaths);
+  v(Since{4}, "plan", u.plan);
+  v(Since{4}, "held", u.held);
+  v(Since{4}, "heldSince", u.heldSince);
+  v(Since{4}, "waitSince", u.waitSince);
+  v(Since{4}, "waitedTicks", u.waitedTicks);
+  v(Since{4}, "plannedTicks", u.plannedTicks);
   v("order", u.order);
   v("attackTargets", u.attackTargets);
   v("target", u.target);
@@ -160,6 +203,8 @@ void describe(V& v, const WorldState& s) {
   v("goals", s.goals);
   v("physics", s.physics);
   v("paths", s.paths);
+  v(Since{4}, "reservations", s.reservations);
+  v(Since{4}, "movement", s.movement);
 }
 template <class V>
 void describe(V& v, const RunState& s) {
@@ -178,9 +223,15 @@ void describe(V& v, const RunState& s) {
 // is ignored), containers by size then elements, pointers by presence then what they point to.
 class StateHasher {
  public:
+  // Hashes the state as format `format` laid it out (fields Since a later format are left out).
+  explicit StateHasher(std::uint32_t format = kStateFormat) : format_(format) {}
   template <class T>
   void operator()(const char* /*name*/, const T& value) {
     add(value);
+  }
+  template <class T>
+  void operator()(Since since, const char* /*name*/, const T& value) {
+    if (format_ >= since.format) add(value);
   }
   std::uint64_t value() const { return hash_; }
 
@@ -222,11 +273,12 @@ class StateHasher {
     }
   }
 
+  std::uint32_t format_;
   std::uint64_t hash_ = 0xCBF29CE484222325ull;
 };
 
-inline std::uint64_t hashState(const WorldState& state) {
-  StateHasher h;
+inline std::uint64_t hashState(const WorldState& state, std::uint32_t format = kStateFormat) {
+  StateHasher h(format);
   describe(h, state);
   return h.value();
 }

@@ -21,8 +21,10 @@
 #include "engine/path_service.h"
 #include "engine/physics.h"
 #include "pathing/annotated_grid.h"
+#include "pathing/cooperative_search.h"
 #include "pathing/enum_names.h"
 #include "pathing/random.h"
+#include "pathing/reservation_table.h"
 #include "units/combat.h"
 #include "units/steering.h"
 #include "units/stuck.h"
@@ -44,8 +46,18 @@ struct CombatSettings {
 // Empty when the settings can be used, else the first field out of its limits and why.
 std::string problemWith(const CombatSettings& settings);
 
+// Which steering and stuck rules the world runs. Replays of formats 2 and 3 were recorded
+// under the first release's and replay under them (ReplayPlayback sets FirstRelease, and
+// cooperative pathing off), so that they still verify.
+enum class MovementRules : std::uint8_t {
+  FirstRelease,  // steer at waypoints, stuck = no displacement, pushing unlimited
+  Current,       // + turning-circle slow-down, stuck = no progress along the path, pushing
+                 // limited to the pushed unit's speed, Hold units not driven through
+};
+
 struct WorldSettings {
   double tickRate = 30.0;  // [Unit: ticks/s] [Limit: > 0]
+  MovementRules movement = MovementRules::Current;
   std::uint64_t seed = 1;
   PathServiceSettings pathing;
   units::StuckRule stuck;
@@ -103,6 +115,16 @@ struct CombatStats {
   bool operator==(const CombatStats&) const = default;
 };
 
+// A unit's cooperative plan: the window it reserved, as timed anchor cells (waits are two
+// entries on one cell), with a digest computed once so the state hash covers it cheaply.
+struct TimedPlan {
+  std::vector<pathing::TimedCell> steps;
+  pathing::CooperativeStatus status = pathing::CooperativeStatus::Blocked;
+  std::uint64_t digest = 0;  // FNV-1a over the steps
+};
+TimedPlan timedPlan(std::vector<pathing::TimedCell> steps, pathing::CooperativeStatus status);
+using SharedPlan = std::shared_ptr<const TimedPlan>;
+
 struct Unit {
   UnitId id;
   int type = 0;   // index into the world's catalogue
@@ -124,6 +146,15 @@ struct Unit {
   units::ProgressMonitor progress;
   bool everStuck = false;  // flagged by the stuck rule at least once
   int repaths = 0;
+  // Cooperative movement (docs/cooperative.md).
+  SharedPlan plan;  // the reserved window being followed; null when none
+  // Anchor whose footprint the unit holds in the reservation table from `heldSince` on, for
+  // good, while it follows no plan (parked, waiting for a path, fighting, a wreck); -1: none.
+  pathing::Cell held{-1, -1};
+  std::int64_t heldSince = -1;
+  std::int64_t waitSince = -1;     // the tick the current wait began; -1 when not waiting
+  std::int64_t waitedTicks = 0;    // ticks spent waiting since the order (priority ages with it)
+  std::int64_t plannedTicks = -1;  // free-flow time of the order's first path; -1 unknown
   // Combat.
   OrderKind order = OrderKind::Stop;
   std::vector<UnitId> attackTargets;  // Attack order: the enemies to close on
@@ -183,6 +214,18 @@ struct Event {
   int detail = 0;
 };
 
+// Counters of cooperative movement since the start, for the report's `movement` section.
+struct MovementStats {
+  std::int64_t windows = 0;          // windows planned
+  std::int64_t blockedWindows = 0;   // searches that found no safe window (the unit held on)
+  std::int64_t waits = 0;            // times a unit began to wait
+  std::int64_t giveWays = 0;         // windows that begin by moving away from the goal
+  std::int64_t deadlocksBroken = 0;  // cycles of units waiting on each other, broken
+  std::int64_t maxWaitTicks = 0;     // the longest single wait
+  std::uint64_t expanded = 0;        // space-time nodes expanded
+  bool operator==(const MovementStats&) const = default;
+};
+
 // The whole simulation state: everything a step reads besides the map, the catalogue and the
 // settings, and everything it changes. The state hash covers every field through
 // engine/state_description.h (a test fails when a field is not described). Events are the
@@ -197,6 +240,10 @@ struct WorldState {
   GoalBoard goals;
   std::unique_ptr<Physics> physics;
   std::unique_ptr<PathService> paths;
+  // Who holds which cells when (cooperative movement): the union of every unit's plan and
+  // held footprint, so its content follows from the units' fields.
+  std::unique_ptr<pathing::ReservationTable> reservations;
+  MovementStats movement;
 };
 
 // Mean wall time per phase over the ticks stepped so far: measurement only.
@@ -253,6 +300,9 @@ class World {
   // Hash of the whole WorldState (engine/state_description.h), updated at the end of every
   // step: positions and velocities quantised to 1/1024 cell, everything else exact.
   std::uint64_t stateHash() const { return stateHash_; }
+  // The same hash as an older replay format laid the state out (engine/state_description.h),
+  // computed on demand.
+  std::uint64_t stateHash(std::uint32_t format) const;
   // The hash replays of format 2 recorded (a hand-picked subset of the fields), so that those
   // replays still verify.
   std::uint64_t legacyStateHash() const;

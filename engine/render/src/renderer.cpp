@@ -322,6 +322,42 @@ struct Renderer::Impl {
     }
   }
 
+  void addReservations(const FrameScene& scene, float ppc) {
+    if (!def.overlays.reservations) return;
+    const float pixel = 1.0f / ppc;
+    const float width = std::max(pixel * 1.5f, 0.15f);
+    for (const UnitView& u : scene.units) {
+      if (u.state == UnitState::Wreck || u.window.size() != u.windowSeconds.size()) continue;
+      const Rgba team = palette::teamColour(u.team);
+      const auto colourAt = [&](float seconds) {
+        // White now, the team's colour half way to the horizon, dark at it.
+        const float t = std::clamp(seconds / kReservationHorizonSeconds, 0.0f, 1.0f);
+        const auto mix = [](std::uint8_t a, std::uint8_t b, float k) {
+          return static_cast<std::uint8_t>(
+              std::lround(static_cast<float>(a) * (1.0f - k) + static_cast<float>(b) * k));
+        };
+        const float k = t < 0.5f ? t * 2.0f : (t - 0.5f) * 2.0f;
+        const Rgba from = t < 0.5f ? Rgba{255, 255, 255, 230} : team;
+        const Rgba to = t < 0.5f ? team : Rgba{20, 20, 30, 230};
+        return Rgba{mix(from.r, to.r, k), mix(from.g, to.g, k), mix(from.b, to.b, k), 230};
+      };
+      Point from = u.centre;
+      float fromSeconds = 0.0f;
+      for (std::size_t i = 0; i < u.window.size(); ++i) {
+        const Point& p = u.window[i];
+        const float seconds = u.windowSeconds[i];
+        if (p == from && i > 0) {
+          // A wait: a dot where the unit stands still.
+          tris.rect(p.x - width, p.y - width, p.x + width, p.y + width, colourAt(seconds));
+        } else {
+          tris.thickLine(from, p, width, colourAt(0.5f * (fromSeconds + seconds)));
+        }
+        from = p;
+        fromSeconds = seconds;
+      }
+    }
+  }
+
   void addZones(const FrameScene& scene, float ppc) {
     const float pixel = 1.0f / ppc;
     for (const ArrivalZone& z : scene.arrivalZones) {
@@ -420,6 +456,7 @@ struct Renderer::Impl {
     tris.clear();
     if (def.overlays.arrivalZones) addZones(scene, ppc);
     addPaths(scene, ppc);
+    addReservations(scene, ppc);
     addUnits(scene, ppc);
     tris.draw(GL_TRIANGLES);
 
@@ -450,6 +487,7 @@ Result<Overlays> parseOverlays(std::string_view names, Overlays base) {
   static constexpr std::pair<std::string_view, bool Overlays::*> kSwitches[] = {
       {"paths", &Overlays::paths},
       {"footprints", &Overlays::footprints},
+      {"reservations", &Overlays::reservations},
       {"clearance", &Overlays::clearance},
       {"graph", &Overlays::abstractGraph},
       {"stuck", &Overlays::stuck},
@@ -472,8 +510,8 @@ Result<Overlays> parseOverlays(std::string_view names, Overlays base) {
     } else {
       return Error{"", 0, 0,
                    "unknown overlay '" + std::string(name) +
-                       "' (expected paths, footprints, clearance, graph, stuck, zones, "
-                       "hud or none)"};
+                       "' (expected paths, footprints, reservations, clearance, graph, stuck, "
+                       "zones, hud or none)"};
     }
     start = comma + 1;
   }

@@ -42,6 +42,18 @@ FrameScene sceneOf(const engine::World& world, int teamCount) {
         view.path.push_back({static_cast<float>(c.x) + half, static_cast<float>(c.y) + half});
       }
     }
+    if (u.plan) {
+      // What is left of the window: from the step under way to the last.
+      const std::vector<pathing::TimedCell>& steps = u.plan->steps;
+      for (std::size_t i = 0; i < steps.size(); ++i) {
+        if (i + 1 < steps.size() && steps[i + 1].tick <= world.tick()) continue;
+        const pathing::Cell c = steps[i].cell;
+        view.window.push_back({static_cast<float>(c.x) + half, static_cast<float>(c.y) + half});
+        view.windowSeconds.push_back(static_cast<float>(
+            static_cast<double>(std::max<std::int64_t>(0, steps[i].tick - world.tick())) /
+            world.tickRate()));
+      }
+    }
     double dx = u.velocity.x, dy = u.velocity.y;
     if (dx * dx + dy * dy < 1e-6 && !view.path.empty()) {
       dx = view.path.front().x - view.centre.x;

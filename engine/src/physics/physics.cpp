@@ -157,6 +157,19 @@ void Physics::freeze(BodyId body) {
   b->SetType(b2_staticBody);
 }
 
+void Physics::setBraced(BodyId body, bool braced) {
+  if (!known(body)) return;
+  b2Body* b = impl_->bodies[body.index];
+  if (b == nullptr || b->GetType() != b2_dynamicBody) return;
+  b->ResetMassData();
+  if (!braced) return;
+  b2MassData mass;
+  b->GetMassData(&mass);
+  mass.mass *= kBracedMassFactor;
+  mass.I *= kBracedMassFactor;
+  b->SetMassData(&mass);
+}
+
 void Physics::removeBody(BodyId body) {
   if (!known(body)) return;
   b2Body*& b = impl_->bodies[body.index];

@@ -797,7 +797,9 @@ Scenario parse(const Parser& p, std::string_view text) {
     s.settings.tickRate = p.number(root["tick_rate"], "tick_rate", 1.0, 1000.0);
   s.duration = p.number(p.need(root, "duration", "the scenario"), "duration", 0.0, 1e6);
   if (const YAML::Node pathing = root["pathing"]) {
-    p.checkKeys(pathing, "pathing", {"algo", "cluster_size", "budget", "cache"});
+    p.checkKeys(pathing, "pathing",
+                {"algo", "cluster_size", "budget", "cache", "cooperative", "window",
+                 "cooperative_search", "corridor"});
     if (pathing["algo"]) {
       const std::string name = p.text(pathing["algo"], "algo");
       const std::optional<Algorithm> algo = algorithmFromName(name);
@@ -813,6 +815,20 @@ Scenario parse(const Parser& p, std::string_view text) {
     if (pathing["cache"])
       s.settings.pathing.cacheCapacity =
           static_cast<std::size_t>(p.integer(pathing["cache"], "cache", 0, 100000000));
+    if (pathing["cooperative"])
+      s.settings.pathing.cooperative = p.boolean(pathing["cooperative"], "cooperative");
+    if (pathing["window"])
+      s.settings.pathing.window =
+          p.integer(pathing["window"], "window", 1, kMaxCooperativeWindow);
+    if (pathing["cooperative_search"]) {
+      const std::string name = p.text(pathing["cooperative_search"], "cooperative_search");
+      if (name != "cpra" && name != "whca")
+        p.fail(pathing["cooperative_search"],
+               "unknown cooperative_search '" + name + "' (cpra, whca)");
+      s.settings.pathing.corridorSearch = name == "cpra";
+    }
+    if (pathing["corridor"])
+      s.settings.pathing.corridor = p.integer(pathing["corridor"], "corridor", 1, 64);
   }
   if (const YAML::Node stuck = root["stuck"]) {
     p.checkKeys(stuck, "stuck", {"seconds", "min_progress", "flag_after"});

@@ -6,6 +6,7 @@
 
 #include "engine/src/world/phases.h"
 #include "pathing/invariant.h"
+#include "pathing/moves.h"
 
 namespace warpath::engine::world {
 
@@ -93,6 +94,8 @@ void beginMove(Refs& w, Unit& unit, const CellRect& area, const std::vector<Cell
   unit.goalArea = area;
   unit.orderTick = w.state.tick;
   unit.arrivalTick = -1;
+  unit.plannedTicks = -1;
+  unit.waitedTicks = 0;
   unit.progress.reset(unit.position, w.state.tick);
   if (!goal) {
     unit.state = UnitState::NoPath;
@@ -167,6 +170,10 @@ void leaveOrder(Refs& w, Unit& unit) {
   w.state.goals.release(GoalLayer::Claimed, unit.goalCell, size, unit.id);
   unit.path.reset();
   unit.next = 0;
+  if (unit.plan) releaseReservations(w, unit);  // it holds where it stands until it moves
+  if (unit.order == OrderKind::Hold && w.settings.movement == MovementRules::Current)
+    w.state.physics->setBraced(unit.body, false);
+  unit.waitSince = -1;
   unit.attackTargets.clear();
   unit.engaged = false;
   ++unit.pathSerial;  // answers to requests of the old order are stale
@@ -205,6 +212,8 @@ void applyCommand(Refs& w, const Command& command) {
         unit.goalCell = nearestStandable(w, unit);
         unit.state = UnitState::Parked;
         w.state.goals.take(GoalLayer::Parked, unit.goalCell, w.typeOf(unit).size, unit.id);
+        if (w.settings.movement == MovementRules::Current)
+          w.state.physics->setBraced(unit.body, true);
         break;
       case OrderKind::Stop:
         unit.state = UnitState::Idle;
@@ -251,14 +260,17 @@ void requestPath(Refs& w, Unit& unit) {
       {unit.id, unit.pathSerial, w.typeOf(unit).agent(), nearestStandable(w, unit), unit.goalCell});
 }
 
-void deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
+std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
   scratch.clear();
-  w.state.paths->serve(scratch);
+  const std::uint64_t spent = w.state.paths->serve(scratch);
   for (const PathDelivery& delivery : scratch) {
     if (!(delivery.unit.index < w.state.units.size())) continue;
     Unit& unit = w.unit(delivery.unit);
     if (delivery.serial != unit.pathSerial || !unit.alive()) continue;  // superseded, or dead
     if (delivery.status == PathStatus::Found) {
+      // A new path: the old window goes (the unit holds where it stands until it gets one).
+      if (unit.plan) releaseReservations(w, unit);
+      if (unit.plannedTicks < 0) unit.plannedTicks = freeFlowTicks(w, unit, delivery.path->cells);
       unit.path = delivery.path;
       unit.next = 0;
       unit.state = UnitState::Moving;
@@ -270,6 +282,23 @@ void deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
       w.log(EventKind::PathFailed, unit, static_cast<int>(delivery.status));
     }
   }
+  return spent;
+}
+
+std::int64_t freeFlowTicks(const Refs& w, const Unit& unit, const std::vector<Cell>& path) {
+  // Each move at the top speed on the terrain under the body's centre at its end, as steering
+  // drives it.
+  const units::UnitType& type = w.typeOf(unit);
+  const int half = type.size / 2;
+  double seconds = 0.0;
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    const Cell& c = path[i];
+    double speed = type.speedOn(w.map().at({c.x + half, c.y + half}));
+    if (!(speed > 0.0)) speed = type.maxSpeed();
+    const bool diagonal = c.x != path[i - 1].x && c.y != path[i - 1].y;
+    seconds += (diagonal ? kSqrt2 : 1.0) / speed;
+  }
+  return std::llround(seconds * w.settings.tickRate);
 }
 
 bool reassignGoal(Refs& w, Unit& unit) {

@@ -3,6 +3,8 @@
 // (engine/src/world.cpp) calls them in order; nothing here is visible outside the engine.
 
 #include <cstdint>
+#include <map>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -43,8 +45,12 @@ void pursue(Refs& w, Unit& unit, bool force);
 // The anchor nearest the unit's body where its footprint fits.
 pathing::Cell nearestStandable(const Refs& w, const Unit& unit);
 void requestPath(Refs& w, Unit& unit);
-// Serves the path service within its budget and hands each answer to its unit.
-void deliverPaths(Refs& w, std::vector<PathDelivery>& scratch);
+// Serves the path service within its budget and hands each answer to its unit; returns the
+// expansions spent.
+std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch);
+// [Unit: ticks] The time a unit alone needs along `path` at its top speeds: what the report's
+// delays are measured against.
+std::int64_t freeFlowTicks(const Refs& w, const Unit& unit, const std::vector<pathing::Cell>& path);
 // Moves the unit to the nearest free goal cell of its area; false when there is none other.
 bool reassignGoal(Refs& w, Unit& unit);
 // hp reached 0: the unit leaves its order, the path service and (after its wreck) physics.
@@ -88,8 +94,61 @@ class Combat {
   std::vector<units::Combatant> ordered_;  // scratch: an Attack order's living targets
 };
 
+// --- Traffic: cooperative windows in space-time (engine/src/world/traffic.cpp) ---
+
+// Drops every reservation the unit holds, and its plan.
+void releaseReservations(Refs& w, Unit& unit);
+// True when the plan holds the unit where it is at `tick` (a wait, or the end of a window that
+// did not reach the goal).
+bool waitingAt(const TimedPlan& plan, pathing::Tick tick);
+// Where the unit's plan wants it: desired velocity toward its schedule (the unit has a plan).
+units::ScheduleResult followSchedule(const Refs& w, const Unit& unit, double maxSpeed);
+// Within a cell of where its plan puts it now.
+bool onSchedule(const Refs& w, const Unit& unit);
+
+class Traffic {
+ public:
+  Traffic();
+  ~Traffic();
+  // Units that follow no plan hold their footprint; the windows that ran low, or that their
+  // units fell off, are planned again in priority order (the unit that waited longest first,
+  // then the lower id) within `budget` expansions (at least one a tick); once a second, cycles
+  // of units waiting on each other are broken. Nothing happens when cooperation is off.
+  void plan(Refs& w, std::uint64_t budget);
+
+ private:
+  static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  static constexpr std::uint64_t kWindowExpansionLimit = 20000;  // one window's search
+  struct Field {
+    SharedPath path;     // the spatial path (corridor) or
+    pathing::Cell goal;  // the goal (RRA*) the distances belong to
+    std::unique_ptr<pathing::DistanceField> field;
+  };
+
+  static bool before(const Unit& a, const Unit& b);
+  pathing::CooperativeRequest requestFor(const Refs& w, const Unit& unit, pathing::Cell start);
+  const std::vector<std::uint8_t>& passingFor(const Refs& w, pathing::Agent agent);
+  pathing::DistanceField& fieldFor(const Refs& w, const Unit& unit);
+  void hold(Refs& w, Unit& unit);
+  bool needsWindow(const Refs& w, const Unit& unit) const;
+  void planWindow(Refs& w, Unit& unit, std::uint64_t& spent);
+  std::optional<std::uint32_t> waitsFor(Refs& w, const Unit& unit);
+  void breakDeadlocks(Refs& w, std::uint64_t& spent);
+
+  // Scratch, and caches that are pure functions of the map and the units' paths.
+  std::optional<pathing::CooperativeSearch> search_;
+  std::map<pathing::Agent, std::vector<std::uint8_t>> passing_;
+  std::vector<Field> fields_;  // per unit index
+  std::vector<std::uint32_t> candidates_;
+  std::vector<std::uint8_t> planned_;
+  std::vector<std::uint32_t> waitFor_;
+  std::vector<std::uint32_t> walk_;
+  std::vector<std::uint32_t> cycle_;
+};
+
 // --- Steering: desired velocities into physics (engine/src/world/steering.cpp) ---
-void steerAll(Refs& w);
+// `index` is scratch (the units near each one, for MovementRules::Current).
+void steerAll(Refs& w, TargetIndex& index);
 
 // --- Physics: Box2D steps, positions read back ---
 void stepPhysics(Refs& w);

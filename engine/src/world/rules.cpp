@@ -9,6 +9,14 @@ using pathing::Cell;
 
 namespace {
 
+// [Unit: cells] What is left of the unit's path: from its body to waypoint `next`, then along
+// the path.
+double remainingAlong(const Unit& unit, int size) {
+  const PlannedPath& path = *unit.path;
+  return (units::anchorToCentre(path.cells[unit.next], size) - unit.position).length() +
+         path.remaining[unit.next];
+}
+
 // A moving unit's checks, in order; at most one repath a tick.
 void checkProgress(Refs& w, Unit& unit, Cell anchor) {
   const units::UnitType& type = w.typeOf(unit);
@@ -23,16 +31,30 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor) {
     requestPath(w, unit);
     return;
   }
+  const bool cooperative = w.settings.pathing.cooperative;
   // Pushed off its path: the next waypoint is more than a step away, and steering straight
-  // at it could cut a corner the path went around.
-  if (chebyshev(anchor, path[unit.next]) > 2) {
+  // at it could cut a corner the path went around. (A cooperative unit re-plans its window
+  // instead, and asks for a new path when it leaves its corridor.)
+  if (!cooperative && chebyshev(anchor, path[unit.next]) > 2) {
     w.log(EventKind::Repath, unit, 1);
     requestPath(w, unit);
     unit.state = UnitState::WaitingPath;
     return;
   }
   const WorldSettings& settings = w.settings;
-  if (unit.progress.update(unit.position, w.state.tick, settings.tickRate, settings.stuck)) {
+  bool stuck = false;
+  if (settings.movement == MovementRules::FirstRelease) {
+    stuck = unit.progress.update(unit.position, w.state.tick, settings.tickRate, settings.stuck);
+  } else if (cooperative &&
+             (!unit.plan || (waitingAt(*unit.plan, w.state.tick) && onSchedule(w, unit)))) {
+    // A wait its window holds it to, or waiting for a window, is not a jam; moving, it must
+    // make progress like anyone else.
+    unit.progress.restartWindow(unit.position, w.state.tick);
+  } else {
+    stuck = unit.progress.updateAlong(unit.position, remainingAlong(unit, type.size), w.state.tick,
+                                      settings.tickRate, settings.stuck);
+  }
+  if (stuck) {
     ++unit.repaths;
     if (unit.progress.stuckWindows() == settings.stuck.flagAfter) {
       unit.everStuck = true;
@@ -41,7 +63,12 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor) {
     // Near the goal, a crowd is the likely cause: a free goal cell resolves it.
     if (movingToArea && nearEnd) reassignGoal(w, unit);
     w.log(EventKind::Repath, unit, 0);
-    requestPath(w, unit);
+    if (cooperative) {
+      // The spatial path is not what jammed: a new window against today's reservations is.
+      releaseReservations(w, unit);
+    } else {
+      requestPath(w, unit);
+    }
   }
 }
 

@@ -9,13 +9,61 @@ namespace warpath::engine::world {
 using pathing::Cell;
 using units::Vec2;
 
-void steerAll(Refs& w) {
+namespace {
+
+// Reached the end of its path (or window) at the goal: parks there, or, under an Attack order,
+// waits at the approach cell for the target.
+void arrive(Refs& w, Unit& unit, const units::UnitType& type) {
+  if (unit.order == OrderKind::Attack) {
+    unit.state = UnitState::Idle;
+    return;
+  }
+  unit.state = UnitState::Parked;
+  w.state.goals.overwrite(GoalLayer::Parked, unit.goalCell, type.size, unit.id);
+  w.log(EventKind::Parked, unit);
+}
+
+// MovementRules::Current: a unit pushing into another goes no faster than that one can walk,
+// so a jeep does not drive infantry ahead of it at three times their speed.
+Vec2 limitPushing(const Refs& w, TargetIndex& index, const Unit& unit, Vec2 desired) {
+  const double speed = desired.length();
+  if (speed < 1e-9) return desired;
+  const Vec2 heading = desired * (1.0 / speed);
+  const double radius = w.typeOf(unit).radius;
+  constexpr double kContact = 0.15;  // [Unit: cells] gap at which bodies count as touching
+  double cap = speed;
+  for (const units::Combatant& c :
+       index.near(unit.position, radius + 0.5 * index.maxUnitSize() + kContact)) {
+    if (c.id == unit.id.index) continue;
+    const Unit& other = w.state.units[c.id];
+    const units::UnitType& otherType = w.typeOf(other);
+    const Vec2 offset = other.position - unit.position;
+    const double distance = offset.length();
+    if (distance - radius - otherType.radius > kContact) continue;
+    // Only what lies ahead (within 60° of the heading) is pushed.
+    if (offset.x * heading.x + offset.y * heading.y < 0.5 * distance) continue;
+    const Cell under{static_cast<int>(std::floor(other.position.x)),
+                     static_cast<int>(std::floor(other.position.y))};
+    double walk = w.map().contains(under) ? otherType.speedOn(w.map().at(under)) : 0.0;
+    if (!(walk > 0.0)) walk = otherType.maxSpeed();
+    cap = std::min(cap, walk);
+  }
+  return desired * (cap / speed);
+}
+
+}  // namespace
+
+void steerAll(Refs& w, TargetIndex& index) {
   const double dt = 1.0 / w.settings.tickRate;
   const pathing::GridMap& map = w.map();
+  const bool current = w.settings.movement == MovementRules::Current;
+  const bool cooperative = w.settings.pathing.cooperative;
+  if (current) index.rebuild(w);
   for (Unit& unit : w.state.units) {
     if (!unit.alive()) continue;
     const units::UnitType& type = w.typeOf(unit);
     Vec2 desired;
+    Vec2 toward;  // where the unit heads, for the turning-circle limit
     if (unit.engaged) {
       // Halted to fight: the stall is on purpose, not a jam.
       unit.progress.restartWindow(unit.position, w.state.tick);
@@ -25,6 +73,7 @@ void steerAll(Refs& w) {
       const units::SteeringResult r =
           units::steer(goal, 0, type.size, unit.position, type.maxSpeed(), w.settings.steering);
       desired = r.desiredVelocity;
+      toward = units::anchorToCentre(unit.goalCell, type.size) - unit.position;
     } else if (unit.state == UnitState::Moving && unit.path) {
       const Cell under{static_cast<int>(std::floor(unit.position.x)),
                        static_cast<int>(std::floor(unit.position.y))};
@@ -32,18 +81,28 @@ void steerAll(Refs& w) {
       if (!(speed > 0.0)) speed = type.maxSpeed();
       const units::SteeringResult r = units::steer(unit.path->cells, unit.next, type.size,
                                                    unit.position, speed, w.settings.steering);
+      // `next` also tells the stuck rule how far along its path the unit is.
       unit.next = r.next;
-      desired = r.desiredVelocity;
-      if (r.reachedEnd) {
-        if (unit.order == OrderKind::Attack) {
-          // At the approach cell: wait there for the target to come into sight or move.
-          unit.state = UnitState::Idle;
-        } else {
-          unit.state = UnitState::Parked;
-          w.state.goals.overwrite(GoalLayer::Parked, unit.goalCell, type.size, unit.id);
-          w.log(EventKind::Parked, unit);
-        }
+      if (!cooperative) {
+        desired = r.desiredVelocity;
+        toward = units::anchorToCentre(unit.path->cells[r.next], type.size) - unit.position;
+        if (r.reachedEnd) arrive(w, unit, type);
+      } else if (unit.plan) {
+        // Keep to the window's times; a unit still waiting for a window stands.
+        const units::ScheduleResult s = followSchedule(w, unit, speed);
+        desired = s.desiredVelocity;
+        toward = desired * 0.3;
+        const Vec2 goal = units::anchorToCentre(unit.goalCell, type.size);
+        if (s.finished && unit.plan->status == pathing::CooperativeStatus::ReachedGoal &&
+            (goal - unit.position).length() <= w.settings.steering.arrivalRadius + 0.3)
+          arrive(w, unit, type);
       }
+    }
+    if (current) {
+      const double speed = desired.length();
+      const double turnCap = units::turnLimitedSpeed(unit.velocity, toward, type.turnRate);
+      if (speed > turnCap) desired = desired * (turnCap / speed);
+      desired = limitPushing(w, index, unit, desired);
     }
     const Vec2 v =
         units::limitVelocity(unit.velocity, desired, type.acceleration, type.turnRate, dt);

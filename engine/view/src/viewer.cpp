@@ -49,10 +49,11 @@ std::string mismatchText(const engine::HashMismatch& m) {
   return text;
 }
 
-// The overlays keys 1-6 switch, in order.
-constexpr std::array<bool render::Overlays::*, 6> kOverlayKeys = {
+// The overlays keys 1-7 switch, in order.
+constexpr std::array<bool render::Overlays::*, 7> kOverlayKeys = {
     &render::Overlays::paths,        &render::Overlays::footprints, &render::Overlays::stuck,
-    &render::Overlays::arrivalZones, &render::Overlays::hud,        &render::Overlays::clearance};
+    &render::Overlays::arrivalZones, &render::Overlays::hud,        &render::Overlays::clearance,
+    &render::Overlays::reservations};
 
 constexpr double kMinSpeed = 1.0 / 16.0;
 constexpr double kMaxSpeed = 64.0;

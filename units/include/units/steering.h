@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <span>
 
+#include "pathing/cooperative_search.h"
 #include "pathing/grid_map.h"
 
 namespace warpath::units {
@@ -51,6 +52,27 @@ struct SteeringResult {
 // [Limit: next < path.size()]
 SteeringResult steer(std::span<const pathing::Cell> path, std::size_t next, int size, Vec2 centre,
                      double maxSpeed, const SteeringParams& params = {});
+
+// [Unit: cells/s] The fastest a unit that turns at most `turnRate` [rad/s] can go, heading along
+// `velocity`, and still pass through a point `offset` away: the circle tangent to the heading
+// through the point has radius |offset| / (2 sin θ), θ the angle between heading and offset, and
+// speed = turnRate · radius. Without this a vehicle whose turning circle is wider than the
+// waypoint radius orbits its waypoint forever. +inf when at rest or heading at the point.
+double turnLimitedSpeed(Vec2 velocity, Vec2 offset, double turnRate);
+
+// Following a cooperative plan (timed anchor cells, pathing/cooperative_search.h): the unit
+// steers toward where the plan puts it `lookaheadSeconds` from now, at the speed that gets it
+// there on time (at most maxSpeed), so it keeps to the times it reserved, waits included.
+struct ScheduleResult {
+  Vec2 desiredVelocity;   // [Unit: cells/s]
+  Vec2 scheduled;         // [Unit: cells] where the plan puts the body centre now
+  bool waiting = false;   // the plan holds the unit where it is now (a wait, or its end)
+  bool finished = false;  // the plan's last tick has passed
+};
+// [Limit: !steps.empty(), lookaheadSeconds > 0, ticksPerSecond > 0]
+ScheduleResult followPlan(std::span<const pathing::TimedCell> steps, std::int64_t tick, int size,
+                          Vec2 centre, double maxSpeed, double ticksPerSecond,
+                          double lookaheadSeconds);
 
 // The velocity a unit reaches in `dt` seconds going from `current` toward `desired`, turning
 // by at most turnRate·dt and changing speed by at most acceleration·dt.

@@ -28,16 +28,28 @@ struct ProgressMonitor {
   void restartWindow(Vec2 position, std::int64_t tick) {
     origin = position;
     originTick = tick;
+    originRemaining = kUnknownRemaining;
   }
   // Call once a tick while the unit is moving somewhere. True when this tick closes a window
   // without progress; stuckWindows() then tells how many such windows came in a row.
   bool update(Vec2 position, std::int64_t tick, double ticksPerSecond, const StuckRule& rule);
 
+  // The same rule with progress measured along the unit's path, not as displacement:
+  // `remaining` [Unit: cells] is what is left of the path. A unit that circles a waypoint or is
+  // shoved sideways moves without progress; one pushed back loses it.
+  bool updateAlong(Vec2 position, double remaining, std::int64_t tick, double ticksPerSecond,
+                   const StuckRule& rule);
+
   int stuckWindows() const { return stuckInARow; }
 
-  Vec2 origin;                  // [Unit: cells] where the current window started
-  std::int64_t originTick = 0;  // [Unit: ticks] when it started
-  int stuckInARow = 0;          // windows without progress in a row
+  // A restarted window has no distance yet: the first updateAlong counts as progress and
+  // records one.
+  static constexpr double kUnknownRemaining = 1e300;
+
+  Vec2 origin;                                 // [Unit: cells] where the current window started
+  std::int64_t originTick = 0;                 // [Unit: ticks] when it started
+  int stuckInARow = 0;                         // windows without progress in a row
+  double originRemaining = kUnknownRemaining;  // [Unit: cells] updateAlong: path left at origin
 };
 
 }  // namespace warpath::units

@@ -35,6 +35,10 @@ struct UnitView {
   UnitState state = UnitState::Alive;
   bool stuck = false;         // drawn by the stuck overlay
   std::vector<Point> path{};  // remaining waypoints (centres), drawn by the path overlays
+  // The cooperative window the unit reserved (centres from now on), drawn by the reservations
+  // overlay as a trail coloured by time; `windowSeconds` per point, from the frame's time.
+  std::vector<Point> window{};
+  std::vector<float> windowSeconds{};
 };
 
 // A shot drawn as a line in its shooter's team colour. Instant shots: the whole line from the

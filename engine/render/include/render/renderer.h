@@ -23,8 +23,11 @@ namespace warpath::render {
 
 // What is drawn besides terrain and units. Each switch is independent.
 struct Overlays {
-  bool paths = false;          // each unit's remaining waypoints as a line
-  bool footprints = false;     // each unit's size x size footprint along its path
+  bool paths = false;       // each unit's remaining waypoints as a line
+  bool footprints = false;  // each unit's size x size footprint along its path
+  // Each unit's reserved cooperative window as a trail coloured by time: white now, through
+  // the team colour, to dark at kReservationHorizonSeconds and later; a dot marks each wait.
+  bool reservations = false;
   bool clearance = false;      // heat map of the field given to setClearance()
   bool abstractGraph = false;  // the graph given to setAbstractGraph(): nodes, edges, clusters
   bool stuck = true;           // a ring around units flagged stuck
@@ -33,8 +36,11 @@ struct Overlays {
   constexpr bool operator==(const Overlays&) const = default;
 };
 
-// Parses a comma-separated list of overlay names to switch on (paths, footprints, clearance,
-// graph, stuck, zones, hud) over `base`; "none" switches every overlay off; "" changes nothing.
+inline constexpr float kReservationHorizonSeconds = 8.0f;
+
+// Parses a comma-separated list of overlay names to switch on (paths, footprints,
+// reservations, clearance, graph, stuck, zones, hud) over `base`; "none" switches every overlay
+// off; "" changes nothing.
 Result<Overlays> parseOverlays(std::string_view names, Overlays base = {});
 
 struct RenderDef {

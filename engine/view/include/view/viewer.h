@@ -4,7 +4,7 @@
 //
 // Keys: space play/pause; right or '.' one tick on; left one tick back; shift+right / shift+left
 // ten seconds on / back; Home / End the first / last tick; '+' / '-' speed x2 / x0.5; 1-7
-// overlays (paths, footprints, stuck, zones, HUD, clearance, HAA* graph); c the unit type
+// overlays (paths, footprints, stuck, zones, HUD, clearance, reserved windows); c the unit type
 // clearance and graph are shown for;
 // h the help line; q or Escape quit. Going back re-simulates from tick 0: worlds hold Box2D
 // state and cannot be copied, and re-simulating the bundled scenarios takes well under a second.

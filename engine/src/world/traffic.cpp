@@ -1,0 +1,391 @@
+// Cooperative movement (docs/cooperative.md): every moving unit reserves a window of space-time
+// (its footprint over the ticks its moves take) and follows it; units that follow no plan hold
+// their footprint. Windows are planned in a deterministic priority order within the tick's
+// expansion budget, and cycles of units waiting on each other are broken.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "engine/src/world/phases.h"
+#include "pathing/moves.h"
+
+namespace warpath::engine::world {
+
+using namespace pathing;
+
+namespace {
+
+// A unit this far [Unit: cells] from where its plan puts it has fallen off its plan.
+constexpr double kOffSchedule = 1.0;
+// How far ahead [Unit: s] a unit steers toward its schedule.
+constexpr double kLookaheadSeconds = 0.3;
+
+std::uint32_t ownerOf(const Unit& unit) {
+  return unit.id.index;
+}
+
+// Ticks one cardinal move takes at the unit's top speed: the unit of `window` and of waits.
+Tick cardinalTicks(const Refs& w, const units::UnitType& type) {
+  return std::max<Tick>(1, static_cast<Tick>(std::ceil(w.settings.tickRate / type.maxSpeed())));
+}
+
+bool following(const Unit& unit) {
+  return unit.alive() && unit.state == UnitState::Moving && unit.path && !unit.engaged;
+}
+
+// Where a unit that follows no plan stands for the table: its goal cell once parked (steering
+// brings it back there), else the nearest anchor its footprint fits.
+Cell standingAnchor(const Refs& w, const Unit& unit) {
+  if (unit.alive() && unit.state == UnitState::Parked) return unit.goalCell;
+  if (!unit.alive()) return units::centreToAnchor(unit.position, w.typeOf(unit).size);
+  return nearestStandable(w, unit);
+}
+
+bool hasBody(const Unit& unit) {
+  return unit.alive() || unit.wreckUntilTick >= 0;
+}
+
+}  // namespace
+
+}  // namespace warpath::engine::world
+
+namespace warpath::engine {
+
+TimedPlan timedPlan(std::vector<pathing::TimedCell> steps, pathing::CooperativeStatus status) {
+  std::uint64_t h = 0xCBF29CE484222325ull;
+  const auto word = [&](std::uint64_t v) {
+    for (int i = 0; i < 8; ++i) {
+      h ^= (v >> (8 * i)) & 0xFFu;
+      h *= 0x100000001B3ull;
+    }
+  };
+  word(static_cast<std::uint64_t>(status));
+  for (const pathing::TimedCell& s : steps) {
+    word(static_cast<std::uint64_t>(static_cast<std::uint32_t>(s.cell.x)) << 32 |
+         static_cast<std::uint32_t>(s.cell.y));
+    word(static_cast<std::uint64_t>(s.tick));
+  }
+  return {std::move(steps), status, h};
+}
+
+}  // namespace warpath::engine
+
+namespace warpath::engine::world {
+
+void releaseReservations(Refs& w, Unit& unit) {
+  if (w.state.reservations) w.state.reservations->release(ownerOf(unit));
+  unit.plan.reset();
+  unit.held = {-1, -1};
+  unit.heldSince = -1;
+}
+
+bool waitingAt(const TimedPlan& plan, Tick tick) {
+  const std::vector<TimedCell>& s = plan.steps;
+  if (tick >= s.back().tick) return plan.status != CooperativeStatus::ReachedGoal;
+  for (std::size_t i = 0; i + 1 < s.size(); ++i) {
+    if (tick < s[i + 1].tick) return tick >= s[i].tick && s[i].cell == s[i + 1].cell;
+  }
+  return false;
+}
+
+Traffic::Traffic() = default;
+Traffic::~Traffic() = default;
+
+CooperativeRequest Traffic::requestFor(const Refs& w, const Unit& unit, Cell start) {
+  const units::UnitType& type = w.typeOf(unit);
+  const PathServiceSettings& settings = w.settings.pathing;
+  CooperativeRequest r;
+  r.agent = type.agent();
+  r.start = start;
+  r.startTick = w.state.tick;
+  r.goal = unit.goalCell;
+  r.self = ownerOf(unit);
+  for (int slot = 0; slot < kTraversableTerrainSlots; ++slot) {
+    const double speed = type.speedOn(static_cast<Terrain>(slot));
+    r.ticksPerCell[static_cast<std::size_t>(slot)] = speed > 0.0 ? w.settings.tickRate / speed : 0;
+  }
+  const Tick step = cardinalTicks(w, type);
+  r.waitTicks = std::max<Tick>(1, step / 2);
+  r.window = step * settings.window;
+  r.maxWindow = 4 * r.window;
+  // The last cell is held until the next re-plan (due when half the window is left) and a
+  // little longer, so a re-plan that waits a tick for the budget still finds it free.
+  r.holdTicks = r.window / 2 + r.waitTicks;
+  r.passing = &passingFor(w, r.agent);
+  r.expansionLimit = std::min<std::uint64_t>(settings.expansionBudget, kWindowExpansionLimit);
+  return r;
+}
+
+const std::vector<std::uint8_t>& Traffic::passingFor(const Refs& w, Agent agent) {
+  auto it = passing_.find(agent);
+  if (it == passing_.end()) it = passing_.emplace(agent, passingRoom(w.grid, agent)).first;
+  return it->second;
+}
+
+DistanceField& Traffic::fieldFor(const Refs& w, const Unit& unit) {
+  if (fields_.size() < w.state.units.size()) fields_.resize(w.state.units.size());
+  Field& f = fields_[unit.id.index];
+  // Distances belong to one spatial path (the corridor) or one goal (RRA*).
+  if (!f.field || f.path != unit.path || f.goal != unit.goalCell) {
+    const Agent agent = w.typeOf(unit).agent();
+    const std::vector<Cell>& cells = unit.path->cells;
+    if (w.settings.pathing.corridorSearch)
+      f.field =
+          std::make_unique<CorridorDistance>(w.grid, agent, cells, w.settings.pathing.corridor);
+    else
+      f.field =
+          std::make_unique<ReverseResumableSearch>(w.grid, agent, unit.goalCell, cells.front());
+    f.path = unit.path;
+    f.goal = unit.goalCell;
+  }
+  return *f.field;
+}
+
+void Traffic::hold(Refs& w, Unit& unit) {
+  if (!hasBody(unit)) {
+    if (unit.held.x >= 0 || unit.plan) releaseReservations(w, unit);
+    return;
+  }
+  const Cell anchor = standingAnchor(w, unit);
+  if (!unit.plan && unit.held == anchor) return;
+  releaseReservations(w, unit);
+  w.state.reservations->reserve(anchor, w.typeOf(unit).size, w.state.tick, kForever, ownerOf(unit));
+  unit.held = anchor;
+  unit.heldSince = w.state.tick;
+}
+
+bool Traffic::needsWindow(const Refs& w, const Unit& unit) const {
+  if (!unit.plan) return true;
+  const TimedPlan& plan = *unit.plan;
+  const Tick now = w.state.tick;
+  const Tick end = plan.steps.back().tick;
+  const units::UnitType& type = w.typeOf(unit);
+  switch (plan.status) {
+    case CooperativeStatus::ReachedGoal:
+      break;
+    case CooperativeStatus::Windowed:
+      if (end - now <= cardinalTicks(w, type) * w.settings.pathing.window / 2) return true;
+      break;
+    default:  // Blocked: try again once its safe prefix runs out
+      if (now >= end) return true;
+      break;
+  }
+  return !onSchedule(w, unit);
+}
+
+void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent) {
+  releaseReservations(w, unit);
+  const Cell start = nearestStandable(w, unit);
+  const CooperativeRequest request = requestFor(w, unit, start);
+  DistanceField& field = fieldFor(w, unit);
+  if (!search_) search_.emplace(w.grid);
+  CooperativePlan found = search_->plan(request, field, *w.state.reservations);
+  MovementStats& stats = w.state.movement;
+  spent += found.metrics.expanded;
+  stats.expanded += found.metrics.expanded;
+  ++stats.windows;
+  const int size = w.typeOf(unit).size;
+  switch (found.status) {
+    case CooperativeStatus::InvalidStart:
+    case CooperativeStatus::InvalidGoal:
+    case CooperativeStatus::Unreachable:
+      // Pushed out of its corridor (or its goal changed under it): a new spatial path.
+      hold(w, unit);
+      w.log(EventKind::Repath, unit, 1);
+      requestPath(w, unit);
+      unit.state = UnitState::WaitingPath;
+      return;
+    case CooperativeStatus::Blocked:
+      ++stats.blockedWindows;
+      if (std::getenv("WP_DEBUG"))
+        std::fprintf(stderr,
+                     "tick %lld unit %u blocked start %d,%d goal %d,%d steps %zu last tick %lld "
+                     "exp %llu win %lld hold %lld\n",
+                     (long long)w.state.tick, unit.id.index, start.x, start.y, unit.goalCell.x,
+                     unit.goalCell.y, found.steps.size(),
+                     found.steps.empty() ? -1LL : (long long)found.steps.back().tick,
+                     (unsigned long long)found.metrics.expanded, (long long)request.window,
+                     (long long)request.holdTicks);
+      if (found.steps.empty()) found.steps.push_back({start, w.state.tick});
+      CooperativeSearch::reserve(*w.state.reservations, found.steps, size, ownerOf(unit),
+                                 request.waitTicks);
+      break;
+    case CooperativeStatus::Windowed:
+      CooperativeSearch::reserve(*w.state.reservations, found.steps, size, ownerOf(unit),
+                                 request.holdTicks);
+      break;
+    case CooperativeStatus::ReachedGoal:
+      CooperativeSearch::reserve(*w.state.reservations, found.steps, size, ownerOf(unit), kForever);
+      break;
+  }
+  // Giving way: the window starts by moving away from the goal to let another unit by.
+  const double here = field.distance(start);
+  for (const TimedCell& step : found.steps) {
+    if (step.cell == start) continue;
+    if (field.distance(step.cell) > here + 1e-9) ++stats.giveWays;
+    break;
+  }
+  unit.plan = std::make_shared<const TimedPlan>(timedPlan(std::move(found.steps), found.status));
+}
+
+std::optional<std::uint32_t> Traffic::waitsFor(Refs& w, const Unit& unit) {
+  // The unit is waiting: whoever holds the cell it would step to next toward its goal.
+  const units::UnitType& type = w.typeOf(unit);
+  const Cell here = nearestStandable(w, unit);
+  const GridMap& map = w.map();
+  if (!map.contains(here)) return std::nullopt;
+  DistanceField& field = fieldFor(w, unit);
+  const std::uint8_t moves = w.grid.layer(type.agent()).moveMasks()[map.indexOf(here)];
+  std::optional<Cell> best;
+  double bestDistance = field.distance(here);
+  for (int d = 0; d < kDirectionCount; ++d) {
+    if ((moves & (1u << d)) == 0) continue;
+    const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+    const Cell next{here.x + dir.dx, here.y + dir.dy};
+    const double distance = field.distance(next);
+    if (distance < bestDistance) {
+      bestDistance = distance;
+      best = next;
+    }
+  }
+  if (!best) return std::nullopt;
+  const Tick now = w.state.tick;
+  return w.state.reservations->blocker(*best, type.size, now, now + 2 * cardinalTicks(w, type),
+                                       ownerOf(unit));
+}
+
+void Traffic::breakDeadlocks(Refs& w, std::uint64_t& spent) {
+  // Each waiting unit waits for at most one other: a cycle is found by walking from each unit
+  // in id order, marking the walk with its start.
+  std::vector<Unit>& all = w.state.units;
+  const Tick now = w.state.tick;
+  const auto patience = static_cast<Tick>(std::llround(w.settings.tickRate));
+  waitFor_.assign(all.size(), kNone);
+  for (Unit& unit : all) {
+    if (!following(unit) || unit.waitSince < 0 || now - unit.waitSince < patience) continue;
+    if (const std::optional<std::uint32_t> other = waitsFor(w, unit))
+      waitFor_[unit.id.index] = *other;
+  }
+  walk_.assign(all.size(), kNone);
+  for (std::uint32_t start = 0; start < all.size(); ++start) {
+    std::uint32_t at = start;
+    while (at != kNone && at < all.size() && walk_[at] == kNone) {
+      walk_[at] = start;
+      at = waitFor_[at];
+    }
+    if (at == kNone || at >= all.size() || walk_[at] != start) continue;
+    // `at` lies on a cycle first reached from `start`: collect it.
+    cycle_.clear();
+    std::uint32_t member = at;
+    do {
+      cycle_.push_back(member);
+      member = waitFor_[member];
+    } while (member != at);
+    // Every member drops what it holds; then they plan again in priority order, so the first
+    // goes through and the others give way around its reservations.
+    std::sort(cycle_.begin(), cycle_.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return before(all[a], all[b]); });
+    for (std::uint32_t m : cycle_)
+      releaseReservations(w, all[m]);
+    for (std::uint32_t m : cycle_) {
+      planWindow(w, all[m], spent);
+      planned_[m] = 1;
+    }
+    ++w.state.movement.deadlocksBroken;
+  }
+}
+
+bool Traffic::before(const Unit& a, const Unit& b) {
+  // The priority rule: the unit that has waited longer this order goes first (so nobody waits
+  // forever), then the lower id.
+  if (a.waitedTicks != b.waitedTicks) return a.waitedTicks > b.waitedTicks;
+  return a.id.index < b.id.index;
+}
+
+void Traffic::plan(Refs& w, std::uint64_t budget) {
+  if (!w.settings.pathing.cooperative) return;
+  ReservationTable& table = *w.state.reservations;
+  const Tick now = w.state.tick;
+  table.forget(now);
+  std::vector<Unit>& all = w.state.units;
+  planned_.assign(all.size(), 0);
+  candidates_.clear();
+  for (Unit& unit : all) {
+    // A unit without a window (waiting for a path, or for the budget) holds where it stands.
+    if (!following(unit) || !unit.plan) hold(w, unit);
+    if (!following(unit)) {
+      unit.waitSince = -1;
+      continue;
+    }
+    if (needsWindow(w, unit)) candidates_.push_back(unit.id.index);
+  }
+  std::uint64_t spent = 0;
+  // Once a second (staggered by nothing: all at once, so a cycle is seen whole).
+  const auto second = static_cast<Tick>(std::max(1.0, std::round(w.settings.tickRate)));
+  if (now % second == 0) breakDeadlocks(w, spent);
+  std::sort(candidates_.begin(), candidates_.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return before(all[a], all[b]); });
+  bool first = true;
+  for (std::uint32_t index : candidates_) {
+    if (planned_[index] != 0 || !following(all[index])) continue;
+    // The budget is what the spatial searches left; a tick always plans at least one window.
+    if (!first && spent >= budget) break;
+    first = false;
+    planWindow(w, all[index], spent);
+  }
+  if (const char* dbg = std::getenv("WP_DEBUG_TICK"); dbg && std::atoll(dbg) == now) {
+    for (Unit& unit : all) {
+      if (!unit.alive()) continue;
+      const Cell a = nearestStandable(w, unit);
+      std::fprintf(stderr,
+                   "unit %u type %d state %d pos %.2f,%.2f anchor %d,%d goal %d,%d wait %lld held "
+                   "%d,%d plan %s:",
+                   unit.id.index, unit.type, (int)unit.state, unit.position.x, unit.position.y, a.x,
+                   a.y, unit.goalCell.x, unit.goalCell.y, (long long)unit.waitSince, unit.held.x,
+                   unit.held.y,
+                   unit.plan ? std::string(kCooperativeStatusNames.name(unit.plan->status)).c_str()
+                             : "none");
+      if (unit.plan)
+        for (std::size_t i = 0; i < unit.plan->steps.size() && i < 8; ++i)
+          std::fprintf(stderr, " (%d,%d@%lld)", unit.plan->steps[i].cell.x,
+                       unit.plan->steps[i].cell.y, (long long)(unit.plan->steps[i].tick - now));
+      if (following(unit)) {
+        auto b = waitsFor(w, unit);
+        std::fprintf(stderr, " waitsFor %d", b ? (int)*b : -1);
+      }
+      std::fprintf(stderr, "\n");
+    }
+  }
+  // Waiting: counted when it begins, timed while it lasts (the priority ages with it).
+  MovementStats& stats = w.state.movement;
+  for (Unit& unit : all) {
+    if (!following(unit) || !unit.plan) continue;
+    if (waitingAt(*unit.plan, now)) {
+      if (unit.waitSince < 0) {
+        unit.waitSince = now;
+        ++stats.waits;
+      }
+      ++unit.waitedTicks;
+      stats.maxWaitTicks = std::max(stats.maxWaitTicks, now - unit.waitSince);
+    } else {
+      unit.waitSince = -1;
+    }
+  }
+}
+
+units::ScheduleResult followSchedule(const Refs& w, const Unit& unit, double maxSpeed) {
+  const units::UnitType& type = w.typeOf(unit);
+  return units::followPlan(unit.plan->steps, w.state.tick, type.size, unit.position, maxSpeed,
+                           w.settings.tickRate, kLookaheadSeconds);
+}
+
+bool onSchedule(const Refs& w, const Unit& unit) {
+  if (!unit.plan) return false;
+  const units::UnitType& type = w.typeOf(unit);
+  const units::ScheduleResult r = followSchedule(w, unit, type.maxSpeed());
+  return (r.scheduled - unit.position).length() <= kOffSchedule;
+}
+
+}  // namespace warpath::engine::world

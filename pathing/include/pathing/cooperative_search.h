@@ -1,0 +1,214 @@
+#pragma once
+// Cooperative pathfinding in space-time (Silver 2005, WHCA*; Sturtevant & Buro 2006, CPRA*):
+// an agent plans a window of timed moves, waits included, that keeps clear of what others have
+// reserved (pathing/reservation_table.h), guided by a distance field to its goal that ignores
+// the others:
+//   - ReverseResumableSearch: exact distances on the whole map, by a backward A* resumed on
+//     demand (WHCA*'s heuristic).
+//   - CorridorDistance: exact distances inside a corridor around the agent's hierarchical path,
+//     infinite outside it, so the search stays in the corridor (CPRA*(k), k the corridor's
+//     half-width): a refinement of the HAA* route that cooperates.
+// Time is in ticks of the simulation; a move's duration follows from the agent's speed on the
+// terrain it moves onto. STL only; a CooperativeSearch owns its scratch (one per thread).
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "pathing/annotated_grid.h"
+#include "pathing/enum_names.h"
+#include "pathing/reservation_table.h"
+#include "pathing/search.h"
+
+namespace warpath::pathing {
+
+// Distances to one goal for one agent kind, ignoring other agents. Non-const: the searches
+// behind them resume lazily.
+class DistanceField {
+ public:
+  virtual ~DistanceField() = default;
+  // [Unit: move cost, 1 a cardinal step, √2 a diagonal] +inf when the goal cannot be reached
+  // from `c` (or, for a corridor, `c` lies outside it).
+  virtual double distance(Cell c) = 0;
+  // Nodes expanded so far building the field (a measurement).
+  virtual std::uint64_t expanded() const = 0;
+};
+
+// Reverse Resumable A* (Silver 2005): A* from `goal` toward `start` on the agent's layer (its
+// moves are symmetric), resumed until the asked cell is closed; with the octile heuristic every
+// closed cell's distance is exact. Memory grows with the cells touched, never with the map.
+class ReverseResumableSearch final : public DistanceField {
+ public:
+  ReverseResumableSearch(const AnnotatedGrid& grid, Agent agent, Cell goal, Cell start);
+  double distance(Cell c) override;
+  std::uint64_t expanded() const override { return expanded_; }
+
+ private:
+  struct Entry {
+    double g = 0.0;
+    bool closed = false;
+  };
+  struct Open {
+    double f;
+    double g;
+    std::uint32_t cell;
+  };
+  void push(std::uint32_t cell, double g);
+
+  const AnnotatedGrid& grid_;
+  Agent agent_;
+  const GridMap& map_;
+  std::span<const std::uint8_t> moves_;
+  Cell target_;
+  std::unordered_map<std::uint32_t, Entry> entries_;
+  std::vector<Open> open_;  // a binary heap (std::push_heap) on (f, then larger g, then cell)
+  std::uint64_t expanded_ = 0;
+};
+
+// The cells within Chebyshev distance `radius` of `path` (the agent's path from the
+// hierarchical planner, start to goal) where the agent can stand, with exact distances to
+// path.back() inside them from one backward Dijkstra over them; +inf outside. Built once.
+class CorridorDistance final : public DistanceField {
+ public:
+  // [Limit: !path.empty(), radius >= 0]
+  CorridorDistance(const AnnotatedGrid& grid, Agent agent, std::span<const Cell> path, int radius);
+  double distance(Cell c) override;
+  std::uint64_t expanded() const override { return expanded_; }
+  std::size_t cells() const { return distances_.size(); }
+
+ private:
+  const GridMap& map_;
+  std::unordered_map<std::uint32_t, double> distances_;  // +inf until reached
+  std::uint64_t expanded_ = 0;
+};
+
+// One byte per cell: 1 where two agents of this kind could stand side by side around an
+// anchor (some 2s×2s square of the capability's terrains contains its footprint), 0 where they
+// could not pass each other (a corridor, a door, a bridge narrower than two of them).
+std::vector<std::uint8_t> passingRoom(const AnnotatedGrid& grid, Agent agent);
+
+// One byte per cell: 1 on every cell some footprint covers where an agent of one of these
+// kinds stands without passing room — the chokepoints, where units must take turns. Open ground
+// is 0: there local avoidance lets units slide past each other.
+std::vector<std::uint8_t> contestedCells(const AnnotatedGrid& grid, std::span<const Agent> agents);
+
+// The anchor reaches `cell` at `tick` (and stays until the next entry's tick).
+struct TimedCell {
+  Cell cell;
+  Tick tick = 0;
+  bool operator==(const TimedCell&) const = default;
+};
+
+// While an agent moves from a to b over [t, t + d) it holds a until three quarters of the way
+// and b from a quarter of the way: a follower may close up to half a move behind it, and two
+// agents swapping cells always overlap (each enters the other's cell before the other left).
+struct MoveSpan {
+  Tick leaveBy;  // the end of the hold on a
+  Tick enterAt;  // the start of the hold on b
+};
+constexpr MoveSpan moveSpan(Tick t, Tick d) {
+  return {t + (3 * d + 3) / 4, t + d / 4};
+}
+
+struct CooperativeRequest {
+  Agent agent;
+  Cell start;
+  Tick startTick = 0;
+  Cell goal;
+  std::uint32_t self = 0;  // the agent's owner id in the table: its own reservations are ignored
+  // [Unit: ticks per cell] how long a cost-1 step takes onto a footprint whose centre cell
+  // (anchor + size/2) has this terrain; a move of cost c takes max(1, ceil(c · ticksPerCell))
+  // ticks. <= 0 or not finite: the terrain is not entered.
+  std::array<double, kTraversableTerrainSlots> ticksPerCell{};
+  Tick waitTicks = 8;    // [Unit: ticks] [Limit: >= 1] one wait move
+  Tick window = 128;     // [Unit: ticks] [Limit: >= 1] plan at least this far past startTick
+  Tick maxWindow = 512;  // [Unit: ticks] [Limit: >= window] where a window extended by
+                         // `passing` ends regardless
+  // [Unit: ticks] [Limit: >= 0] a window's last cell must stay free this long after it ends:
+  // the agent stands there until it plans again.
+  Tick holdTicks = 16;
+  // passingRoom() of the agent kind, or null. When set, a window does not end (before
+  // maxWindow) where there is no passing room: a unit commits to a whole corridor, door or
+  // bridge, or waits before it, so that two never meet head-on inside one.
+  const std::vector<std::uint8_t>* passing = nullptr;
+  std::uint64_t expansionLimit = 20000;  // [Limit: >= 1] space-time nodes expanded
+};
+
+enum class CooperativeStatus : std::uint8_t {
+  ReachedGoal,   // the window ends at the goal, which is free from then on
+  Windowed,      // planned to the window's end
+  Blocked,       // no safe window within the limits: `steps` is the longest safe prefix found
+  InvalidStart,  // the agent cannot stand at the start
+  InvalidGoal,   // … or at the goal
+  Unreachable,   // the distance field says the goal cannot be reached from the start
+};
+inline constexpr EnumNames<CooperativeStatus, 6> kCooperativeStatusNames{{{
+    {CooperativeStatus::ReachedGoal, "reached-goal"},
+    {CooperativeStatus::Windowed, "windowed"},
+    {CooperativeStatus::Blocked, "blocked"},
+    {CooperativeStatus::InvalidStart, "invalid-start"},
+    {CooperativeStatus::InvalidGoal, "invalid-goal"},
+    {CooperativeStatus::Unreachable, "unreachable"},
+}}};
+
+struct CooperativePlan {
+  CooperativeStatus status = CooperativeStatus::Blocked;
+  // From {start, startTick}; consecutive entries are one legal move or a wait on one cell;
+  // ticks strictly increase. Empty for InvalidStart, InvalidGoal and Unreachable.
+  std::vector<TimedCell> steps;
+  SearchMetrics metrics;
+};
+
+// Empty when the request's [Limit]s hold, else the first that does not and why.
+std::string problemWith(const CooperativeRequest& request);
+
+// A* over (anchor cell, tick): the agent's 8 moves plus a wait. A move a→b from t lasting d is
+// legal when the footprint at a is free of other owners over [t, leaveBy) and the one at b over
+// [enterAt, t+d) (moveSpan); a wait
+// when a's footprint is free over [t, t+waitTicks). The start is the exception: the agent stands
+// there already (two bodies can round to one anchor), so waiting there first (up to `window`)
+// and leaving it need only the destination free. g is ticks since startTick, h the field's
+// distance times the smallest ticksPerCell (admissible). The first state popped that is
+//   (1) the goal, free from then on: ReachedGoal; or
+//   (2) at or past startTick + window, free for holdTicks more, and with passing room (or
+//       past maxWindow): Windowed
+// ends the search. Ties go to the larger g, then to the state generated first.
+class CooperativeSearch {
+ public:
+  explicit CooperativeSearch(const AnnotatedGrid& grid);
+
+  // [Limit: problemWith(request) empty — otherwise InvalidStart with no steps]
+  CooperativePlan plan(const CooperativeRequest& request, DistanceField& field,
+                       const ReservationTable& table);
+
+  // Reserves what the search checked for a plan's steps, for `owner`: each move's two
+  // footprints over their moveSpan, each wait's footprint over the wait, and the last cell over
+  // [last tick, last tick + hold) (kForever: for good, e.g. a unit parked at its goal).
+  static void reserve(ReservationTable& table, std::span<const TimedCell> steps, int size,
+                      std::uint32_t owner, Tick hold);
+
+ private:
+  struct Node {
+    std::uint32_t cell;
+    Tick tick;
+    std::int32_t parent;
+  };
+  struct Open {
+    double f;
+    Tick g;
+    std::uint32_t node;
+  };
+
+  const AnnotatedGrid& grid_;
+  // Scratch, kept between queries.
+  std::vector<Node> nodes_;
+  std::vector<Open> open_;
+  std::unordered_map<std::uint64_t, std::uint32_t> seen_;  // (cell, tick) -> node
+};
+
+}  // namespace warpath::pathing

@@ -1,0 +1,85 @@
+#pragma once
+// Space-time reservations over cells (cooperative pathfinding, Silver 2005): which owner holds
+// which cell during which half-open tick interval [from, to). A size-s agent reserves all s×s
+// cells of its footprint. The table answers "is this footprint free then, and if not, whose
+// is it"; deciding who may reserve what is the caller's (the engine reserves only what a
+// search found free).
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <queue>
+#include <span>
+#include <vector>
+
+#include "pathing/grid_map.h"
+
+namespace warpath::pathing {
+
+using Tick = std::int64_t;
+inline constexpr Tick kForever = std::numeric_limits<Tick>::max();
+
+class ReservationTable {
+ public:
+  struct Reservation {
+    Cell anchor;
+    int size = 1;
+    Tick from = 0;
+    Tick to = 0;
+    bool operator==(const Reservation&) const = default;
+  };
+
+  // `tracked`: one byte per cell, non-zero where reservations are kept (e.g. the chokepoints,
+  // contestedCells()); elsewhere reserve() stores nothing and every footprint is free. Empty:
+  // every cell is tracked.
+  ReservationTable(int width, int height, std::vector<std::uint8_t> tracked = {});
+
+  // Reserves the footprint of a size-`size` agent anchored at `anchor` over [from, to) for
+  // `owner` [Limit: owner < 2^32 - 1]. Cells outside the map are ignored; an empty interval
+  // reserves nothing.
+  void reserve(Cell anchor, int size, Tick from, Tick to, std::uint32_t owner);
+  // Removes every reservation `owner` holds.
+  void release(std::uint32_t owner);
+  // The lowest owner other than `self` holding a cell of the footprint during part of
+  // [from, to); nullopt when it is free. Cells outside the map hold nothing (whether the agent
+  // may stand there is the map's question).
+  std::optional<std::uint32_t> blocker(Cell anchor, int size, Tick from, Tick to,
+                                       std::uint32_t self) const;
+  bool isFree(Cell anchor, int size, Tick from, Tick to, std::uint32_t self) const {
+    return !blocker(anchor, size, from, to, self);
+  }
+  // Drops the intervals that ended at or before `now`; the cost is proportional to what it
+  // drops. Call it as time moves on (the engine does, once a tick).
+  void forget(Tick now);
+  // What `owner` reserved since it last released everything, in the order reserved (those
+  // forget() has since dropped included).
+  std::span<const Reservation> heldBy(std::uint32_t owner) const;
+  // Cell intervals stored (memory, and what the engine's state hash counts).
+  std::size_t intervalCount() const { return intervals_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  struct Interval {
+    Tick from;
+    Tick to;
+    std::uint32_t owner;
+  };
+  struct Expiry {
+    Tick to;
+    std::uint32_t cell;
+    bool operator>(const Expiry& o) const { return to != o.to ? to > o.to : cell > o.cell; }
+  };
+  template <class F>
+  void forEachCell(Cell anchor, int size, F&& f) const;
+
+  int width_;
+  int height_;
+  std::vector<std::uint8_t> tracked_;             // empty: all
+  std::vector<std::vector<Interval>> cells_;      // per cell index, in no order
+  std::vector<std::vector<Reservation>> owners_;  // per owner id
+  std::priority_queue<Expiry, std::vector<Expiry>, std::greater<>> expiries_;
+  std::size_t intervals_ = 0;
+};
+
+}  // namespace warpath::pathing

@@ -1,0 +1,365 @@
+#include "pathing/cooperative_search.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+
+#include "pathing/moves.h"
+#include "pathing/search.h"
+
+namespace warpath::pathing {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+Cell cellAt(const GridMap& map, std::uint32_t index) {
+  const auto w = static_cast<std::uint32_t>(map.width());
+  return {static_cast<int>(index % w), static_cast<int>(index / w)};
+}
+
+}  // namespace
+
+// --- Reverse Resumable A* ---
+
+ReverseResumableSearch::ReverseResumableSearch(const AnnotatedGrid& grid, Agent agent, Cell goal,
+                                               Cell start)
+    : grid_(grid),
+      agent_(agent),
+      map_(grid.map()),
+      moves_(grid.layer(agent).moveMasks()),
+      target_(start) {
+  if (!grid.canStand(agent, goal)) return;
+  entries_.emplace(map_.indexOf(goal), Entry{0.0, false});
+  push(map_.indexOf(goal), 0.0);
+}
+
+void ReverseResumableSearch::push(std::uint32_t cell, double g) {
+  const Cell c = cellAt(map_, cell);
+  const double f = g + octileDistance(c.x - target_.x, c.y - target_.y);
+  open_.push_back({f, g, cell});
+  std::push_heap(open_.begin(), open_.end(), [](const Open& a, const Open& b) {
+    if (a.f != b.f) return a.f > b.f;
+    if (a.g != b.g) return a.g < b.g;
+    return a.cell > b.cell;
+  });
+}
+
+double ReverseResumableSearch::distance(Cell c) {
+  // Where the agent cannot stand nothing is reached: answered without searching everything.
+  if (!grid_.canStand(agent_, c)) return kInfinity;
+  const std::uint32_t wanted = map_.indexOf(c);
+  if (const auto it = entries_.find(wanted); it != entries_.end() && it->second.closed)
+    return it->second.g;
+  const auto order = [](const Open& a, const Open& b) {
+    if (a.f != b.f) return a.f > b.f;
+    if (a.g != b.g) return a.g < b.g;
+    return a.cell > b.cell;
+  };
+  while (!open_.empty()) {
+    std::pop_heap(open_.begin(), open_.end(), order);
+    const Open top = open_.back();
+    open_.pop_back();
+    Entry& e = entries_[top.cell];
+    if (e.closed) continue;
+    if (top.g > e.g) continue;  // a stale copy: a shorter one was pushed later
+    e.closed = true;
+    e.g = top.g;
+    ++expanded_;
+    const Cell here = cellAt(map_, top.cell);
+    const std::uint8_t mask = moves_[top.cell];
+    for (int d = 0; d < kDirectionCount; ++d) {
+      if ((mask & (1u << d)) == 0) continue;
+      const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+      const std::uint32_t next = map_.indexOf({here.x + dir.dx, here.y + dir.dy});
+      const double g = top.g + dir.cost;
+      auto [it, fresh] = entries_.try_emplace(next, Entry{g, false});
+      if (it->second.closed) continue;
+      if (!fresh && it->second.g <= g) continue;
+      it->second.g = g;
+      push(next, g);
+    }
+    if (top.cell == wanted) return top.g;
+  }
+  return kInfinity;
+}
+
+// --- Corridor ---
+
+CorridorDistance::CorridorDistance(const AnnotatedGrid& grid, Agent agent,
+                                   std::span<const Cell> path, int radius)
+    : map_(grid.map()) {
+  for (const Cell& p : path) {
+    for (int y = p.y - radius; y <= p.y + radius; ++y) {
+      for (int x = p.x - radius; x <= p.x + radius; ++x) {
+        if (grid.canStand(agent, {x, y})) distances_.try_emplace(map_.indexOf({x, y}), kInfinity);
+      }
+    }
+  }
+  if (path.empty()) return;
+  // Dijkstra from the goal over the corridor (moves are symmetric).
+  const std::span<const std::uint8_t> moves = grid.layer(agent).moveMasks();
+  using Item = std::pair<double, std::uint32_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
+  const auto goal = distances_.find(map_.indexOf(path.back()));
+  if (goal == distances_.end()) return;
+  goal->second = 0.0;
+  open.push({0.0, goal->first});
+  while (!open.empty()) {
+    const auto [g, cell] = open.top();
+    open.pop();
+    if (g > distances_[cell]) continue;
+    ++expanded_;
+    const Cell here = cellAt(map_, cell);
+    const std::uint8_t mask = moves[cell];
+    for (int d = 0; d < kDirectionCount; ++d) {
+      if ((mask & (1u << d)) == 0) continue;
+      const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+      const auto next = distances_.find(map_.indexOf({here.x + dir.dx, here.y + dir.dy}));
+      if (next == distances_.end() || next->second <= g + dir.cost) continue;
+      next->second = g + dir.cost;
+      open.push({next->second, next->first});
+    }
+  }
+}
+
+double CorridorDistance::distance(Cell c) {
+  if (!map_.contains(c)) return kInfinity;
+  const auto it = distances_.find(map_.indexOf(c));
+  return it == distances_.end() ? kInfinity : it->second;
+}
+
+// --- Passing room ---
+
+std::vector<std::uint8_t> passingRoom(const AnnotatedGrid& grid, Agent agent) {
+  const GridMap& map = grid.map();
+  const int w = map.width();
+  const int h = map.height();
+  const int s = std::max(1, agent.size);
+  const ClearanceField& clearance = grid.clearance(agent.capability);
+  // Integral image of "a 2s×2s square of the capability starts here".
+  std::vector<std::int32_t> sum(static_cast<std::size_t>(w + 1) * static_cast<std::size_t>(h + 1),
+                                0);
+  const auto at = [&](int x, int y) -> std::int32_t& {
+    return sum[static_cast<std::size_t>(y) * static_cast<std::size_t>(w + 1) +
+               static_cast<std::size_t>(x)];
+  };
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const int big = clearance.at({x, y}) >= 2 * s ? 1 : 0;
+      at(x + 1, y + 1) = big + at(x, y + 1) + at(x + 1, y) - at(x, y);
+    }
+  }
+  std::vector<std::uint8_t> room(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      // Square anchors b with b.x in [x - s, x], b.y in [y - s, y] contain this footprint.
+      const int x0 = std::max(0, x - s);
+      const int y0 = std::max(0, y - s);
+      const int n = at(x + 1, y + 1) - at(x0, y + 1) - at(x + 1, y0) + at(x0, y0);
+      room[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
+           static_cast<std::size_t>(x)] = n > 0 ? 1 : 0;
+    }
+  }
+  return room;
+}
+
+std::vector<std::uint8_t> contestedCells(const AnnotatedGrid& grid, std::span<const Agent> agents) {
+  const GridMap& map = grid.map();
+  const int w = map.width();
+  const int h = map.height();
+  std::vector<std::uint8_t> contested(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
+  for (const Agent& agent : agents) {
+    const std::vector<std::uint8_t> room = passingRoom(grid, agent);
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const std::size_t i =
+            static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+        if (room[i] != 0 || !grid.canStand(agent, {x, y})) continue;
+        for (int dy = 0; dy < agent.size && y + dy < h; ++dy) {
+          for (int dx = 0; dx < agent.size && x + dx < w; ++dx)
+            contested[i + static_cast<std::size_t>(dy) * static_cast<std::size_t>(w) +
+                      static_cast<std::size_t>(dx)] = 1;
+        }
+      }
+    }
+  }
+  return contested;
+}
+
+// --- The space-time search ---
+
+std::string problemWith(const CooperativeRequest& r) {
+  if (r.agent.size < 1) return "agent.size must be >= 1 (got " + std::to_string(r.agent.size) + ")";
+  if (r.waitTicks < 1) return "waitTicks must be >= 1 (got " + std::to_string(r.waitTicks) + ")";
+  if (r.window < 1) return "window must be >= 1 (got " + std::to_string(r.window) + ")";
+  if (r.maxWindow < r.window) {
+    return "maxWindow must be >= window (" + std::to_string(r.window) + "), got " +
+           std::to_string(r.maxWindow);
+  }
+  if (r.holdTicks < 0) return "holdTicks must be >= 0 (got " + std::to_string(r.holdTicks) + ")";
+  if (r.expansionLimit < 1) return "expansionLimit must be >= 1 (got 0)";
+  bool any = false;
+  for (int slot = 0; slot < kTraversableTerrainSlots; ++slot) {
+    const double t = r.ticksPerCell[static_cast<std::size_t>(slot)];
+    any = any ||
+          (r.agent.capability.allows(static_cast<Terrain>(slot)) && t > 0.0 && std::isfinite(t));
+  }
+  if (!any) return "ticksPerCell must be positive on a terrain of the agent's capability";
+  return {};
+}
+
+CooperativeSearch::CooperativeSearch(const AnnotatedGrid& grid) : grid_(grid) {}
+
+CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceField& field,
+                                        const ReservationTable& table) {
+  const QueryClock clock;
+  CooperativePlan out;
+  const GridMap& map = grid_.map();
+  if (!problemWith(r).empty() || !grid_.canStand(r.agent, r.start)) {
+    out.status = CooperativeStatus::InvalidStart;
+    return out;
+  }
+  if (!grid_.canStand(r.agent, r.goal)) {
+    out.status = CooperativeStatus::InvalidGoal;
+    return out;
+  }
+  const double startDistance = field.distance(r.start);
+  if (!std::isfinite(startDistance)) {
+    out.status = CooperativeStatus::Unreachable;
+    return out;
+  }
+  double minTicks = kInfinity;
+  for (int slot = 0; slot < kTraversableTerrainSlots; ++slot) {
+    const double t = r.ticksPerCell[static_cast<std::size_t>(slot)];
+    if (r.agent.capability.allows(static_cast<Terrain>(slot)) && t > 0.0 && std::isfinite(t))
+      minTicks = std::min(minTicks, t);
+  }
+  const int size = r.agent.size;
+  const int half = size / 2;
+  const std::span<const std::uint8_t> moves = grid_.layer(r.agent).moveMasks();
+  const Tick windowEnd = r.startTick + r.window;
+  const Tick hardEnd = r.startTick + r.maxWindow;
+
+  nodes_.clear();
+  open_.clear();
+  seen_.clear();
+  const auto order = [](const Open& a, const Open& b) {
+    if (a.f != b.f) return a.f > b.f;
+    if (a.g != b.g) return a.g < b.g;
+    return a.node > b.node;
+  };
+  const auto key = [&](std::uint32_t cell, Tick tick) {
+    return static_cast<std::uint64_t>(cell) << 32 | static_cast<std::uint32_t>(tick - r.startTick);
+  };
+  const auto add = [&](std::uint32_t cell, Tick tick, std::int32_t parent, double h) {
+    if (!seen_.try_emplace(key(cell, tick), static_cast<std::uint32_t>(nodes_.size())).second)
+      return;
+    nodes_.push_back({cell, tick, parent});
+    const Tick g = tick - r.startTick;
+    open_.push_back(
+        {static_cast<double>(g) + h * minTicks, g, static_cast<std::uint32_t>(nodes_.size() - 1)});
+    std::push_heap(open_.begin(), open_.end(), order);
+    ++out.metrics.generated;
+  };
+  // True for the start and the waits at it that lead the plan.
+  const auto startChain = [&](std::int32_t at) {
+    for (; at >= 0; at = nodes_[static_cast<std::size_t>(at)].parent) {
+      if (nodes_[static_cast<std::size_t>(at)].cell != nodes_.front().cell) return false;
+    }
+    return true;
+  };
+  const auto free = [&](Cell c, Tick from, Tick to) {
+    return table.isFree(c, size, from, to, r.self);
+  };
+
+  add(map.indexOf(r.start), r.startTick, -1, startDistance);
+  std::int32_t found = -1;
+  std::int32_t deepest = 0;  // the node reached latest: the longest safe prefix
+  double deepestH = startDistance;
+  while (!open_.empty() && out.metrics.expanded < r.expansionLimit) {
+    std::pop_heap(open_.begin(), open_.end(), order);
+    const auto index = static_cast<std::int32_t>(open_.back().node);
+    open_.pop_back();
+    const Node node = nodes_[static_cast<std::size_t>(index)];
+    const Cell here = cellAt(map, node.cell);
+    const double h = field.distance(here);
+    if (node.tick > nodes_[static_cast<std::size_t>(deepest)].tick ||
+        (node.tick == nodes_[static_cast<std::size_t>(deepest)].tick && h < deepestH)) {
+      deepest = index;
+      deepestH = h;
+    }
+    if (here == r.goal && free(here, node.tick, kForever)) {
+      out.status = CooperativeStatus::ReachedGoal;
+      found = index;
+      break;
+    }
+    if (node.tick >= windowEnd && free(here, node.tick, node.tick + r.holdTicks) &&
+        (r.passing == nullptr || (*r.passing)[node.cell] != 0 || node.tick >= hardEnd)) {
+      out.status = CooperativeStatus::Windowed;
+      found = index;
+      break;
+    }
+    ++out.metrics.expanded;
+    if (node.tick >= hardEnd) continue;  // a dead end: not free to stay, and no time left
+    // The agent stands at its start already, whoever else reserved it (bodies are not cells:
+    // two can round to one anchor): staying there at first, and leaving it, need nothing of
+    // the table but the destination. A window may still not end there while it is not free.
+    const bool atStart = node.cell == nodes_.front().cell && node.tick - r.startTick <= r.window &&
+                         startChain(index);
+    const std::uint8_t mask = moves[node.cell];
+    for (int d = 0; d < kDirectionCount; ++d) {
+      if ((mask & (1u << d)) == 0) continue;
+      const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+      const Cell next{here.x + dir.dx, here.y + dir.dy};
+      const Terrain under = map.at({next.x + half, next.y + half});
+      if (!isTraversable(under)) continue;
+      const double perCell = r.ticksPerCell[static_cast<std::size_t>(under)];
+      if (!(perCell > 0.0) || !std::isfinite(perCell)) continue;
+      const Tick duration =
+          std::max<Tick>(1, static_cast<Tick>(std::ceil(dir.cost * perCell - 1e-9)));
+      const double nextH = field.distance(next);
+      if (!std::isfinite(nextH)) continue;
+      const MoveSpan span = moveSpan(node.tick, duration);
+      if ((!atStart && !free(here, node.tick, span.leaveBy)) ||
+          !free(next, span.enterAt, node.tick + duration))
+        continue;
+      add(map.indexOf(next), node.tick + duration, index, nextH);
+    }
+    if (atStart || free(here, node.tick, node.tick + r.waitTicks))
+      add(node.cell, node.tick + r.waitTicks, index, h);
+  }
+  if (found < 0) {
+    out.status = CooperativeStatus::Blocked;
+    found = deepest;
+  }
+  for (std::int32_t at = found; at >= 0; at = nodes_[static_cast<std::size_t>(at)].parent) {
+    const Node& n = nodes_[static_cast<std::size_t>(at)];
+    out.steps.push_back({cellAt(map, n.cell), n.tick});
+  }
+  std::reverse(out.steps.begin(), out.steps.end());
+  out.metrics.microseconds = clock.elapsedMicroseconds();
+  return out;
+}
+
+void CooperativeSearch::reserve(ReservationTable& table, std::span<const TimedCell> steps, int size,
+                                std::uint32_t owner, Tick hold) {
+  for (std::size_t i = 0; i + 1 < steps.size(); ++i) {
+    const TimedCell& a = steps[i];
+    const TimedCell& b = steps[i + 1];
+    if (b.cell == a.cell) {
+      table.reserve(a.cell, size, a.tick, b.tick, owner);
+      continue;
+    }
+    const MoveSpan span = moveSpan(a.tick, b.tick - a.tick);
+    table.reserve(a.cell, size, a.tick, span.leaveBy, owner);
+    table.reserve(b.cell, size, span.enterAt, b.tick, owner);
+  }
+  if (steps.empty()) return;
+  const TimedCell& last = steps.back();
+  const Tick until = hold == kForever || last.tick > kForever - hold ? kForever : last.tick + hold;
+  table.reserve(last.cell, size, last.tick, until, owner);
+}
+
+}  // namespace warpath::pathing

@@ -1,0 +1,78 @@
+#include "pathing/reservation_table.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace warpath::pathing {
+
+ReservationTable::ReservationTable(int width, int height, std::vector<std::uint8_t> tracked)
+    : width_(std::max(0, width)),
+      height_(std::max(0, height)),
+      tracked_(std::move(tracked)),
+      cells_(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_)) {
+  if (tracked_.size() != cells_.size()) tracked_.clear();
+}
+
+template <class F>
+void ReservationTable::forEachCell(Cell anchor, int size, F&& f) const {
+  const int x0 = std::max(anchor.x, 0);
+  const int y0 = std::max(anchor.y, 0);
+  const int x1 = std::min(anchor.x + size, width_);
+  const int y1 = std::min(anchor.y + size, height_);
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x)
+      f(static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+        static_cast<std::size_t>(x));
+  }
+}
+
+void ReservationTable::reserve(Cell anchor, int size, Tick from, Tick to, std::uint32_t owner) {
+  if (!(from < to) || size < 1) return;
+  if (owners_.size() <= owner) owners_.resize(static_cast<std::size_t>(owner) + 1);
+  owners_[owner].push_back({anchor, size, from, to});
+  forEachCell(anchor, size, [&](std::size_t cell) {
+    if (!tracked_.empty() && tracked_[cell] == 0) return;
+    cells_[cell].push_back({from, to, owner});
+    ++intervals_;
+    // Intervals that never end are dropped by release() only.
+    if (to != kForever) expiries_.push({to, static_cast<std::uint32_t>(cell)});
+  });
+}
+
+void ReservationTable::release(std::uint32_t owner) {
+  if (owner >= owners_.size()) return;
+  for (const Reservation& r : owners_[owner]) {
+    forEachCell(r.anchor, r.size, [&](std::size_t cell) {
+      intervals_ -=
+          std::erase_if(cells_[cell], [&](const Interval& i) { return i.owner == owner; });
+    });
+  }
+  owners_[owner].clear();
+}
+
+std::optional<std::uint32_t> ReservationTable::blocker(Cell anchor, int size, Tick from, Tick to,
+                                                       std::uint32_t self) const {
+  std::optional<std::uint32_t> found;
+  forEachCell(anchor, size, [&](std::size_t cell) {
+    for (const Interval& i : cells_[cell]) {
+      if (i.owner == self || !(i.from < to && from < i.to)) continue;
+      if (!found || i.owner < *found) found = i.owner;
+    }
+  });
+  return found;
+}
+
+void ReservationTable::forget(Tick now) {
+  while (!expiries_.empty() && expiries_.top().to <= now) {
+    const std::uint32_t cell = expiries_.top().cell;
+    expiries_.pop();
+    intervals_ -= std::erase_if(cells_[cell], [&](const Interval& i) { return i.to <= now; });
+  }
+}
+
+std::span<const ReservationTable::Reservation> ReservationTable::heldBy(std::uint32_t owner) const {
+  if (owner >= owners_.size()) return {};
+  return owners_[owner];
+}
+
+}  // namespace warpath::pathing
