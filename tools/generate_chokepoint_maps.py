@@ -1,0 +1,81 @@
+#!/usr/bin/env python3
+"""Writes the chokepoint maps of issue 12 under assets/maps/ (MovingAI .map format): corridors,
+a door, bridges, a crossroads, a U-shaped trap and a gap, for the scenarios
+scenarios/{corridor_tanks_4,corridor_tanks_5,door_30v30,bridge_two_way,crossroads,u_trap,
+gap_200,bridge_2000}.yaml. Deterministic (no randomness): run it again and the files come out
+byte for byte the same. Standard library only. Usage: tools/generate_chokepoint_maps.py
+
+Coordinates below are cells, x the column and y the row from the top-left; rect() fills
+[x0, x1) x [y0, y1) inside the blocked border (tools/generate_maps.py)."""
+from generate_maps import blank, rect, save
+
+
+def corridor(width):
+    # 64x24: open ground at both ends (columns 1-16 and 47-62) joined by a corridor 30 cells
+    # long (columns 17-46) and `width` cells wide (rows 10 to 10 + width - 1); rock elsewhere.
+    g = blank(64, 24)
+    rect(g, 17, 0, 47, 24, "@")
+    rect(g, 17, 10, 47, 10 + width, ".")
+    return g
+
+
+def door():
+    # 49x33: a wall one cell thick (column 24) with a door of one cell (row 16). The map is
+    # mirror-symmetric about column 24 and row 16.
+    g = blank(49, 33)
+    rect(g, 24, 0, 25, 33, "@")
+    rect(g, 24, 16, 25, 17, ".")
+    return g
+
+
+def bridge():
+    # 64x48: a river 8 cells wide (columns 28-35) with one bridge 6 cells wide (rows 21-26);
+    # infantry, jeeps and tanks cannot enter water. Symmetric under a half turn about the centre.
+    g = blank(64, 48)
+    rect(g, 28, 0, 36, 48, "W")
+    rect(g, 28, 21, 36, 27, ".")
+    return g
+
+
+def crossroads():
+    # 64x64: two corridors 8 cells wide, rows 28-35 and columns 28-35, crossing in the middle;
+    # rock elsewhere. Four arms of 27 cells from the border to the crossing.
+    g = blank(64, 64, "@")
+    rect(g, 1, 28, 63, 36, ".")
+    rect(g, 28, 1, 36, 63, ".")
+    return g
+
+
+def u_trap():
+    # 64x48: a U of rock open to the west: arms rows 12-13 and 34-35 from column 22 to 41, the
+    # bottom of the U columns 40-41 (rows 12-35). Inside it is 18 cells deep and 20 high.
+    g = blank(64, 48)
+    rect(g, 22, 12, 42, 14, "@")
+    rect(g, 22, 34, 42, 36, "@")
+    rect(g, 40, 12, 42, 36, "@")
+    return g
+
+
+def gap():
+    # 64x48: a wall two cells thick (columns 30-31) with a gap of three cells (rows 22-24).
+    g = blank(64, 48)
+    rect(g, 30, 0, 32, 48, "@")
+    rect(g, 30, 22, 32, 25, ".")
+    return g
+
+
+def bridge512():
+    # 512x512 open ground cut by a river 16 cells wide (columns 248-263) with one bridge 16
+    # cells wide (rows 248-263). Symmetric under a half turn about the centre.
+    g = blank(512, 512)
+    rect(g, 248, 0, 264, 512, "W")
+    rect(g, 248, 248, 264, 264, ".")
+    return g
+
+
+if __name__ == "__main__":
+    for name, make in [("corridor4.map", lambda: corridor(4)),
+                       ("corridor5.map", lambda: corridor(5)), ("door.map", door),
+                       ("bridge.map", bridge), ("crossroads.map", crossroads),
+                       ("u_trap.map", u_trap), ("gap.map", gap), ("bridge512.map", bridge512)]:
+        save(name, make())
