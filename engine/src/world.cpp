@@ -76,6 +76,7 @@ struct World::Phases {
   world::Combat combat;
   world::Traffic traffic;
   world::TargetIndex nearby;  // steering's view of who touches whom
+  std::vector<bool> contestedTracked;  // per catalogue type: its chokepoints are tracked
   std::vector<PathDelivery> deliveries;
   world::PhaseTimer timer;
 };
@@ -94,23 +95,24 @@ World::World(std::shared_ptr<const AnnotatedGrid> grid, std::vector<units::UnitT
   state_.physics = std::make_unique<Physics>(grid_->map(), capabilities);
   state_.paths =
       std::make_unique<PathService>(*grid_, settings_.pathing, capabilities, maxSizeOf(catalogue_));
-  // Reservations are kept at the chokepoints only: in the open, Box2D lets units slide past
-  // each other, and reserving there made group moves 10-30 % slower (docs/cooperative.md).
-  std::vector<std::uint8_t> contested;
-  if (settings_.pathing.cooperative) {
-    std::vector<Agent> agents;
-    for (const units::UnitType& type : catalogue_)
-      agents.push_back(type.agent());
-    contested = contestedCells(*grid_, agents);
-  }
+  // Reservations are kept at the chokepoints of the kinds of unit on the map only (spawn adds
+  // them): in the open, Box2D lets units slide past each other, and reserving there made group
+  // moves 10-30 % slower (docs/cooperative.md).
   state_.reservations = std::make_unique<ReservationTable>(
-      grid_->map().width(), grid_->map().height(), std::move(contested));
+      ReservationTable::trackingNothing(grid_->map().width(), grid_->map().height()));
+  phases_->contestedTracked.assign(catalogue_.size(), false);
 }
 
 World::~World() = default;
 
 UnitId World::spawn(int type, int team, int group, Cell anchor) {
   const units::UnitType& kind = catalogue_[static_cast<std::size_t>(type)];
+  if (settings_.pathing.cooperative && !phases_->contestedTracked[static_cast<std::size_t>(type)]) {
+    // The first of its kind: the chokepoints it cannot pass others in are tracked from now on.
+    const Agent agent = kind.agent();
+    state_.reservations->track(contestedCells(*grid_, std::span<const Agent>(&agent, 1)));
+    phases_->contestedTracked[static_cast<std::size_t>(type)] = true;
+  }
   Unit unit;
   unit.id = {static_cast<std::uint32_t>(state_.units.size()), 0};
   unit.type = type;

@@ -13,6 +13,10 @@ namespace warpath::pathing {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Of two windows that reach the same state at the same time, the one with fewer moves wins: a
+// unit waits rather than shuffle into a passage and back (a vehicle turning round in a
+// corridor falls behind its plan).
+constexpr double kMoveCost = 1e-4;
 
 Cell cellAt(const GridMap& map, std::uint32_t index) {
   const auto w = static_cast<std::uint32_t>(map.width());
@@ -256,10 +260,13 @@ CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceFie
   const auto add = [&](std::uint32_t cell, Tick tick, std::int32_t parent, double h) {
     if (!seen_.try_emplace(key(cell, tick), static_cast<std::uint32_t>(nodes_.size())).second)
       return;
-    nodes_.push_back({cell, tick, parent});
+    const bool moved = parent >= 0 && nodes_[static_cast<std::size_t>(parent)].cell != cell;
+    const std::uint32_t moveCount =
+        (parent >= 0 ? nodes_[static_cast<std::size_t>(parent)].moves : 0) + (moved ? 1 : 0);
+    nodes_.push_back({cell, tick, parent, moveCount});
     const Tick g = tick - r.startTick;
-    open_.push_back(
-        {static_cast<double>(g) + h * minTicks, g, static_cast<std::uint32_t>(nodes_.size() - 1)});
+    open_.push_back({static_cast<double>(g) + kMoveCost * moveCount + h * minTicks, g,
+                     static_cast<std::uint32_t>(nodes_.size() - 1)});
     std::push_heap(open_.begin(), open_.end(), order);
     ++out.metrics.generated;
   };
@@ -295,7 +302,9 @@ CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceFie
       found = index;
       break;
     }
-    if (node.tick >= windowEnd && free(here, node.tick, node.tick + r.holdTicks) &&
+    // Within a wait of the window's end counts as there, so waiting is never outdone by a
+    // shuffle that lands on the end tick exactly.
+    if (node.tick + r.waitTicks > windowEnd && free(here, node.tick, node.tick + r.holdTicks) &&
         (r.passing == nullptr || (*r.passing)[node.cell] != 0 || node.tick >= hardEnd)) {
       out.status = CooperativeStatus::Windowed;
       found = index;
@@ -327,7 +336,9 @@ CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceFie
         continue;
       add(map.indexOf(next), node.tick + duration, index, nextH);
     }
-    if (atStart || free(here, node.tick, node.tick + r.waitTicks))
+    // Nobody waits where others cannot pass (but one already standing there may stay at first).
+    const bool roomToWait = r.passing == nullptr || (*r.passing)[node.cell] != 0;
+    if (atStart || (roomToWait && free(here, node.tick, node.tick + r.waitTicks)))
       add(node.cell, node.tick + r.waitTicks, index, h);
   }
   if (found < 0) {

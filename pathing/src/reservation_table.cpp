@@ -13,6 +13,20 @@ ReservationTable::ReservationTable(int width, int height, std::vector<std::uint8
   if (tracked_.size() != cells_.size()) tracked_.clear();
 }
 
+ReservationTable ReservationTable::trackingNothing(int width, int height) {
+  return ReservationTable(
+      width, height,
+      std::vector<std::uint8_t>(static_cast<std::size_t>(std::max(0, width)) *
+                                    static_cast<std::size_t>(std::max(0, height)),
+                                0));
+}
+
+void ReservationTable::track(std::span<const std::uint8_t> cells) {
+  if (tracked_.empty() || cells.size() != tracked_.size()) return;
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    tracked_[i] = static_cast<std::uint8_t>(tracked_[i] | (cells[i] != 0 ? 1 : 0));
+}
+
 template <class F>
 void ReservationTable::forEachCell(Cell anchor, int size, F&& f) const {
   const int x0 = std::max(anchor.x, 0);
@@ -37,6 +51,13 @@ void ReservationTable::reserve(Cell anchor, int size, Tick from, Tick to, std::u
     // Intervals that never end are dropped by release() only.
     if (to != kForever) expiries_.push({to, static_cast<std::uint32_t>(cell)});
   });
+}
+
+bool ReservationTable::tracks(Cell anchor, int size) const {
+  if (tracked_.empty()) return true;
+  bool any = false;
+  forEachCell(anchor, size, [&](std::size_t cell) { any = any || tracked_[cell] != 0; });
+  return any;
 }
 
 void ReservationTable::release(std::uint32_t owner) {

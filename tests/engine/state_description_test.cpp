@@ -139,7 +139,7 @@ struct Perturber {
       f = std::make_shared<const PlannedPath>(planned({{1, 2}}));
     } else if constexpr (std::is_same_v<F, SharedPlan>) {
       f = std::make_shared<const TimedPlan>(
-          timedPlan({{{1, 2}, 3}}, pathing::CooperativeStatus::Windowed));
+          timedPlan({{{1, 2}, 3}}, pathing::CooperativeStatus::Windowed, true));
     } else if constexpr (requires { f.push_back({}); }) {
       f.push_back({});
     } else if constexpr (requires { f.get(); }) {

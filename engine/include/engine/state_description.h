@@ -84,6 +84,7 @@ template <class V>
 void describe(V& v, const TimedPlan& p) {
   v("steps", p.steps.size());  // the steps themselves through their digest
   v("status", p.status);
+  v("timed", p.timed);
   v("digest", p.digest);
 }
 template <class V>

@@ -120,9 +120,14 @@ struct CombatStats {
 struct TimedPlan {
   std::vector<pathing::TimedCell> steps;
   pathing::CooperativeStatus status = pathing::CooperativeStatus::Blocked;
-  std::uint64_t digest = 0;  // FNV-1a over the steps
+  // The unit keeps to the plan's times: it waits, or crosses a chokepoint (a tracked cell of
+  // the reservation table). Otherwise it follows its path as a unit without a plan would, and
+  // the plan only looks ahead for the next chokepoint.
+  bool timed = false;
+  std::uint64_t digest = 0;  // FNV-1a over the steps and the flags
 };
-TimedPlan timedPlan(std::vector<pathing::TimedCell> steps, pathing::CooperativeStatus status);
+TimedPlan timedPlan(std::vector<pathing::TimedCell> steps, pathing::CooperativeStatus status,
+                    bool timed);
 using SharedPlan = std::shared_ptr<const TimedPlan>;
 
 struct Unit {

@@ -127,10 +127,11 @@ class Traffic {
 
   static bool before(const Unit& a, const Unit& b);
   pathing::CooperativeRequest requestFor(const Refs& w, const Unit& unit, pathing::Cell start);
-  const std::vector<std::uint8_t>& passingFor(const Refs& w, pathing::Agent agent);
+  // pathing::passingRoom of an agent kind, computed once.
+  const std::vector<std::uint8_t>& passingRoom(const Refs& w, pathing::Agent agent);
   pathing::DistanceField& fieldFor(const Refs& w, const Unit& unit);
   void hold(Refs& w, Unit& unit);
-  bool needsWindow(const Refs& w, const Unit& unit) const;
+  bool needsWindow(const Refs& w, const Unit& unit);
   void planWindow(Refs& w, Unit& unit, std::uint64_t& spent);
   std::optional<std::uint32_t> waitsFor(Refs& w, const Unit& unit);
   void breakDeadlocks(Refs& w, std::uint64_t& spent);

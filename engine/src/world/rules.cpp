@@ -31,7 +31,9 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor) {
     requestPath(w, unit);
     return;
   }
-  const bool cooperative = w.settings.pathing.cooperative;
+  // A unit keeping to a timed window re-plans the window instead (traffic.cpp), and asks for a
+  // new path when it leaves its corridor; otherwise it follows its path like any unit.
+  const bool cooperative = w.settings.pathing.cooperative && unit.plan && unit.plan->timed;
   // Pushed off its path: the next waypoint is more than a step away, and steering straight
   // at it could cut a corner the path went around. (A cooperative unit re-plans its window
   // instead, and asks for a new path when it leaves its corridor.)
@@ -45,8 +47,9 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor) {
   bool stuck = false;
   if (settings.movement == MovementRules::FirstRelease) {
     stuck = unit.progress.update(unit.position, w.state.tick, settings.tickRate, settings.stuck);
-  } else if (cooperative &&
-             (!unit.plan || (waitingAt(*unit.plan, w.state.tick) && onSchedule(w, unit)))) {
+  } else if (w.settings.pathing.cooperative &&
+             (!unit.plan || (cooperative && waitingAt(*unit.plan, w.state.tick) &&
+                             onSchedule(w, unit)))) {
     // A wait its window holds it to, or waiting for a window, is not a jam; moving, it must
     // make progress like anyone else.
     unit.progress.restartWindow(unit.position, w.state.tick);

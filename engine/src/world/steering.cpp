@@ -83,7 +83,7 @@ void steerAll(Refs& w, TargetIndex& index) {
                                                    unit.position, speed, w.settings.steering);
       // `next` also tells the stuck rule how far along its path the unit is.
       unit.next = r.next;
-      if (!cooperative) {
+      if (!cooperative || (unit.plan && !unit.plan->timed)) {
         desired = r.desiredVelocity;
         toward = units::anchorToCentre(unit.path->cells[r.next], type.size) - unit.position;
         if (r.reachedEnd) arrive(w, unit, type);

@@ -53,21 +53,23 @@ bool hasBody(const Unit& unit) {
 
 namespace warpath::engine {
 
-TimedPlan timedPlan(std::vector<pathing::TimedCell> steps, pathing::CooperativeStatus status) {
+TimedPlan timedPlan(std::vector<pathing::TimedCell> steps, pathing::CooperativeStatus status,
+                    bool timed) {
   std::uint64_t h = 0xCBF29CE484222325ull;
   const auto word = [&](std::uint64_t v) {
-    for (int i = 0; i < 8; ++i) {
+    for (int i = 0; i < 80; ++i) {
       h ^= (v >> (8 * i)) & 0xFFu;
       h *= 0x100000001B3ull;
     }
   };
   word(static_cast<std::uint64_t>(status));
+  word(timed ? 1 : 0);
   for (const pathing::TimedCell& s : steps) {
     word(static_cast<std::uint64_t>(static_cast<std::uint32_t>(s.cell.x)) << 32 |
          static_cast<std::uint32_t>(s.cell.y));
     word(static_cast<std::uint64_t>(s.tick));
   }
-  return {std::move(steps), status, h};
+  return {std::move(steps), status, timed, h};
 }
 
 }  // namespace warpath::engine
@@ -113,14 +115,14 @@ CooperativeRequest Traffic::requestFor(const Refs& w, const Unit& unit, Cell sta
   // The last cell is held until the next re-plan (due when half the window is left) and a
   // little longer, so a re-plan that waits a tick for the budget still finds it free.
   r.holdTicks = r.window / 2 + r.waitTicks;
-  r.passing = &passingFor(w, r.agent);
+  r.passing = &passingRoom(w, r.agent);
   r.expansionLimit = std::min<std::uint64_t>(settings.expansionBudget, kWindowExpansionLimit);
   return r;
 }
 
-const std::vector<std::uint8_t>& Traffic::passingFor(const Refs& w, Agent agent) {
+const std::vector<std::uint8_t>& Traffic::passingRoom(const Refs& w, Agent agent) {
   auto it = passing_.find(agent);
-  if (it == passing_.end()) it = passing_.emplace(agent, passingRoom(w.grid, agent)).first;
+  if (it == passing_.end()) it = passing_.emplace(agent, pathing::passingRoom(w.grid, agent)).first;
   return it->second;
 }
 
@@ -156,7 +158,7 @@ void Traffic::hold(Refs& w, Unit& unit) {
   unit.heldSince = w.state.tick;
 }
 
-bool Traffic::needsWindow(const Refs& w, const Unit& unit) const {
+bool Traffic::needsWindow(const Refs& w, const Unit& unit) {
   if (!unit.plan) return true;
   const TimedPlan& plan = *unit.plan;
   const Tick now = w.state.tick;
@@ -165,14 +167,21 @@ bool Traffic::needsWindow(const Refs& w, const Unit& unit) const {
   switch (plan.status) {
     case CooperativeStatus::ReachedGoal:
       break;
-    case CooperativeStatus::Windowed:
-      if (end - now <= cardinalTicks(w, type) * w.settings.pathing.window / 2) return true;
+    case CooperativeStatus::Windowed: {
+      // Inside a passage a unit keeps the window that commits it to the far side (a new one
+      // could lose its turn to whoever planned since), unless that window is nearly used up.
+      const Tick step = cardinalTicks(w, type);
+      const Cell here = nearestStandable(w, unit);
+      const bool narrow = w.map().contains(here) &&
+                          passingRoom(w, type.agent())[w.map().indexOf(here)] == 0;
+      if (end - now <= (narrow ? 2 * step : step * w.settings.pathing.window / 2)) return true;
       break;
+    }
     default:  // Blocked: try again once its safe prefix runs out
       if (now >= end) return true;
       break;
   }
-  return !onSchedule(w, unit);
+  return plan.timed && !onSchedule(w, unit);
 }
 
 void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent) {
@@ -227,7 +236,14 @@ void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent) {
     if (field.distance(step.cell) > here + 1e-9) ++stats.giveWays;
     break;
   }
-  unit.plan = std::make_shared<const TimedPlan>(timedPlan(std::move(found.steps), found.status));
+  // Timed when it waits or crosses a chokepoint; a blocked unit keeps to its (short) plan.
+  bool timed = found.status == CooperativeStatus::Blocked;
+  for (std::size_t i = 0; i < found.steps.size() && !timed; ++i) {
+    timed = (i > 0 && found.steps[i].cell == found.steps[i - 1].cell) ||
+            w.state.reservations->tracks(found.steps[i].cell, size);
+  }
+  unit.plan =
+      std::make_shared<const TimedPlan>(timedPlan(std::move(found.steps), found.status, timed));
 }
 
 std::optional<std::uint32_t> Traffic::waitsFor(Refs& w, const Unit& unit) {
@@ -348,7 +364,7 @@ void Traffic::plan(Refs& w, std::uint64_t budget) {
                    unit.plan ? std::string(kCooperativeStatusNames.name(unit.plan->status)).c_str()
                              : "none");
       if (unit.plan)
-        for (std::size_t i = 0; i < unit.plan->steps.size() && i < 8; ++i)
+        for (std::size_t i = 0; i < unit.plan->steps.size() && i < 80; ++i)
           std::fprintf(stderr, " (%d,%d@%lld)", unit.plan->steps[i].cell.x,
                        unit.plan->steps[i].cell.y, (long long)(unit.plan->steps[i].tick - now));
       if (following(unit)) {
@@ -362,7 +378,7 @@ void Traffic::plan(Refs& w, std::uint64_t budget) {
   MovementStats& stats = w.state.movement;
   for (Unit& unit : all) {
     if (!following(unit) || !unit.plan) continue;
-    if (waitingAt(*unit.plan, now)) {
+    if (unit.plan->timed && waitingAt(*unit.plan, now)) {
       if (unit.waitSince < 0) {
         unit.waitSince = now;
         ++stats.waits;

@@ -133,8 +133,9 @@ struct CooperativeRequest {
   // the agent stands there until it plans again.
   Tick holdTicks = 16;
   // passingRoom() of the agent kind, or null. When set, a window does not end (before
-  // maxWindow) where there is no passing room: a unit commits to a whole corridor, door or
-  // bridge, or waits before it, so that two never meet head-on inside one.
+  // maxWindow) where there is no passing room, and nobody waits there (but at the start): a
+  // unit commits to a whole corridor, door or bridge, or waits before it, so that two never
+  // meet head-on inside one.
   const std::vector<std::uint8_t>* passing = nullptr;
   std::uint64_t expansionLimit = 20000;  // [Limit: >= 1] space-time nodes expanded
 };
@@ -177,7 +178,8 @@ std::string problemWith(const CooperativeRequest& request);
 //   (1) the goal, free from then on: ReachedGoal; or
 //   (2) at or past startTick + window, free for holdTicks more, and with passing room (or
 //       past maxWindow): Windowed
-// ends the search. Ties go to the larger g, then to the state generated first.
+// ends the search. Among equal times fewer moves win (a unit waits rather than shuffles); ties
+// then go to the larger g, then to the state generated first.
 class CooperativeSearch {
  public:
   explicit CooperativeSearch(const AnnotatedGrid& grid);
@@ -197,6 +199,7 @@ class CooperativeSearch {
     std::uint32_t cell;
     Tick tick;
     std::int32_t parent;
+    std::uint32_t moves;  // along the plan so far (waits excluded)
   };
   struct Open {
     double f;

@@ -33,11 +33,18 @@ class ReservationTable {
   // contestedCells()); elsewhere reserve() stores nothing and every footprint is free. Empty:
   // every cell is tracked.
   ReservationTable(int width, int height, std::vector<std::uint8_t> tracked = {});
+  // Only the cells of `track` calls are tracked (none at first).
+  static ReservationTable trackingNothing(int width, int height);
 
   // Reserves the footprint of a size-`size` agent anchored at `anchor` over [from, to) for
   // `owner` [Limit: owner < 2^32 - 1]. Cells outside the map are ignored; an empty interval
   // reserves nothing.
   void reserve(Cell anchor, int size, Tick from, Tick to, std::uint32_t owner);
+  // Adds the cells non-zero in `cells` (one byte per cell) to those tracked; no-op when every
+  // cell is tracked already.
+  void track(std::span<const std::uint8_t> cells);
+  // True when a cell of the footprint is tracked.
+  bool tracks(Cell anchor, int size) const;
   // Removes every reservation `owner` holds.
   void release(std::uint32_t owner);
   // The lowest owner other than `self` holding a cell of the footprint during part of
