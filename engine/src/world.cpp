@@ -40,13 +40,6 @@ std::vector<Capability> capabilitiesOf(const std::vector<units::UnitType>& catal
   return {distinct.begin(), distinct.end()};
 }
 
-int maxSizeOf(const std::vector<units::UnitType>& catalogue) {
-  int size = 1;
-  for (const units::UnitType& type : catalogue)
-    size = std::max(size, type.size);
-  return size;
-}
-
 }  // namespace
 
 std::string problemWith(const CombatSettings& settings) {
@@ -73,6 +66,7 @@ std::string problemWith(const WorldSettings& settings) {
 
 // The tick's phases and their scratch memory.
 struct World::Phases {
+  explicit Phases(int maxUnitSize) : combat(maxUnitSize) {}
   world::Combat combat;
   std::vector<PathDelivery> deliveries;
   world::PhaseTimer timer;
@@ -83,15 +77,15 @@ World::World(std::shared_ptr<const AnnotatedGrid> grid, std::vector<units::UnitT
     : grid_(std::move(grid)),
       catalogue_(std::move(catalogue)),
       settings_(settings),
-      phases_(std::make_unique<Phases>()) {
+      phases_(std::make_unique<Phases>(world::maxUnitSize(catalogue_))) {
   if (std::string problem = problemWith(settings_); !problem.empty())
     throw std::invalid_argument("world settings: " + problem);
   const std::vector<Capability> capabilities = capabilitiesOf(catalogue_);
   state_.rng = SplitMix64(settings_.seed);
   state_.goals = GoalBoard(grid_->map());
   state_.physics = std::make_unique<Physics>(grid_->map(), capabilities);
-  state_.paths =
-      std::make_unique<PathService>(*grid_, settings_.pathing, capabilities, maxSizeOf(catalogue_));
+  state_.paths = std::make_unique<PathService>(*grid_, settings_.pathing, capabilities,
+                                               world::maxUnitSize(catalogue_));
 }
 
 World::~World() = default;
@@ -116,9 +110,7 @@ UnitId World::spawn(int type, int team, int group, Cell anchor) {
 }
 
 const Unit* World::find(UnitId id) const {
-  if (id.index >= state_.units.size() || state_.units[id.index].id.generation != id.generation)
-    return nullptr;
-  return &state_.units[id.index];
+  return state_.find(id);
 }
 
 int World::aliveCount(int team) const {

@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "engine/goal_board.h"
@@ -197,6 +198,15 @@ struct WorldState {
   GoalBoard goals;
   std::unique_ptr<Physics> physics;
   std::unique_ptr<PathService> paths;
+
+  // The unit a handle names; null when the world did not give it out (an index past the units,
+  // or a stale generation). The one handle check: World::find and the phases use it.
+  const Unit* find(UnitId id) const {
+    return id.index < units.size() && units[id.index].id.generation == id.generation
+               ? &units[id.index]
+               : nullptr;
+  }
+  Unit* find(UnitId id) { return const_cast<Unit*>(std::as_const(*this).find(id)); }
 };
 
 // Mean wall time per phase over the ticks stepped so far: measurement only.
