@@ -260,15 +260,7 @@ void addRecord(Replay& replay, bool& haveSource, char kind, Decoder& d, std::int
 }  // namespace
 
 std::string_view toString(ReplayEnd end) {
-  switch (end) {
-    case ReplayEnd::Complete:
-      return "complete";
-    case ReplayEnd::Stopped:
-      return "stopped at a tick limit";
-    case ReplayEnd::Interrupted:
-      return "interrupted";
-  }
-  return "?";
+  return kReplayEndNames.name(end);
 }
 
 std::int64_t Replay::lastTick() const {
@@ -437,8 +429,7 @@ Status ReplayWriter::record(const ScenarioRun& run) {
 
 Status ReplayWriter::finish(const ScenarioRun& run, ReplayEnd reason) {
   if (Status s = record(run); !s) return s;
-  if (Status s = append('E', endPayload({reason, {run.world().tick(), run.stateHash()}}));
-      !s)
+  if (Status s = append('E', endPayload({reason, {run.world().tick(), run.stateHash()}})); !s)
     return s;
   if (std::fflush(out_.get()) != 0) return Error{file_, 0, 0, "cannot write the replay"};
   return Status::success();

@@ -149,27 +149,12 @@ Capability parseCapabilityNode(const Parser& p, const YAML::Node& node) {
   return c.value();
 }
 
-std::string armourList() {
-  std::string list;
-  for (int a = 0; a < units::kArmourClasses; ++a)
-    list += (list.empty() ? "" : ", ") +
-            std::string(units::armourClassName(static_cast<units::ArmourClass>(a)));
-  return list;
-}
-
-std::string damageKindList() {
-  std::string list;
-  for (int k = 0; k < units::kDamageKinds; ++k)
-    list += (list.empty() ? "" : ", ") +
-            std::string(units::damageKindName(static_cast<units::DamageKind>(k)));
-  return list;
-}
-
 units::ArmourClass parseArmourClass(const Parser& p, const YAML::Node& node,
                                     const std::string& what) {
   const std::string name = p.text(node, what);
   const std::optional<units::ArmourClass> a = units::armourClassFromName(name);
-  if (!a) p.fail(node, "unknown armour class '" + name + "' (" + armourList() + ")");
+  if (!a)
+    p.fail(node, "unknown armour class '" + name + "' (" + units::kArmourClassNames.list() + ")");
   return *a;
 }
 
@@ -177,7 +162,8 @@ units::DamageKind parseDamageKind(const Parser& p, const YAML::Node& node,
                                   const std::string& what) {
   const std::string name = p.text(node, what);
   const std::optional<units::DamageKind> k = units::damageKindFromName(name);
-  if (!k) p.fail(node, "unknown damage kind '" + name + "' (" + damageKindList() + ")");
+  if (!k)
+    p.fail(node, "unknown damage kind '" + name + "' (" + units::kDamageKindNames.list() + ")");
   return *k;
 }
 
@@ -489,20 +475,14 @@ int teamOrNone(const Parser& p, const YAML::Node& node, const Scenario& s,
   p.fail(node, "unknown team '" + name + "' in " + what + " (known: " + list + "; or none)");
 }
 
-std::optional<StatKind> statKindFromName(std::string_view name) {
-  for (int k = 0; k <= static_cast<int>(StatKind::Alive); ++k) {
-    if (toString(static_cast<StatKind>(k)) == name) return static_cast<StatKind>(k);
-  }
-  return std::nullopt;
+// Every expectation key: the kinds named by their own key, then the statistics.
+std::string expectationKeys() {
+  return kExpectationKindNames.list() + ", " + kStatKindNames.list(", ", " or ");
 }
-
-constexpr const char* kExpectationKinds =
-    "arrival_rate, arrival_time, max_stuck, winner, kills, losses, damage_dealt, damage_taken, "
-    "shots_fired or alive";
 
 Expectation parseExpectation(const Parser& p, const YAML::Node& node, const Scenario& s) {
   if (!node.IsMap() || node.size() != 1)
-    p.fail(node, std::string("an expectation is one key, one of: ") + kExpectationKinds);
+    p.fail(node, "an expectation is one key, one of: " + expectationKeys());
   const auto entry = *node.begin();
   const std::string kind = p.text(entry.first, "expectation");
   const YAML::Node body = entry.second;
@@ -539,7 +519,7 @@ Expectation parseExpectation(const Parser& p, const YAML::Node& node, const Scen
     e.team = teamOrNone(p, body, s, "winner");
     e.text = "winner == " +
              (e.team < 0 ? std::string("none") : s.teams[static_cast<std::size_t>(e.team)]);
-  } else if (const std::optional<StatKind> stat = statKindFromName(kind)) {
+  } else if (const std::optional<StatKind> stat = kStatKindNames.parse(kind)) {
     p.checkKeys(body, kind, {"team", "type", "at_most", "at_least"});
     e.kind = ExpectationKind::Stat;
     e.stat = *stat;
@@ -550,7 +530,7 @@ Expectation parseExpectation(const Parser& p, const YAML::Node& node, const Scen
     e.threshold = p.number(body[bound], bound, 0.0, 1e12);
     e.text = who(kind) + (e.atMost ? " <= " : " >= ") + Parser::fmtNumber(e.threshold);
   } else {
-    p.fail(entry.first, "unknown expectation '" + kind + "' (expected " + kExpectationKinds + ")");
+    p.fail(entry.first, "unknown expectation '" + kind + "' (expected " + expectationKeys() + ")");
   }
   return e;
 }
@@ -587,7 +567,7 @@ ActionSpec parseOrderAction(const Parser& p, const YAML::Node& node, const Scena
     const std::optional<OrderKind> kind = orderKindFromName(name);
     if (!kind)
       p.fail(order,
-             "unknown order '" + name + "' (expected stop, move, attack_move, attack or hold)");
+             "unknown order '" + name + "' (expected " + kOrderKindNames.list(", ", " or ") + ")");
     a.order = *kind;
   }
   a.groups = parseGroupList(p, p.need(node, "group", what), groupNames, "'group'");
@@ -666,8 +646,8 @@ void parseCondition(const Parser& p, const YAML::Node& when, const Scenario& s, 
     t.group = indexOf(p, p.need(body, "group", "dies"), groupNames, "group");
     t.count = groupCount("dies");
   } else {
-    p.fail(entry.first, "unknown trigger condition '" + kind +
-                            "' (expected at, arrived, team_below, enters or dies)");
+    p.fail(entry.first, "unknown trigger condition '" + kind + "' (expected " +
+                            kTriggerKindNames.list(", ", " or ") + ")");
   }
 }
 
@@ -741,8 +721,8 @@ VictorySpec parseVictory(const Parser& p, const YAML::Node& node, const Scenario
       p.fail(count, "exit count " + std::to_string(v.count) + " is more than team '" + team +
                         "' has (" + std::to_string(units) + " units, reinforcements included)");
   } else {
-    p.fail(entry.first,
-           "unknown victory condition '" + kind + "' (expected eliminate, hold or exit)");
+    p.fail(entry.first, "unknown victory condition '" + kind + "' (expected " +
+                            kVictoryKindNames.list(", ", " or ") + ")");
   }
   v.text = describe(v, s.teams);
   return v;
@@ -802,11 +782,12 @@ Scenario parse(const Parser& p, std::string_view text) {
       const std::string name = p.text(pathing["algo"], "algo");
       const std::optional<Algorithm> algo = algorithmFromName(name);
       if (!algo)
-        p.fail(pathing["algo"], "unknown algo '" + name + "' (aa, haa-hq, haa-lq, hybrid)");
+        p.fail(pathing["algo"], "unknown algo '" + name + "' (" + kAlgorithmNames.list() + ")");
       s.settings.pathing.algorithm = *algo;
     }
     if (pathing["cluster_size"])
-      s.settings.pathing.clusterSize = p.integer(pathing["cluster_size"], "cluster_size", 2, 4096);
+      s.settings.pathing.clusterSize =
+          p.integer(pathing["cluster_size"], "cluster_size", 2, kMaxClusterSize);
     if (pathing["budget"])
       s.settings.pathing.expansionBudget =
           static_cast<std::uint64_t>(p.integer(pathing["budget"], "budget", 1, 1000000000));
@@ -963,21 +944,7 @@ Scenario parse(const Parser& p, std::string_view text) {
 }  // namespace
 
 std::string_view toString(StatKind kind) {
-  switch (kind) {
-    case StatKind::Kills:
-      return "kills";
-    case StatKind::Losses:
-      return "losses";
-    case StatKind::DamageDealt:
-      return "damage_dealt";
-    case StatKind::DamageTaken:
-      return "damage_taken";
-    case StatKind::ShotsFired:
-      return "shots_fired";
-    case StatKind::Alive:
-      return "alive";
-  }
-  return "?";
+  return kStatKindNames.name(kind);
 }
 
 std::string describe(const VictorySpec& v, const std::vector<std::string>& teams) {
