@@ -54,8 +54,10 @@ struct WorldSettings {
   CombatSettings combat;
 };
 // Empty when every [Limit] of the settings (path service, stuck rule, combat included) holds,
-// else the first that does not, e.g. "tickRate must be > 0 (got 0)". World's constructor
-// throws std::invalid_argument with this message; callers that take user input check first.
+// else the first that does not, beginning with the field, e.g. "tickRate must be > 0 (got 0)",
+// "stuck.flagAfter …", "pathing: clusterSize …" (the scenario loader reports it at the key that
+// set that field). World's constructor throws std::invalid_argument with this message; callers
+// that take user input check first.
 std::string problemWith(const WorldSettings& settings);
 
 // What a unit was told to do (RTS semantics; docs/combat.md).

@@ -21,9 +21,11 @@ class Reader {
   static raw::Mark mark(const YAML::Mark& m) { return {m.line + 1, m.column + 1}; }
   static raw::Mark mark(const YAML::Node& node) { return mark(node.Mark()); }
 
+  [[noreturn]] void fail(raw::Mark at, const std::string& message) const {
+    throw Error{file_, at.line, at.column, message};
+  }
   [[noreturn]] void fail(const YAML::Mark& at, const std::string& message) const {
-    const raw::Mark m = mark(at);
-    throw Error{file_, m.line, m.column, message};
+    fail(mark(at), message);
   }
   [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const {
     fail(node.Mark(), message);
@@ -96,6 +98,20 @@ class Reader {
       -> std::optional<decltype(read(node))> {
     if (const YAML::Node value = node[key]) return read(value);
     return std::nullopt;
+  }
+  Maybe<double> maybeNumber(const YAML::Node& node, const char* key,
+                            const std::string& what) const {
+    return maybe(node, key, [&](const YAML::Node& v) { return number(v, what); });
+  }
+  Maybe<int> maybeInteger(const YAML::Node& node, const char* key, const std::string& what) const {
+    return maybe(node, key, [&](const YAML::Node& v) { return integer(v, what); });
+  }
+  Maybe<bool> maybeBoolean(const YAML::Node& node, const char* key, const std::string& what) const {
+    return maybe(node, key, [&](const YAML::Node& v) { return boolean(v, what); });
+  }
+  Maybe<std::string> maybeText(const YAML::Node& node, const char* key,
+                               const std::string& what) const {
+    return maybe(node, key, [&](const YAML::Node& v) { return text(v, what); });
   }
 
   const std::string& file() const { return file_; }
@@ -216,7 +232,7 @@ raw::Area area(const Reader& r, const YAML::Node& node, const std::string& what)
 
 // `GROUP` or `[GROUP, ...]`.
 raw::Names groupNames(const Reader& r, const YAML::Node& node, const std::string& what) {
-  raw::Names names{Reader::mark(node), {}};
+  raw::Names names;
   if (node.IsSequence()) {
     if (node.size() == 0) r.fail(node, what + " needs at least one group");
     for (const auto& item : node)
@@ -243,17 +259,13 @@ raw::Weapon weapon(const Reader& r, const YAML::Node& node, const std::string& w
   r.checkKeys(
       node, what,
       {"name", "kind", "damage", "range", "cooldown", "projectile_speed", "targets", "priority"});
-  const auto number = [&](const std::string& key) {
-    return [&r, key, what](const YAML::Node& v) { return r.number(v, what + " " + key); };
-  };
-  w.name = r.maybe(node, "name", [&](const YAML::Node& v) { return r.text(v, what + " name"); });
+  w.name = r.maybeText(node, "name", what + " name");
   w.kind =
       r.maybe(node, "kind", [&](const YAML::Node& v) { return damageKind(r, v, what + " kind"); });
-  w.damage =
-      r.maybe(node, "damage", [&](const YAML::Node& v) { return r.integer(v, what + " damage"); });
-  w.range = r.maybe(node, "range", number("range"));
-  w.cooldown = r.maybe(node, "cooldown", number("cooldown"));
-  w.projectileSpeed = r.maybe(node, "projectile_speed", number("projectile_speed"));
+  w.damage = r.maybeInteger(node, "damage", what + " damage");
+  w.range = r.maybeNumber(node, "range", what + " range");
+  w.cooldown = r.maybeNumber(node, "cooldown", what + " cooldown");
+  w.projectileSpeed = r.maybeNumber(node, "projectile_speed", what + " projectile_speed");
   if (const YAML::Node targets = node["targets"]) {
     units::TargetMask mask;
     const auto add = [&](const YAML::Node& item) {
@@ -303,19 +315,13 @@ raw::UnitType unitType(const Reader& r, const YAML::Node& key, const YAML::Node&
   r.checkKeys(node, what,
               {"size", "capability", "speed", "acceleration", "turn_rate", "radius", "hp", "armour",
                "weapon"});
-  const auto number = [&](const char* field) {
-    return [&r, field, what](const YAML::Node& v) { return r.number(v, what + " " + field); };
-  };
-  const auto integer = [&](const char* field) {
-    return [&r, field, what](const YAML::Node& v) { return r.integer(v, what + " " + field); };
-  };
-  t.size = r.maybe(node, "size", integer("size"));
+  t.size = r.maybeInteger(node, "size", what + " size");
   t.capability = r.maybe(node, "capability", [&](const YAML::Node& v) { return capability(r, v); });
   t.speed = r.maybe(node, "speed", [&](const YAML::Node& v) { return speed(r, v, what); });
-  t.acceleration = r.maybe(node, "acceleration", number("acceleration"));
-  t.turnRate = r.maybe(node, "turn_rate", number("turn_rate"));
-  t.radius = r.maybe(node, "radius", number("radius"));
-  t.hp = r.maybe(node, "hp", integer("hp"));
+  t.acceleration = r.maybeNumber(node, "acceleration", what + " acceleration");
+  t.turnRate = r.maybeNumber(node, "turn_rate", what + " turn_rate");
+  t.radius = r.maybeNumber(node, "radius", what + " radius");
+  t.hp = r.maybeInteger(node, "hp", what + " hp");
   t.armour = r.maybe(node, "armour",
                      [&](const YAML::Node& v) { return armourClass(r, v, what + " armour"); });
   t.weapon =
@@ -335,8 +341,7 @@ std::vector<raw::UnitType> unitTypes(const Reader& r, const YAML::Node& node) {
 
 raw::Timing timing(const Reader& r, const YAML::Node& root) {
   raw::Timing t;
-  t.tickRate =
-      r.maybe(root, "tick_rate", [&](const YAML::Node& v) { return r.number(v, "tick_rate"); });
+  t.tickRate = r.maybeNumber(root, "tick_rate", "tick_rate");
   t.duration = r.number(r.need(root, "duration", "the scenario"), "duration");
   return t;
 }
@@ -344,29 +349,21 @@ raw::Timing timing(const Reader& r, const YAML::Node& root) {
 raw::Pathing pathing(const Reader& r, const YAML::Node& node) {
   r.checkKeys(node, "pathing", {"algo", "cluster_size", "budget", "cache"});
   raw::Pathing p;
-  p.mark = Reader::mark(node);
   p.algorithm = r.maybe(node, "algo", [&](const YAML::Node& v) {
     return r.named(v, "algo", pathing::kAlgorithmNames, "algo", pathing::kAlgorithmNames.list());
   });
-  const auto integer = [&](const char* key) {
-    return [&r, key](const YAML::Node& v) { return r.integer(v, key); };
-  };
-  p.clusterSize = r.maybe(node, "cluster_size", integer("cluster_size"));
-  p.budget = r.maybe(node, "budget", integer("budget"));
-  p.cache = r.maybe(node, "cache", integer("cache"));
+  p.clusterSize = r.maybeInteger(node, "cluster_size", "cluster_size");
+  p.budget = r.maybeInteger(node, "budget", "budget");
+  p.cache = r.maybeInteger(node, "cache", "cache");
   return p;
 }
 
 raw::Stuck stuck(const Reader& r, const YAML::Node& node) {
   r.checkKeys(node, "stuck", {"seconds", "min_progress", "flag_after"});
   raw::Stuck s;
-  s.mark = Reader::mark(node);
-  s.seconds =
-      r.maybe(node, "seconds", [&](const YAML::Node& v) { return r.number(v, "stuck seconds"); });
-  s.minProgress = r.maybe(node, "min_progress",
-                          [&](const YAML::Node& v) { return r.number(v, "min_progress"); });
-  s.flagAfter =
-      r.maybe(node, "flag_after", [&](const YAML::Node& v) { return r.integer(v, "flag_after"); });
+  s.seconds = r.maybeNumber(node, "seconds", "stuck seconds");
+  s.minProgress = r.maybeNumber(node, "min_progress", "min_progress");
+  s.flagAfter = r.maybeInteger(node, "flag_after", "flag_after");
   return s;
 }
 
@@ -374,16 +371,10 @@ raw::Combat combat(const Reader& r, const YAML::Node& node) {
   r.checkKeys(node, "combat",
               {"enabled", "wreck_seconds", "sight_through_trees", "scan_every", "armour"});
   raw::Combat c;
-  c.mark = Reader::mark(node);
-  c.enabled =
-      r.maybe(node, "enabled", [&](const YAML::Node& v) { return r.boolean(v, "combat enabled"); });
-  c.wreckSeconds = r.maybe(node, "wreck_seconds",
-                           [&](const YAML::Node& v) { return r.number(v, "wreck_seconds"); });
-  c.sightThroughTrees = r.maybe(node, "sight_through_trees", [&](const YAML::Node& v) {
-    return r.integer(v, "sight_through_trees");
-  });
-  c.scanEvery =
-      r.maybe(node, "scan_every", [&](const YAML::Node& v) { return r.integer(v, "scan_every"); });
+  c.enabled = r.maybeBoolean(node, "enabled", "combat enabled");
+  c.wreckSeconds = r.maybeNumber(node, "wreck_seconds", "wreck_seconds");
+  c.sightThroughTrees = r.maybeInteger(node, "sight_through_trees", "sight_through_trees");
+  c.scanEvery = r.maybeInteger(node, "scan_every", "scan_every");
   if (const YAML::Node armour = node["armour"]) {
     r.expectMap(armour, "combat armour");
     for (const auto& row : armour) {
@@ -406,7 +397,6 @@ raw::Combat combat(const Reader& r, const YAML::Node& node) {
 
 raw::Map map(const Reader& r, const YAML::Node& node) {
   raw::Map m;
-  m.mark = Reader::mark(node);
   if (node.IsScalar()) {
     m.file = r.text(node, "map");
     return m;
@@ -438,13 +428,12 @@ raw::Group group(const Reader& r, const YAML::Node& node) {
   r.checkKeys(node, "a group", {"name", "team", "type", "count", "spawn", "goal", "reinforcement"});
   raw::Group g;
   g.mark = Reader::mark(node);
-  g.name = r.maybe(node, "name", [&](const YAML::Node& v) { return r.text(v, "group name"); });
+  g.name = r.maybeText(node, "name", "group name");
   g.team = r.text(r.need(node, "team", "a group"), "team");
   g.type = r.text(r.need(node, "type", "a group"), "unit type");
   g.count = r.integer(r.need(node, "count", "a group"), "count");
   g.spawn = area(r, r.need(node, "spawn", "a group"), "spawn");
-  g.reinforcement = r.maybe(node, "reinforcement",
-                            [&](const YAML::Node& v) { return r.boolean(v, "reinforcement"); });
+  g.reinforcement = r.maybeBoolean(node, "reinforcement", "reinforcement");
   g.goal = r.maybe(node, "goal", [&](const YAML::Node& v) { return area(r, v, "goal"); });
   return g;
 }
@@ -456,9 +445,8 @@ void checkUnitTotal(const Reader& r, const std::vector<raw::Group>& groups) {
     if (g.count.value < 1) continue;  // out of range: the checks say so
     total += std::min<long long>(g.count.value, kMaxUnits + 1);
     if (total > kMaxUnits)
-      throw Error{r.file(), g.count.mark.line, g.count.mark.column,
-                  "the groups have more than " + std::to_string(kMaxUnits) +
-                      " units in all (the limit for one scenario)"};
+      r.fail(g.count.mark, "the groups have more than " + std::to_string(kMaxUnits) +
+                               " units in all (the limit for one scenario)");
   }
 }
 
@@ -466,8 +454,7 @@ void checkUnitTotal(const Reader& r, const std::vector<raw::Group>& groups) {
 // checked that no other key is there. `what` names the entry for "needs" messages.
 raw::OrderAction orderAction(const Reader& r, const YAML::Node& node, const std::string& what) {
   raw::OrderAction a;
-  a.mark = Reader::mark(node);
-  a.order = {OrderKind::Move, a.mark};
+  a.order = {OrderKind::Move, Reader::mark(node)};
   if (const YAML::Node order = node["order"])
     a.order = r.named(order, "order", kOrderKindNames, "order",
                       "expected " + kOrderKindNames.list(", ", " or "));
@@ -496,7 +483,6 @@ raw::OrderAction orderAction(const Reader& r, const YAML::Node& node, const std:
 raw::Order order(const Reader& r, const YAML::Node& node) {
   r.checkKeys(node, "an order", {"at", "when", "group", "order", "move_to", "target"});
   raw::Order o;
-  o.mark = Reader::mark(node);
   if (node["at"] && node["when"]) r.fail(node, "an order has either 'at' or 'when', not both");
   if (node["at"]) {
     o.at = r.number(node["at"], "at");
@@ -504,8 +490,7 @@ raw::Order order(const Reader& r, const YAML::Node& node) {
     const YAML::Node when = r.need(node, "when", "an order (or 'at')");
     r.checkKeys(when, "when", {"arrived", "fraction"});
     o.arrived = r.text(r.need(when, "arrived", "when"), "group");
-    o.fraction =
-        r.maybe(when, "fraction", [&](const YAML::Node& v) { return r.number(v, "fraction"); });
+    o.fraction = r.maybeNumber(when, "fraction", "fraction");
   }
   o.action = orderAction(r, node, "an order");
   return o;
@@ -523,12 +508,9 @@ raw::Condition condition(const Reader& r, const YAML::Node& when) {
   const auto entry = *when.begin();
   const YAML::Node body = entry.second;
   raw::Condition c;
-  c.mark = Reader::mark(when);
   c.kind = r.named(entry.first, "condition", kTriggerKindNames, "trigger condition",
                    "expected " + kTriggerKindNames.list(", ", " or "));
-  const auto count = [&](const std::string& what) {
-    return r.maybe(body, "count", [&](const YAML::Node& v) { return r.integer(v, what); });
-  };
+  const auto count = [&](const std::string& what) { return r.maybeInteger(body, "count", what); };
   const auto group = [&](const char* what) { return r.text(r.need(body, "group", what), "group"); };
   switch (c.kind.value) {
     case TriggerKind::At:
@@ -537,14 +519,12 @@ raw::Condition condition(const Reader& r, const YAML::Node& when) {
     case TriggerKind::Arrived:
       r.checkKeys(body, "arrived", {"group", "fraction"});
       c.group = group("arrived");
-      c.fraction =
-          r.maybe(body, "fraction", [&](const YAML::Node& v) { return r.number(v, "fraction"); });
+      c.fraction = r.maybeNumber(body, "fraction", "fraction");
       break;
     case TriggerKind::TeamBelow:
       r.checkKeys(body, "team_below", {"team", "count"});
       c.team = r.text(r.need(body, "team", "team_below"), "team");
-      r.need(body, "count", "team_below");
-      c.count = count("team_below count");
+      c.count = r.integer(r.need(body, "count", "team_below"), "team_below count");
       break;
     case TriggerKind::Enters:
       r.checkKeys(body, "enters", {"group", "area", "count"});
@@ -569,7 +549,6 @@ raw::Action action(const Reader& r, const YAML::Node& node) {
   if (!node.IsMap()) r.fail(node, one);
   int kinds = 0;
   raw::Action a;
-  a.mark = Reader::mark(node);
   for (const auto& row : kActionKindNames.rows()) {
     if (!node[std::string(row.name)]) continue;
     ++kinds;
@@ -597,7 +576,7 @@ raw::Trigger trigger(const Reader& r, const YAML::Node& node) {
   r.checkKeys(node, "a trigger", {"name", "when", "do"});
   raw::Trigger t;
   t.mark = Reader::mark(node);
-  t.name = r.maybe(node, "name", [&](const YAML::Node& v) { return r.text(v, "trigger name"); });
+  t.name = r.maybeText(node, "name", "trigger name");
   t.when = condition(r, r.need(node, "when", "a trigger"));
   const YAML::Node actions = r.need(node, "do", "a trigger");
   if (!actions.IsSequence() || actions.size() == 0)
@@ -615,7 +594,6 @@ raw::Victory victory(const Reader& r, const YAML::Node& node) {
   const auto entry = *node.begin();
   const YAML::Node body = entry.second;
   raw::Victory v;
-  v.mark = Reader::mark(node);
   v.kind = r.named(entry.first, "victory condition", kVictoryKindNames, "victory condition",
                    "expected " + kVictoryKindNames.list(", ", " or "));
   switch (v.kind.value) {
@@ -645,9 +623,7 @@ raw::Expectation expectation(const Reader& r, const YAML::Node& node) {
   const auto entry = *node.begin();
   const YAML::Node body = entry.second;
   raw::Expectation e;
-  e.mark = Reader::mark(node);
   e.key = r.text(entry.first, "expectation");
-  e.body = Reader::mark(body);
   if (const auto kind = kExpectationKindNames.parse(e.key.value)) {
     e.kind = *kind;
   } else if (const auto stat = kStatKindNames.parse(e.key.value)) {
@@ -657,8 +633,8 @@ raw::Expectation expectation(const Reader& r, const YAML::Node& node) {
     r.fail(entry.first, "unknown expectation '" + e.key.value + "' (expected " + keys + ")");
   }
   const auto who = [&] {
-    e.team = r.maybe(body, "team", [&](const YAML::Node& v) { return r.text(v, "team"); });
-    e.type = r.maybe(body, "type", [&](const YAML::Node& v) { return r.text(v, "unit type"); });
+    e.team = r.maybeText(body, "team", "team");
+    e.type = r.maybeText(body, "type", "unit type");
   };
   switch (e.kind) {
     case ExpectationKind::ArrivalRate:
@@ -755,9 +731,8 @@ raw::Mark ScenarioFile::root() const {
 }
 
 raw::Maybe<std::string> ScenarioFile::name() const {
-  return document_->read([](const Reader& r, const YAML::Node& root) {
-    return r.maybe(root, "name", [&](const YAML::Node& v) { return r.text(v, "name"); });
-  });
+  return document_->read(
+      [](const Reader& r, const YAML::Node& root) { return r.maybeText(root, "name", "name"); });
 }
 
 raw::Map ScenarioFile::map() const {
@@ -768,7 +743,7 @@ raw::Map ScenarioFile::map() const {
 
 raw::Maybe<std::string> ScenarioFile::catalogue() const {
   return document_->read([](const Reader& r, const YAML::Node& root) {
-    return r.maybe(root, "catalogue", [&](const YAML::Node& v) { return r.text(v, "catalogue"); });
+    return r.maybeText(root, "catalogue", "catalogue");
   });
 }
 

@@ -44,13 +44,11 @@ struct Area {
 
 // `NAME` or `[NAME, ...]` (groups): at least one.
 struct Names {
-  Mark mark;
   std::vector<Field<std::string>> items;
 };
 
 // `map:`: a file, or inline `rows`.
 struct Map {
-  Mark mark;
   Maybe<std::string> file;
   Mark rowsMark;
   std::vector<Field<std::string>> rows;
@@ -98,7 +96,6 @@ struct Timing {
 };
 
 struct Pathing {
-  Mark mark;
   Maybe<pathing::Algorithm> algorithm;
   Maybe<int> clusterSize;
   Maybe<int> budget;
@@ -106,7 +103,6 @@ struct Pathing {
 };
 
 struct Stuck {
-  Mark mark;
   Maybe<double> seconds;
   Maybe<double> minProgress;
   Maybe<int> flagAfter;
@@ -119,7 +115,6 @@ struct ArmourPercent {
 };
 
 struct Combat {
-  Mark mark;
   Maybe<bool> enabled;
   Maybe<double> wreckSeconds;
   Maybe<int> sightThroughTrees;
@@ -152,7 +147,6 @@ struct Group {
 // An order (an `orders:` entry's, or an `order:` action's): `order` (Move when not given, marked
 // at the entry), `group`, and `move_to` or `target` as the kind takes.
 struct OrderAction {
-  Mark mark;
   Field<OrderKind> order;
   Names groups;
   std::optional<Area> moveTo;
@@ -161,7 +155,6 @@ struct OrderAction {
 
 // An `orders:` entry: `at` a time, or `when: {arrived, fraction}`.
 struct Order {
-  Mark mark;
   Maybe<double> at;
   Field<std::string> arrived;
   Maybe<double> fraction;
@@ -170,7 +163,6 @@ struct Order {
 
 // A trigger's `when:`: one condition; the fields its kind takes are set.
 struct Condition {
-  Mark mark;
   Field<TriggerKind> kind;   // marked at the condition's key
   Field<double> at;          // At
   Field<std::string> group;  // Arrived, Enters, Dies
@@ -182,7 +174,6 @@ struct Condition {
 
 // An entry of a trigger's `do:`.
 struct Action {
-  Mark mark;
   ActionKind kind = ActionKind::Order;
   OrderAction order;        // Order
   Field<std::string> name;  // Reinforce: the group; EndBattle: the team or `none`
@@ -196,7 +187,6 @@ struct Trigger {
 };
 
 struct Victory {
-  Mark mark;
   Field<VictoryKind> kind;  // marked at the condition's key
   Field<std::string> team;
   Area area;              // HoldArea, Exit
@@ -205,11 +195,9 @@ struct Victory {
 };
 
 struct Expectation {
-  Mark mark;
   Field<std::string> key;  // as written: the kind, or the statistic's name
   ExpectationKind kind = ExpectationKind::ArrivalRate;
   StatKind stat = StatKind::Kills;
-  Mark body;
   Maybe<std::string> team;  // ArrivalRate, ArrivalTime, Stat; Winner: the team or `none`
   Maybe<std::string> type;
   Field<double> threshold;   // at_least (ArrivalRate, Stat), at_most (ArrivalTime, Stat)
