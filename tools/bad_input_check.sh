@@ -70,6 +70,9 @@ with open(sys.argv[1], "a") as f:
     f.write("groups: [&g " + g + ", *g" * 30 + "]\n")
 EOF
 
+scenario "unit_types: {infantry: {radius: 0.6}}" >"$tmp/radius.yaml"
+scenario "pathing: {cluster_size: 1}" >"$tmp/cluster.yaml"
+
 for depth in 100 5000; do
   {
     scenario ""
@@ -118,6 +121,8 @@ cases=(
   "aliased groups, 31 M units|run $tmp/alias_units.yaml --quiet"
   "nesting 100 levels|run $tmp/nested_100.yaml --quiet"
   "nesting 5000 levels|run $tmp/nested_5000.yaml --quiet"
+  "a unit type past its limits (radius)|run $tmp/radius.yaml --quiet"
+  "a setting past its limits (cluster_size)|run $tmp/cluster.yaml --quiet"
   "--until -1|run $tmp/ok.yaml --quiet --until -1"
   "--until 99999999999999999999|run $tmp/ok.yaml --quiet --until 99999999999999999999"
   "--replay-every 0|run $tmp/ok.yaml --quiet --replay $tmp/out.replay --replay-every 0"
