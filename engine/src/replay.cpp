@@ -260,15 +260,7 @@ void addRecord(Replay& replay, bool& haveSource, char kind, Decoder& d, std::int
 }  // namespace
 
 std::string_view toString(ReplayEnd end) {
-  switch (end) {
-    case ReplayEnd::Complete:
-      return "complete";
-    case ReplayEnd::Stopped:
-      return "stopped at a tick limit";
-    case ReplayEnd::Interrupted:
-      return "interrupted";
-  }
-  return "?";
+  return kReplayEndNames.name(end);
 }
 
 std::int64_t Replay::lastTick() const {

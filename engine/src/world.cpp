@@ -40,13 +40,6 @@ std::vector<Capability> capabilitiesOf(const std::vector<units::UnitType>& catal
   return {distinct.begin(), distinct.end()};
 }
 
-int maxSizeOf(const std::vector<units::UnitType>& catalogue) {
-  int size = 1;
-  for (const units::UnitType& type : catalogue)
-    size = std::max(size, type.size);
-  return size;
-}
-
 }  // namespace
 
 std::string problemWith(const CombatSettings& settings) {
@@ -73,6 +66,7 @@ std::string problemWith(const WorldSettings& settings) {
 
 // The tick's phases and their scratch memory.
 struct World::Phases {
+  explicit Phases(int maxUnitSize) : combat(maxUnitSize), nearby(maxUnitSize) {}
   world::Combat combat;
   world::Traffic traffic;
   world::TargetIndex nearby;  // steering's view of who touches whom
@@ -86,15 +80,15 @@ World::World(std::shared_ptr<const AnnotatedGrid> grid, std::vector<units::UnitT
     : grid_(std::move(grid)),
       catalogue_(std::move(catalogue)),
       settings_(settings),
-      phases_(std::make_unique<Phases>()) {
+      phases_(std::make_unique<Phases>(world::maxUnitSize(catalogue_))) {
   if (std::string problem = problemWith(settings_); !problem.empty())
     throw std::invalid_argument("world settings: " + problem);
   const std::vector<Capability> capabilities = capabilitiesOf(catalogue_);
   state_.rng = SplitMix64(settings_.seed);
   state_.goals = GoalBoard(grid_->map());
   state_.physics = std::make_unique<Physics>(grid_->map(), capabilities);
-  state_.paths =
-      std::make_unique<PathService>(*grid_, settings_.pathing, capabilities, maxSizeOf(catalogue_));
+  state_.paths = std::make_unique<PathService>(*grid_, settings_.pathing, capabilities,
+                                               world::maxUnitSize(catalogue_));
   // Reservations are kept at the chokepoints of the kinds of unit on the map only (spawn adds
   // them): in the open, Box2D lets units slide past each other, and reserving there made group
   // moves 10-30 % slower (docs/cooperative.md).
@@ -131,9 +125,7 @@ UnitId World::spawn(int type, int team, int group, Cell anchor) {
 }
 
 const Unit* World::find(UnitId id) const {
-  if (id.index >= state_.units.size() || state_.units[id.index].id.generation != id.generation)
-    return nullptr;
-  return &state_.units[id.index];
+  return state_.find(id);
 }
 
 int World::aliveCount(int team) const {

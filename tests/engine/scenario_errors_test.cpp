@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "engine/scenario.h"
+#include "engine/scenario_run.h"
 
 namespace warpath::engine {
 namespace {
@@ -226,6 +228,112 @@ TEST(Errors, OrdersNeedWhatTheirKindTakes) {
       scenario("", kGroup + "orders:\n  - {at: 1, group: group1, order: hold}\n"), kFile);
   ASSERT_TRUE(hold.ok()) << hold.error().describe();
   EXPECT_EQ(hold.value().triggers.at(0).actions.at(0).order, OrderKind::Hold);
+}
+
+// ---- every limit of the settings a scenario sets ---------------------------------------------
+
+// "FILE:LINE:COLUMN: " of the first `needle` in `text` at or after `from`.
+std::string placeOf(const std::string& text, const std::string& needle, std::size_t from) {
+  const std::size_t at = text.find(needle, from);
+  EXPECT_NE(at, std::string::npos) << needle;
+  const std::size_t lineStart = text.rfind('\n', at);
+  const auto line =
+      1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n');
+  const std::size_t column = at - (lineStart == std::string::npos ? 0 : lineStart + 1) + 1;
+  return kFile + ":" + std::to_string(line) + ":" + std::to_string(column) + ": ";
+}
+
+// `extra` is refused with `message`, reported at the first `needle` in it (the value or key at
+// fault).
+void expectRefusedAt(const std::string& extra, const std::string& needle,
+                     const std::string& message) {
+  const std::string text = scenario(extra, kGroup);
+  EXPECT_EQ(errorOf(text).describe(), placeOf(text, needle, text.find(extra)) + message) << extra;
+}
+
+TEST(Limits, WorldSettingsAreReportedAtTheirKey) {
+  expectRefusedAt("tick_rate: 0\n", "0\n", "tick_rate must be between 1 and 1000");
+  expectRefusedAt("tick_rate: .nan\n", ".nan", "tick_rate must be between 1 and 1000");
+  expectRefusedAt("pathing: {cluster_size: 1}\n", "1}", "cluster_size must be between 2 and 4096");
+  expectRefusedAt("pathing: {cluster_size: 4097}\n", "4097",
+                  "cluster_size must be between 2 and 4096");
+  expectRefusedAt("pathing: {budget: 0}\n", "0}", "budget must be between 1 and 1000000000");
+  expectRefusedAt("pathing: {cache: -1}\n", "-1", "cache must be between 0 and 100000000");
+  expectRefusedAt("stuck: {seconds: 0}\n", "0}", "stuck seconds must be between 0.01 and 1e+06");
+  expectRefusedAt("stuck: {min_progress: -0.5}\n", "-0.5",
+                  "min_progress must be between 0 and 1e+06");
+  expectRefusedAt("stuck: {flag_after: 0}\n", "0}", "flag_after must be between 1 and 1000000");
+  expectRefusedAt("combat: {wreck_seconds: -1}\n", "-1",
+                  "wreck_seconds must be between 0 and 1e+06");
+  expectRefusedAt("combat: {scan_every: 0}\n", "0}", "scan_every must be between 1 and 1000000");
+}
+
+TEST(Limits, UnitTypeLimitsAreReportedAtTheirKey) {
+  const std::string hover = "unit_types:\n  hover: {size: 1, capability: [ground, water], ";
+  expectRefusedAt("unit_types: {tank: {size: 0}}\n", "0}",
+                  "unit type 'tank' size must be between 1 and 255");
+  expectRefusedAt("unit_types: {tank: {size: 256}}\n", "256",
+                  "unit type 'tank' size must be between 1 and 255");
+  // Zero speed on a terrain of the capability: problemWith(UnitType), at the value.
+  expectRefusedAt(hover + "speed: {ground: 2, water: 0}}\n", "0}}",
+                  "unit type 'hover': speed on water must be positive");
+  expectRefusedAt(hover + "speed: 0}\n", "0}",
+                  "unit type 'hover': speed on ground must be positive");
+  expectRefusedAt(hover + "speed: {ground: 2}}\n", "{ground: 2}",
+                  "unit type 'hover': speed on water must be positive");
+  expectRefusedAt("unit_types: {tank: {speed: 51}}\n", "51",
+                  "unit type 'tank' speed must be between 0 and 50");
+  expectRefusedAt("unit_types: {tank: {acceleration: 0}}\n", "0}",
+                  "unit type 'tank': acceleration must be positive");
+  expectRefusedAt("unit_types: {tank: {turn_rate: 0}}\n", "0}",
+                  "unit type 'tank': turn_rate must be positive");
+  expectRefusedAt("unit_types: {infantry: {radius: 0}}\n", "0}",
+                  "unit type 'infantry': radius must be positive and at most size/2");
+  expectRefusedAt("unit_types: {infantry: {radius: 0.6}}\n", "0.6",
+                  "unit type 'infantry': radius must be positive and at most size/2");
+  // The radius comes from the catalogue and the size from the file: the type's fields together.
+  expectRefusedAt("unit_types: {tank: {size: 2}}\n", "{size: 2}",
+                  "unit type 'tank': radius must be positive and at most size/2");
+  expectRefusedAt("unit_types: {tank: {hp: 0}}\n", "0}",
+                  "unit type 'tank' hp must be between 1 and 1000000");
+}
+
+TEST(Limits, WeaponLimitsAreReportedAtTheirKey) {
+  const auto weapon = [](const std::string& fields) {
+    return "unit_types: {tank: {weapon: {" + fields + "}}}\n";
+  };
+  expectRefusedAt(weapon("damage: -1"), "-1",
+                  "unit type 'tank' weapon damage must be between 0 and 1000000");
+  expectRefusedAt(weapon("range: 0"), "0}", "unit type 'tank' weapon range must be greater than 0");
+  expectRefusedAt(weapon("range: 5000"), "5000",
+                  "unit type 'tank' weapon range must be between 0 and 4096");
+  expectRefusedAt(weapon("cooldown: 0"), "0}",
+                  "unit type 'tank' weapon cooldown must be greater than 0");
+  expectRefusedAt(weapon("projectile_speed: -1"), "-1",
+                  "unit type 'tank' weapon projectile_speed must be between 0 and 1e+06");
+  expectRefusedAt(weapon("targets: []"), "[]",
+                  "unit type 'tank' weapon targets must name at least one armour class");
+  expectRefusedAt(weapon("priority: {heavy: 256}"), "256",
+                  "unit type 'tank' weapon priority rank must be between 0 and 255");
+}
+
+// Every setting at the edge of its range loads, and the world takes it: the loader's ranges lie
+// within the limits World and PathService enforce (their constructors would throw otherwise).
+TEST(Limits, SettingsAtTheEdgesOfTheirRangesAreUsable) {
+  for (const std::string extra :
+       {"tick_rate: 1\npathing: {cluster_size: 2, budget: 1, cache: 0}\n"
+        "stuck: {seconds: 0.01, min_progress: 0, flag_after: 1}\n"
+        "combat: {wreck_seconds: 0, scan_every: 1, sight_through_trees: -1}\n",
+        "tick_rate: 1000\npathing: {algo: haa-lq, cluster_size: 4096, budget: 1000000000, "
+        "cache: 100000000}\nstuck: {seconds: 1000000, min_progress: 1000000, flag_after: "
+        "1000000}\ncombat: {wreck_seconds: 1000000, scan_every: 1000000}\n"}) {
+    const Result<Scenario> r = parseScenario(scenario(extra, kGroup), kFile);
+    ASSERT_TRUE(r.ok()) << r.error().describe();
+    EXPECT_EQ(problemWith(r.value().settings), "");
+    ScenarioRun run(r.value());
+    run.step();
+    EXPECT_EQ(run.world().tick(), 1);
+  }
 }
 
 }  // namespace

@@ -35,6 +35,7 @@ TEST(EnumNames, ParseAcceptsEverySpellingAndNothingElse) {
 TEST(EnumNames, ListShowsCanonicalNamesOnly) {
   EXPECT_EQ(kColours.list(), "red, green, blue");
   EXPECT_EQ(kColours.list("|"), "red|green|blue");
+  EXPECT_EQ(kColours.list(", ", " or "), "red, green or blue");  // the alias is not last
 }
 
 TEST(EnumNames, WorksAtCompileTime) {

@@ -90,23 +90,18 @@ int runInfo(const InfoOptions& options) {
   fmt::print("ticks recorded: {}\n", replay.lastTick());
   fmt::print("hash every: {} ticks ({} hashes)\n", s.hashEvery, replay.hashes.size());
   // The command stream by kind: orders by what they tell, then reinforcements and the end.
-  std::map<std::string, int> kinds;
+  std::map<std::string_view, int> kinds;
   for (const engine::IssuedOrder& o : replay.orders) {
-    switch (o.kind) {
-      case engine::IssuedKind::Order:
-        ++kinds[std::string(engine::toString(o.command.kind))];
-        break;
-      case engine::IssuedKind::Reinforce:
-        ++kinds["reinforce"];
-        break;
-      case engine::IssuedKind::EndBattle:
-        ++kinds["end_battle"];
-        break;
-    }
+    ++kinds[o.kind == engine::IssuedKind::Order ? engine::toString(o.command.kind)
+                                                : engine::kIssuedKindNames.name(o.kind)];
   }
+  std::vector<std::string_view> names;  // table order: the orders, then the other entries
+  for (const auto& row : engine::kOrderKindNames.rows())
+    names.push_back(row.name);
+  for (const auto& row : engine::kIssuedKindNames.rows())
+    if (row.value != engine::IssuedKind::Order) names.push_back(row.name);
   std::string byKind;
-  for (const char* k :
-       {"move", "attack_move", "attack", "hold", "stop", "reinforce", "end_battle"}) {
+  for (std::string_view k : names) {
     if (const auto it = kinds.find(k); it != kinds.end())
       byKind += fmt::format("{}{} {}", byKind.empty() ? "" : ", ", it->second, k);
   }

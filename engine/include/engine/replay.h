@@ -16,6 +16,7 @@
 
 #include "engine/scenario.h"
 #include "engine/scenario_run.h"
+#include "pathing/enum_names.h"
 
 namespace warpath::engine {
 
@@ -57,6 +58,12 @@ enum class ReplayEnd : std::uint8_t {
   Stopped,      // stopped at a tick limit (--until)
   Interrupted,  // stopped by SIGINT/SIGTERM between ticks
 };
+// Why a run ended, as `rts replay info` says it.
+inline constexpr EnumNames<ReplayEnd, 3> kReplayEndNames{{{
+    {ReplayEnd::Complete, "complete"},
+    {ReplayEnd::Stopped, "stopped at a tick limit"},
+    {ReplayEnd::Interrupted, "interrupted"},
+}}};
 std::string_view toString(ReplayEnd end);
 
 struct ReplayEndRecord {

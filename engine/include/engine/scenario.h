@@ -12,6 +12,7 @@
 
 #include "engine/world.h"
 #include "pathing/annotated_grid.h"
+#include "pathing/enum_names.h"
 #include "pathing/error.h"
 #include "pathing/file_read.h"
 #include "units/unit_type.h"
@@ -25,9 +26,25 @@ enum class ExpectationKind : std::uint8_t {
   Winner,       // the report's winner is `team` (-1: no winner)
   Stat,         // a battle statistic of (team, type) compared with threshold
 };
+// The keys of the expectations that are not statistics (a Stat expectation's key is the name of
+// its statistic, kStatKindNames).
+inline constexpr EnumNames<ExpectationKind, 4> kExpectationKindNames{{{
+    {ExpectationKind::ArrivalRate, "arrival_rate"},
+    {ExpectationKind::ArrivalTime, "arrival_time"},
+    {ExpectationKind::MaxStuck, "max_stuck"},
+    {ExpectationKind::Winner, "winner"},
+}}};
 
 // Battle statistics summed per (team, type) in the report.
 enum class StatKind : std::uint8_t { Kills, Losses, DamageDealt, DamageTaken, ShotsFired, Alive };
+inline constexpr EnumNames<StatKind, 6> kStatKindNames{{{
+    {StatKind::Kills, "kills"},
+    {StatKind::Losses, "losses"},
+    {StatKind::DamageDealt, "damage_dealt"},
+    {StatKind::DamageTaken, "damage_taken"},
+    {StatKind::ShotsFired, "shots_fired"},
+    {StatKind::Alive, "alive"},
+}}};
 std::string_view toString(StatKind kind);  // "kills", "losses", "damage_dealt", …
 
 struct Expectation {
@@ -63,12 +80,26 @@ enum class TriggerKind : std::uint8_t {
   Enters,     // at least `count` living units of group `group` are inside `area`
   Dies,       // at least `count` units of group `group` have died
 };
+// The condition keys of a trigger's `when:`.
+inline constexpr EnumNames<TriggerKind, 5> kTriggerKindNames{{{
+    {TriggerKind::At, "at"},
+    {TriggerKind::Arrived, "arrived"},
+    {TriggerKind::TeamBelow, "team_below"},
+    {TriggerKind::Enters, "enters"},
+    {TriggerKind::Dies, "dies"},
+}}};
 
 enum class ActionKind : std::uint8_t {
   Order,      // order `groups` (their living units): `order` with `area` or `targetGroups`
   Reinforce,  // spawn the reinforcement group `group`
   EndBattle,  // stop the run; `team` (-1: none) is the winner unless a victory came first
 };
+// The key that says which action an entry of a trigger's `do:` is.
+inline constexpr EnumNames<ActionKind, 3> kActionKindNames{{{
+    {ActionKind::Order, "order"},
+    {ActionKind::Reinforce, "reinforce"},
+    {ActionKind::EndBattle, "end_battle"},
+}}};
 
 struct ActionSpec {
   ActionKind kind = ActionKind::Order;
@@ -99,6 +130,11 @@ enum class VictoryKind : std::uint8_t {
   HoldArea,   // `team` alone has living units inside `area` for `seconds` without a break
   Exit,       // `count` living units of `team` have stood inside `area` (each counts once)
 };
+inline constexpr EnumNames<VictoryKind, 3> kVictoryKindNames{{{
+    {VictoryKind::Eliminate, "eliminate"},
+    {VictoryKind::HoldArea, "hold"},
+    {VictoryKind::Exit, "exit"},
+}}};
 
 struct VictorySpec {
   VictoryKind kind = VictoryKind::Eliminate;

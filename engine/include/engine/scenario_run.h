@@ -10,6 +10,7 @@
 
 #include "engine/scenario.h"
 #include "engine/world.h"
+#include "pathing/enum_names.h"
 
 namespace warpath::engine {
 
@@ -106,6 +107,11 @@ enum class IssuedKind : std::uint8_t {
   Reinforce,  // the reinforcement group `group` spawned
   EndBattle,  // the battle ended; `group` holds the winner's team index, -1 for none
 };
+inline constexpr EnumNames<IssuedKind, 3> kIssuedKindNames{{{
+    {IssuedKind::Order, "order"},
+    {IssuedKind::Reinforce, "reinforce"},
+    {IssuedKind::EndBattle, "end_battle"},
+}}};
 
 struct IssuedOrder {
   std::int64_t tick = 0;

@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "engine/goal_board.h"
@@ -65,8 +66,10 @@ struct WorldSettings {
   CombatSettings combat;
 };
 // Empty when every [Limit] of the settings (path service, stuck rule, combat included) holds,
-// else the first that does not, e.g. "tickRate must be > 0 (got 0)". World's constructor
-// throws std::invalid_argument with this message; callers that take user input check first.
+// else the first that does not, beginning with the field, e.g. "tickRate must be > 0 (got 0)",
+// "stuck.flagAfter …", "pathing: clusterSize …" (the scenario loader reports it at the key that
+// set that field). World's constructor throws std::invalid_argument with this message; callers
+// that take user input check first.
 std::string problemWith(const WorldSettings& settings);
 
 // What a unit was told to do (RTS semantics; docs/combat.md).
@@ -249,6 +252,15 @@ struct WorldState {
   // held footprint, so its content follows from the units' fields.
   std::unique_ptr<pathing::ReservationTable> reservations;
   MovementStats movement;
+
+  // The unit a handle names; null when the world did not give it out (an index past the units,
+  // or a stale generation). The one handle check: World::find and the phases use it.
+  const Unit* find(UnitId id) const {
+    return id.index < units.size() && units[id.index].id.generation == id.generation
+               ? &units[id.index]
+               : nullptr;
+  }
+  Unit* find(UnitId id) { return const_cast<Unit*>(std::as_const(*this).find(id)); }
 };
 
 // Mean wall time per phase over the ticks stepped so far: measurement only.

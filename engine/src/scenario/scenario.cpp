@@ -1,19 +1,20 @@
-// The only user of yaml-cpp. Parsing throws Error internally (at the node it concerns)
-// and the public functions turn it into a result.
+// Scenario and catalogue files in two steps: decoding (engine/src/scenario/decode.cpp) reads
+// the YAML into raw structs; the checks here give the values their meaning — ranges, the names
+// of teams, types and groups, the map and where units fit on it, the settings' limits — and
+// build the Scenario. Both throw Error at the place concerned; the public functions turn it
+// into a result.
 #include "engine/scenario.h"
-
-#include <yaml-cpp/depthguard.h>
-#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
-#include <initializer_list>
 #include <map>
 #include <numbers>
 #include <set>
 #include <sstream>
 #include <tuple>
 
+#include "engine/src/scenario/decode.h"
+#include "engine/src/scenario/raw.h"
 #include "pathing/map_io.h"
 #include "pathing/planner.h"
 
@@ -28,408 +29,10 @@ std::int64_t Scenario::durationTicks() const {
 
 namespace {
 
-class Parser {
- public:
-  Parser(fs::path file, const FileReader& files) : file_(std::move(file)), files_(files) {}
-
-  [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const {
-    const YAML::Mark mark = node.Mark();
-    throw Error{file_.string(), mark.line + 1, mark.column + 1, message};
-  }
-  [[noreturn]] void fail(const YAML::Mark& mark, const std::string& message) const {
-    throw Error{file_.string(), mark.line + 1, mark.column + 1, message};
-  }
-
-  const fs::path& file() const { return file_; }
-  fs::path resolve(const std::string& relative) const { return file_.parent_path() / relative; }
-  // The contents of the file `node` names (resolved against the scenario's folder) through the
-  // file reader; fails at `node` when it has none or cannot read it ("map: FILE: is a
-  // directory"). `what` is "map" or "catalogue".
-  std::pair<fs::path, std::string> referenced(const YAML::Node& node, const std::string& what,
-                                              FileLimit limit) const {
-    const fs::path file = resolve(text(node, what));
-    Result<std::string> contents = files_(file, limit);
-    if (!contents) {
-      if (contents.error().message == kNoSuchFile)
-        fail(node, what + " file '" + file.string() + "' not found");
-      fail(node, what + ": " + contents.error().describe());
-    }
-    return {file, std::move(contents).value()};
-  }
-
-  void expectMap(const YAML::Node& node, const std::string& what) const {
-    if (!node.IsMap()) fail(node, what + " must be a mapping");
-  }
-  // Rejects keys outside `allowed`, naming the first unknown one where it is written.
-  void checkKeys(const YAML::Node& node, const std::string& what,
-                 std::initializer_list<std::string_view> allowed) const {
-    expectMap(node, what);
-    for (const auto& entry : node) {
-      const std::string key = entry.first.as<std::string>();
-      bool known = false;
-      for (std::string_view a : allowed)
-        known = known || key == a;
-      if (!known) {
-        std::string list;
-        for (std::string_view a : allowed)
-          list += (list.empty() ? "" : ", ") + std::string(a);
-        fail(entry.first,
-             "unknown key '" + key + "' in " + what + " (expected one of: " + list + ")");
-      }
-    }
-  }
-  const YAML::Node need(const YAML::Node& node, const char* key, const std::string& what) const {
-    const YAML::Node value = node[key];
-    if (!value) fail(node, what + " needs '" + key + "'");
-    return value;
-  }
-
-  template <class T>
-  T as(const YAML::Node& node, const std::string& what) const {
-    if (!node.IsScalar()) fail(node, what + " must be a single value");
-    try {
-      return node.as<T>();
-    } catch (const YAML::Exception&) {
-      fail(node, what + ": cannot read '" + node.Scalar() + "' as " +
-                     (std::is_integral_v<T> ? "an integer" : "a number"));
-    }
-  }
-  double number(const YAML::Node& node, const std::string& what, double lo, double hi) const {
-    const double v = as<double>(node, what);
-    if (!(v >= lo && v <= hi))
-      fail(node, what + " must be between " + fmtNumber(lo) + " and " + fmtNumber(hi));
-    return v;
-  }
-  int integer(const YAML::Node& node, const std::string& what, int lo, int hi) const {
-    const int v = as<int>(node, what);
-    if (v < lo || v > hi)
-      fail(node, what + " must be between " + std::to_string(lo) + " and " + std::to_string(hi));
-    return v;
-  }
-  bool boolean(const YAML::Node& node, const std::string& what) const {
-    if (!node.IsScalar()) fail(node, what + " must be a single value");
-    bool v = false;
-    if (!YAML::convert<bool>::decode(node, v))
-      fail(node, what + " must be true or false, not '" + node.Scalar() + "'");
-    return v;
-  }
-  std::string text(const YAML::Node& node, const std::string& what) const {
-    if (!node.IsScalar()) fail(node, what + " must be a single value");
-    return node.Scalar();
-  }
-
-  static std::string fmtNumber(double v) {
-    std::ostringstream out;
-    out << v;
-    return out.str();
-  }
-
-  // What checkReachable has worked out already: the map components a unit type can reach in an
-  // area, and the (group, area) pairs found reachable. Aliases can repeat one order or goal
-  // thousands of times; each is checked once.
-  using AreaKey = std::tuple<int, int, int, int, int>;
-  mutable std::map<AreaKey, std::set<std::uint32_t>> reachableComponents;
-  mutable std::set<std::pair<std::string, AreaKey>> reachableGroups;
-
- private:
-  fs::path file_;
-  const FileReader& files_;
-};
-
-Capability parseCapabilityNode(const Parser& p, const YAML::Node& node) {
-  std::string joined;
-  if (node.IsSequence()) {
-    for (const auto& item : node)
-      joined += (joined.empty() ? "" : ",") + p.text(item, "capability");
-  } else {
-    joined = p.text(node, "capability");
-  }
-  const Result<Capability> c = parseCapability(joined);
-  if (!c) p.fail(node, "capability: " + c.error().describe());
-  return c.value();
-}
-
-std::string armourList() {
-  std::string list;
-  for (int a = 0; a < units::kArmourClasses; ++a)
-    list += (list.empty() ? "" : ", ") +
-            std::string(units::armourClassName(static_cast<units::ArmourClass>(a)));
-  return list;
-}
-
-std::string damageKindList() {
-  std::string list;
-  for (int k = 0; k < units::kDamageKinds; ++k)
-    list += (list.empty() ? "" : ", ") +
-            std::string(units::damageKindName(static_cast<units::DamageKind>(k)));
-  return list;
-}
-
-units::ArmourClass parseArmourClass(const Parser& p, const YAML::Node& node,
-                                    const std::string& what) {
-  const std::string name = p.text(node, what);
-  const std::optional<units::ArmourClass> a = units::armourClassFromName(name);
-  if (!a) p.fail(node, "unknown armour class '" + name + "' (" + armourList() + ")");
-  return *a;
-}
-
-units::DamageKind parseDamageKind(const Parser& p, const YAML::Node& node,
-                                  const std::string& what) {
-  const std::string name = p.text(node, what);
-  const std::optional<units::DamageKind> k = units::damageKindFromName(name);
-  if (!k) p.fail(node, "unknown damage kind '" + name + "' (" + damageKindList() + ")");
-  return *k;
-}
-
-// `weapon:` of a unit type: `none`, or the fields to set. A type that already has a weapon
-// keeps the fields not given; a new weapon needs kind, damage, range and cooldown.
-void parseWeapon(const Parser& p, const YAML::Node& node, units::UnitType& type,
-                 const std::string& owner) {
-  const std::string what = owner + " weapon";
-  if (node.IsScalar()) {
-    if (node.Scalar() != "none")
-      p.fail(node, what +
-                       " must be 'none' or a mapping {name, kind, damage, range, cooldown, "
-                       "projectile_speed, targets, priority}");
-    type.weapon.reset();
-    return;
-  }
-  p.checkKeys(
-      node, what,
-      {"name", "kind", "damage", "range", "cooldown", "projectile_speed", "targets", "priority"});
-  units::Weapon w;
-  if (type.weapon) {
-    w = *type.weapon;
-  } else {
-    for (const char* key : {"kind", "damage", "range", "cooldown"})
-      p.need(node, key, "a new " + what);
-  }
-  if (node["kind"]) {
-    w.kind = parseDamageKind(p, node["kind"], what + " kind");
-    if (!type.weapon && !node["name"]) w.name = std::string(units::damageKindName(w.kind));
-  }
-  if (node["name"]) w.name = p.text(node["name"], what + " name");
-  if (node["damage"]) w.damage = p.integer(node["damage"], what + " damage", 0, 1000000);
-  const auto positive = [&](const char* key, double hi) {
-    const YAML::Node v = node[key];
-    const double x = p.number(v, what + " " + key, 0.0, hi);
-    if (!(x > 0.0)) p.fail(v, what + " " + key + " must be greater than 0");
-    return x;
-  };
-  if (node["range"]) w.range = positive("range", 4096.0);
-  if (node["cooldown"]) w.cooldown = positive("cooldown", 3600.0);
-  if (node["projectile_speed"])
-    w.projectileSpeed = p.number(node["projectile_speed"], what + " projectile_speed", 0.0, 1e6);
-  if (const YAML::Node targets = node["targets"]) {
-    units::TargetMask mask;
-    if (targets.IsSequence()) {
-      for (const auto& item : targets)
-        mask.bits = static_cast<std::uint8_t>(
-            mask.bits | units::TargetMask::of({parseArmourClass(p, item, what + " targets")}).bits);
-    } else {
-      mask = units::TargetMask::of({parseArmourClass(p, targets, what + " targets")});
-    }
-    if (mask.bits == 0) p.fail(targets, what + " targets must name at least one armour class");
-    w.targets = mask;
-  }
-  if (const YAML::Node priority = node["priority"]) {
-    p.expectMap(priority, what + " priority");
-    for (const auto& entry : priority) {
-      const units::ArmourClass a = parseArmourClass(p, entry.first, what + " priority");
-      w.priority[static_cast<std::size_t>(a)] =
-          static_cast<std::uint8_t>(p.integer(entry.second, what + " priority rank", 0, 255));
-    }
-  }
-  const std::string problem = units::problemWith(w);
-  if (!problem.empty()) p.fail(node, what + ": " + problem);
-  type.weapon = std::move(w);
-}
-
-// Applies the fields present in `node` to `type` (a catalogue entry being overridden, or a
-// new type).
-void applyUnitFields(const Parser& p, const YAML::Node& node, units::UnitType& type) {
-  const std::string what = "unit type '" + type.name + "'";
-  p.checkKeys(node, what,
-              {"size", "capability", "speed", "acceleration", "turn_rate", "radius", "hp", "armour",
-               "weapon"});
-  if (node["size"]) type.size = p.integer(node["size"], what + " size", 1, 255);
-  if (node["capability"]) type.capability = parseCapabilityNode(p, node["capability"]);
-  if (const YAML::Node speed = node["speed"]) {
-    if (speed.IsMap()) {
-      for (const auto& entry : speed) {
-        const std::string name = p.text(entry.first, "terrain");
-        const std::optional<Terrain> t = terrainFromName(name);
-        if (!t || !isTraversable(*t)) p.fail(entry.first, "unknown terrain '" + name + "'");
-        type.speed[static_cast<std::size_t>(*t)] =
-            p.number(entry.second, what + " speed", 0.0, 50.0);
-      }
-    } else {
-      type.setSpeed(p.number(speed, what + " speed", 0.0, 50.0));
-    }
-  }
-  if (node["acceleration"])
-    type.acceleration = p.number(node["acceleration"], what + " acceleration", 0.0, 1000.0);
-  if (node["turn_rate"])  // degrees per second in files, radians inside
-    type.turnRate =
-        p.number(node["turn_rate"], what + " turn_rate", 0.0, 36000.0) * std::numbers::pi / 180.0;
-  if (node["radius"]) type.radius = p.number(node["radius"], what + " radius", 0.0, 128.0);
-  if (node["hp"]) type.hp = p.integer(node["hp"], what + " hp", 1, 1000000);
-  if (node["armour"]) type.armour = parseArmourClass(p, node["armour"], what + " armour");
-  if (node["weapon"]) parseWeapon(p, node["weapon"], type, what);
-}
-
-// Reads `unit_types:` into `catalogue`: known names are overridden field by field, new ones
-// need size, capability and speed (armour defaults by name, see units::defaultArmourFor, else
-// infantry; no weapon unless given).
-void parseUnitTypes(const Parser& p, const YAML::Node& node,
-                    std::vector<units::UnitType>& catalogue) {
-  p.expectMap(node, "unit_types");
-  for (const auto& entry : node) {
-    const std::string name = p.text(entry.first, "unit type name");
-    units::UnitType* type = nullptr;
-    for (units::UnitType& t : catalogue)
-      type = t.name == name ? &t : type;
-    if (type == nullptr) {
-      p.expectMap(entry.second, "unit type '" + name + "'");
-      for (const char* key : {"size", "capability", "speed"})
-        p.need(entry.second, key, "new unit type '" + name + "'");
-      catalogue.push_back({});
-      type = &catalogue.back();
-      type->name = name;
-      type->armour = units::defaultArmourFor(name).value_or(units::ArmourClass::Infantry);
-    }
-    applyUnitFields(p, entry.second, *type);
-    const std::string problem = units::problemWith(*type);
-    if (!problem.empty()) p.fail(entry.second, "unit type '" + name + "': " + problem);
-  }
-}
-
-// Bounds on what a scenario or catalogue may expand to. yaml-cpp keeps one node for an anchor
-// and every alias of it, but reading walks each alias in full: an 80 KB file can stand for an
-// 8192x8192 map or millions of groups. The limits are checked before anything is built from the
-// file (docs/scenarios.md, "Limits").
-constexpr int kMaxNesting = 64;                 // levels of mappings and lists
-constexpr std::size_t kMaxYamlNodes = 250'000;  // nodes, every alias counted in full
-constexpr std::size_t kMaxListEntries = 1'000;  // entries of one list or mapping (map rows: cells)
-constexpr std::size_t kMaxInlineMapCells = std::size_t{1} << 20;  // 1024x1024
-constexpr long long kMaxUnits = 20'000;  // the sum of every group's count, reinforcements included
-
-// Walks the document as the parser will read it, aliases expanded, and fails at the first node
-// past a limit. `key` is the mapping key the node sits under (empty at the root), to name the
-// list in messages.
-void checkExpansion(const Parser& p, const YAML::Node& node, const std::string& key, int depth,
-                    std::size_t& nodes) {
-  if (++nodes > kMaxYamlNodes)
-    p.fail(node, "the file expands to more than " + std::to_string(kMaxYamlNodes) +
-                     " YAML nodes (anchors and aliases repeat what they name)");
-  if (depth > kMaxNesting)
-    p.fail(node, "nesting deeper than " + std::to_string(kMaxNesting) + " levels");
-  if (!node.IsSequence() && !node.IsMap()) return;
-  if (key != "rows" && node.size() > kMaxListEntries)
-    p.fail(node, (key.empty() ? "the file" : "'" + key + "'") + " has " +
-                     std::to_string(node.size()) + " entries, more than the " +
-                     std::to_string(kMaxListEntries) + " allowed");
-  if (node.IsSequence()) {
-    for (const auto& item : node)
-      checkExpansion(p, item, key, depth + 1, nodes);
-    return;
-  }
-  for (const auto& entry : node) {
-    checkExpansion(p, entry.first, key, depth + 1, nodes);
-    const std::string inner = entry.first.IsScalar() ? entry.first.Scalar() : key;
-    checkExpansion(p, entry.second, inner, depth + 1, nodes);
-  }
-}
-
-YAML::Node loadYaml(const Parser& p, std::string_view text) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(std::string(text));
-  } catch (const YAML::DeepRecursion& e) {
-    p.fail(e.mark, "nesting deeper than " + std::to_string(kMaxNesting) + " levels");
-  } catch (const YAML::ParserException& e) {
-    p.fail(e.mark, e.msg);
-  }
-  std::size_t nodes = 0;
-  checkExpansion(p, root, "", 0, nodes);
-  return root;
-}
-
-// Before any unit is placed: the groups' counts (each read as parse() will) add up to at most
-// kMaxUnits. Counts that do not read as integers are left for parse() to report.
-void checkUnitTotal(const Parser& p, const YAML::Node& groups) {
-  long long total = 0;
-  for (const auto& node : groups) {
-    if (!node.IsMap() || !node["count"] || !node["count"].IsScalar()) continue;
-    long long count = 0;
-    if (!YAML::convert<long long>::decode(node["count"], count) || count < 1) continue;
-    total += std::min<long long>(count, kMaxUnits + 1);
-    if (total > kMaxUnits)
-      p.fail(node["count"], "the groups have more than " + std::to_string(kMaxUnits) +
-                                " units in all (the limit for one scenario)");
-  }
-}
-
-GridMap parseMapNode(const Parser& p, const YAML::Node& node) {
-  if (node.IsScalar()) {
-    const auto [file, contents] = p.referenced(node, "map", kMapFileLimit);
-    Result<GridMap> map = parseMap(std::string_view(contents), file.string());
-    if (!map) p.fail(node, "map: " + map.error().describe());
-    return std::move(map).value();
-  }
-  p.checkKeys(node, "map", {"rows"});
-  const YAML::Node rows = p.need(node, "rows", "map");
-  if (!rows.IsSequence() || rows.size() == 0) p.fail(rows, "map rows must be a non-empty list");
-  // Inline rows use the .map glyphs; reading them through the .map parser keeps one reader.
-  // Aliases may repeat a row: the cells are counted before the map is built.
-  const std::size_t width = p.text(rows[0], "map row").size();
-  const auto tooMany = [&] {
-    p.fail(rows, "the inline map has " + std::to_string(rows.size()) + " rows of " +
-                     std::to_string(width) + " cells, more than the " +
-                     std::to_string(kMaxInlineMapCells) + " cells allowed: give a .map file");
-  };
-  if (rows.size() > kMaxInlineMapCells / std::max<std::size_t>(width, 1)) tooMany();
-  std::string text = "type octile\nheight " + std::to_string(rows.size()) + "\nwidth " +
-                     std::to_string(width) + "\nmap\n";
-  std::size_t cells = 0;
-  for (const auto& row : rows) {
-    const std::string glyphs = p.text(row, "map row");
-    cells += glyphs.size();
-    if (cells > kMaxInlineMapCells) tooMany();
-    text += glyphs + "\n";
-  }
-  Result<GridMap> map = parseMap(std::string_view(text), "inline map");
-  if (!map) {
-    constexpr int kHeaderLines = 4;
-    const int row = map.error().line - kHeaderLines - 1;
-    if (row >= 0 && row < static_cast<int>(rows.size()))
-      p.fail(rows[static_cast<std::size_t>(row)], "map row: " + map.error().message);
-    p.fail(rows, "map: " + map.error().message);
-  }
-  return std::move(map).value();
-}
-
-CellRect parseArea(const Parser& p, const YAML::Node& node, const GridMap& map,
-                   const std::string& what) {
-  p.checkKeys(node, what, {"x", "y", "w", "h"});
-  CellRect r;
-  r.x = p.integer(p.need(node, "x", what), what + " x", 0, map.width() - 1);
-  r.y = p.integer(p.need(node, "y", what), what + " y", 0, map.height() - 1);
-  r.width = p.integer(p.need(node, "w", what), what + " w", 1, map.width() - r.x);
-  r.height = p.integer(p.need(node, "h", what), what + " h", 1, map.height() - r.y);
-  return r;
-}
-
-int indexOf(const Parser& p, const YAML::Node& node, const std::vector<std::string>& names,
-            const std::string& what) {
-  const std::string name = p.text(node, what);
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (names[i] == name) return static_cast<int>(i);
-  }
-  std::string list;
-  for (const std::string& n : names)
-    list += (list.empty() ? "" : ", ") + n;
-  p.fail(node, "unknown " + what + " '" + name + "' (known: " + list + ")");
+std::string fmtNumber(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
 }
 
 std::string describeRect(const CellRect& r) {
@@ -437,563 +40,678 @@ std::string describeRect(const CellRect& r) {
          std::to_string(r.height);
 }
 
-// Every spawn cell of `group` must reach some cell of `area` where its type can stand.
-void checkReachable(const Parser& p, const YAML::Node& where, const Scenario& s,
-                    const GroupSpec& group, const CellRect& area) {
-  const Parser::AreaKey key{group.type, area.x, area.y, area.width, area.height};
-  if (p.reachableGroups.contains({group.name, key})) return;
-  const units::UnitType& type = s.catalogue[static_cast<std::size_t>(group.type)];
-  const auto& components = s.grid->layer(type.agent()).components();
-  const GridMap& map = s.grid->map();
-  auto [found, isNew] = p.reachableComponents.try_emplace(key);
-  std::set<std::uint32_t>& reachable = found->second;
-  if (isNew) {
-    for (int y = area.y; y < area.y + area.height; ++y) {
-      for (int x = area.x; x < area.x + area.width; ++x) {
-        if (s.grid->canStand(type.agent(), {x, y}))
-          reachable.insert(components[map.indexOf({x, y})]);
+// Fails at a raw value's mark; ranges and names.
+class Checker {
+ public:
+  explicit Checker(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(raw::Mark at, const std::string& message) const {
+    throw Error{file_, at.line, at.column, message};
+  }
+  double range(const raw::Field<double>& v, const std::string& what, double lo, double hi) const {
+    if (!(v.value >= lo && v.value <= hi))
+      fail(v.mark, what + " must be between " + fmtNumber(lo) + " and " + fmtNumber(hi));
+    return v.value;
+  }
+  int range(const raw::Field<int>& v, const std::string& what, int lo, int hi) const {
+    if (v.value < lo || v.value > hi)
+      fail(v.mark, what + " must be between " + std::to_string(lo) + " and " + std::to_string(hi));
+    return v.value;
+  }
+  // The index of `name` in `names`, else "unknown <what> 'x' (known: …)".
+  int indexOf(const raw::Field<std::string>& name, const std::vector<std::string>& names,
+              const std::string& what) const {
+    const auto it = std::find(names.begin(), names.end(), name.value);
+    if (it != names.end()) return static_cast<int>(it - names.begin());
+    fail(name.mark, "unknown " + what + " '" + name.value + "' (known: " + joined(names) + ")");
+  }
+  // An area inside the map.
+  CellRect area(const raw::Area& a, const GridMap& map, const std::string& what) const {
+    CellRect r;
+    r.x = range(a.x, what + " x", 0, map.width() - 1);
+    r.y = range(a.y, what + " y", 0, map.height() - 1);
+    r.width = range(a.w, what + " w", 1, map.width() - r.x);
+    r.height = range(a.h, what + " h", 1, map.height() - r.y);
+    return r;
+  }
+
+  static std::string joined(const std::vector<std::string>& names) {
+    std::string list;
+    for (const std::string& n : names)
+      list += (list.empty() ? "" : ", ") + n;
+    return list;
+  }
+
+ private:
+  std::string file_;
+};
+
+// ---- a library's limits, reported at the key that set the field -----------------------------
+
+// A field a problemWith function may name (its messages begin with the field's name), the
+// scenario key that sets it and where that is written (none: the file leaves the default).
+struct Setter {
+  std::string field;
+  std::string key;
+  std::optional<raw::Mark> mark;
+};
+
+template <class T>
+std::optional<raw::Mark> markOf(const raw::Maybe<T>& v) {
+  return v ? std::optional(v->mark) : std::nullopt;
+}
+
+// Fails with `problem` (from a problemWith, not empty) at the key that set the field it names,
+// the key's name in place of the field's, after `prefix`; at `fallback` when the file did not set
+// that field (the problem then lies in a default or a value the file did not give here).
+[[noreturn]] void failAtSetter(const Checker& c, std::string_view problem,
+                               const std::vector<Setter>& setters, raw::Mark fallback,
+                               const std::string& prefix) {
+  const Setter* best = nullptr;
+  for (const Setter& s : setters) {
+    const bool names = problem.starts_with(s.field) &&
+                       (problem.size() == s.field.size() || problem[s.field.size()] == ' ' ||
+                        problem[s.field.size()] == ':');
+    if (names && (best == nullptr || s.field.size() > best->field.size())) best = &s;
+  }
+  if (best == nullptr || !best->mark) c.fail(fallback, prefix + std::string(problem));
+  c.fail(*best->mark, prefix + best->key + std::string(problem.substr(best->field.size())));
+}
+
+// ---- unit types ------------------------------------------------------------------------------
+
+// Sets the fields of a weapon that `in` gives. A type that already has a weapon keeps the fields
+// not given; a new weapon needs kind, damage, range and cooldown.
+void applyWeapon(const Checker& c, const raw::Weapon& in, units::UnitType& type,
+                 const std::string& what) {
+  if (in.none) {
+    type.weapon.reset();
+    return;
+  }
+  units::Weapon w;
+  if (type.weapon) {
+    w = *type.weapon;
+  } else {
+    const std::pair<const char*, bool> required[] = {{"kind", in.kind.has_value()},
+                                                     {"damage", in.damage.has_value()},
+                                                     {"range", in.range.has_value()},
+                                                     {"cooldown", in.cooldown.has_value()}};
+    for (const auto& [key, given] : required) {
+      if (!given) c.fail(in.mark, "a new " + what + " needs '" + key + "'");
+    }
+  }
+  if (in.kind) {
+    w.kind = in.kind->value;
+    if (!type.weapon && !in.name) w.name = std::string(units::damageKindName(w.kind));
+  }
+  if (in.name) w.name = in.name->value;
+  if (in.damage) w.damage = c.range(*in.damage, what + " damage", 0, 1000000);
+  const auto positive = [&](const raw::Field<double>& v, const char* key, double hi) {
+    const double x = c.range(v, what + " " + key, 0.0, hi);
+    if (!(x > 0.0)) c.fail(v.mark, what + " " + key + " must be greater than 0");
+    return x;
+  };
+  if (in.range) w.range = positive(*in.range, "range", 4096.0);
+  if (in.cooldown) w.cooldown = positive(*in.cooldown, "cooldown", 3600.0);
+  if (in.projectileSpeed)
+    w.projectileSpeed = c.range(*in.projectileSpeed, what + " projectile_speed", 0.0, 1e6);
+  if (in.targets) {
+    if (in.targets->value.bits == 0)
+      c.fail(in.targets->mark, what + " targets must name at least one armour class");
+    w.targets = in.targets->value;
+  }
+  for (const auto& [armour, rank] : in.priority)
+    w.priority[static_cast<std::size_t>(armour.value)] =
+        static_cast<std::uint8_t>(c.range(rank, what + " priority rank", 0, 255));
+  if (const std::string problem = units::problemWith(w); !problem.empty()) {
+    failAtSetter(c, problem,
+                 {{"damage", "damage", markOf(in.damage)},
+                  {"range", "range", markOf(in.range)},
+                  {"cooldown", "cooldown", markOf(in.cooldown)},
+                  {"projectile_speed", "projectile_speed", markOf(in.projectileSpeed)},
+                  {"targets", "targets", markOf(in.targets)}},
+                 in.mark, what + ": ");
+  }
+  type.weapon = std::move(w);
+}
+
+// Sets the fields of `type` that `in` gives.
+void applyUnitFields(const Checker& c, const raw::UnitType& in, units::UnitType& type) {
+  const std::string what = "unit type '" + type.name + "'";
+  if (in.size) type.size = c.range(*in.size, what + " size", 1, 255);
+  if (in.capability) type.capability = in.capability->value;
+  if (in.speed) {
+    if (in.speed->all) type.setSpeed(c.range(*in.speed->all, what + " speed", 0.0, 50.0));
+    for (const auto& [terrain, speed] : in.speed->perTerrain)
+      type.speed[static_cast<std::size_t>(terrain.value)] =
+          c.range(speed, what + " speed", 0.0, 50.0);
+  }
+  if (in.acceleration)
+    type.acceleration = c.range(*in.acceleration, what + " acceleration", 0.0, 1000.0);
+  if (in.turnRate)  // degrees per second in files, radians inside
+    type.turnRate =
+        c.range(*in.turnRate, what + " turn_rate", 0.0, 36000.0) * std::numbers::pi / 180.0;
+  if (in.radius) type.radius = c.range(*in.radius, what + " radius", 0.0, 128.0);
+  if (in.hp) type.hp = c.range(*in.hp, what + " hp", 1, 1000000);
+  if (in.armour) type.armour = in.armour->value;
+  if (in.weapon) applyWeapon(c, *in.weapon, type, what + " weapon");
+}
+
+// units::problemWith(type), reported at the key that set the field it names.
+void checkUnitType(const Checker& c, const raw::UnitType& in, const units::UnitType& type) {
+  const std::string problem = units::problemWith(type);
+  if (problem.empty()) return;
+  std::vector<Setter> setters = {
+      {"size", "size", markOf(in.size)},
+      {"capability", "capability", markOf(in.capability)},
+      {"speed", "speed", in.speed ? std::optional(in.speed->mark) : std::nullopt},
+      {"acceleration", "acceleration", markOf(in.acceleration)},
+      {"turn_rate", "turn_rate", markOf(in.turnRate)},
+      {"radius", "radius", markOf(in.radius)},
+      {"hp", "hp", markOf(in.hp)},
+      {"weapon", "weapon", in.weapon ? std::optional(in.weapon->mark) : std::nullopt}};
+  if (in.speed) {
+    for (const auto& [terrain, speed] : in.speed->perTerrain) {
+      const std::string field = "speed on " + std::string(terrainName(terrain.value));
+      setters.push_back({field, field, speed.mark});
+    }
+  }
+  failAtSetter(c, problem, setters, in.mark, "unit type '" + type.name + "': ");
+}
+
+// Applies `unit_types:` to `catalogue`: known names are overridden field by field, new ones need
+// size, capability and speed (armour defaults by name, see units::defaultArmourFor, else
+// infantry; no weapon unless given).
+void applyUnitTypes(const Checker& c, const std::vector<raw::UnitType>& types,
+                    std::vector<units::UnitType>& catalogue) {
+  for (const raw::UnitType& in : types) {
+    const std::string& name = in.name.value;
+    auto type = std::find_if(catalogue.begin(), catalogue.end(),
+                             [&](const units::UnitType& t) { return t.name == name; });
+    if (type == catalogue.end()) {
+      const std::pair<const char*, bool> required[] = {{"size", in.size.has_value()},
+                                                       {"capability", in.capability.has_value()},
+                                                       {"speed", in.speed.has_value()}};
+      for (const auto& [key, given] : required) {
+        if (!given) c.fail(in.mark, "new unit type '" + name + "' needs '" + key + "'");
       }
+      units::UnitType fresh;
+      fresh.name = name;
+      fresh.armour = units::defaultArmourFor(name).value_or(units::ArmourClass::Infantry);
+      catalogue.push_back(std::move(fresh));
+      type = catalogue.end() - 1;
     }
+    applyUnitFields(c, in, *type);
+    checkUnitType(c, in, *type);
   }
-  if (reachable.empty())
-    p.fail(where, "goal area " + describeRect(area) + " has no cell where a " + type.name +
-                      " (size " + std::to_string(type.size) + ", " + type.capability.toString() +
-                      ") can stand");
-  for (Cell c : group.anchors) {
-    if (!reachable.contains(components[map.indexOf(c)]))
-      p.fail(where, "goal area " + describeRect(area) + " is unreachable for " + type.name +
-                        " of group '" + group.name + "' spawned at " + std::to_string(c.x) + "," +
-                        std::to_string(c.y));
-  }
-  p.reachableGroups.insert({group.name, key});
-}
-
-std::vector<std::string> groupNamesOf(const Scenario& s) {
-  std::vector<std::string> names;
-  for (const GroupSpec& g : s.groups)
-    names.push_back(g.name);
-  return names;
-}
-
-// A team name, or `none` (-1): the winner expectation and the end_battle action.
-int teamOrNone(const Parser& p, const YAML::Node& node, const Scenario& s,
-               const std::string& what) {
-  if (p.text(node, what) == "none") return -1;
-  const std::string name = node.Scalar();
-  for (std::size_t i = 0; i < s.teams.size(); ++i) {
-    if (s.teams[i] == name) return static_cast<int>(i);
-  }
-  std::string list;
-  for (const std::string& n : s.teams)
-    list += (list.empty() ? "" : ", ") + n;
-  p.fail(node, "unknown team '" + name + "' in " + what + " (known: " + list + "; or none)");
-}
-
-std::optional<StatKind> statKindFromName(std::string_view name) {
-  for (int k = 0; k <= static_cast<int>(StatKind::Alive); ++k) {
-    if (toString(static_cast<StatKind>(k)) == name) return static_cast<StatKind>(k);
-  }
-  return std::nullopt;
-}
-
-constexpr const char* kExpectationKinds =
-    "arrival_rate, arrival_time, max_stuck, winner, kills, losses, damage_dealt, damage_taken, "
-    "shots_fired or alive";
-
-Expectation parseExpectation(const Parser& p, const YAML::Node& node, const Scenario& s) {
-  if (!node.IsMap() || node.size() != 1)
-    p.fail(node, std::string("an expectation is one key, one of: ") + kExpectationKinds);
-  const auto entry = *node.begin();
-  const std::string kind = p.text(entry.first, "expectation");
-  const YAML::Node body = entry.second;
-  std::vector<std::string> typeNames;
-  for (const units::UnitType& t : s.catalogue)
-    typeNames.push_back(t.name);
-  Expectation e;
-  const auto who = [&](const std::string& what) {
-    if (body["team"]) e.team = indexOf(p, body["team"], s.teams, "team");
-    if (body["type"]) e.type = indexOf(p, body["type"], typeNames, "unit type");
-    return what + "(" + (e.team < 0 ? "*" : s.teams[static_cast<std::size_t>(e.team)]) + ", " +
-           (e.type < 0 ? "*" : typeNames[static_cast<std::size_t>(e.type)]) + ")";
-  };
-  if (kind == "arrival_rate") {
-    p.checkKeys(body, "arrival_rate", {"team", "type", "at_least", "by"});
-    e.kind = ExpectationKind::ArrivalRate;
-    e.threshold = p.number(p.need(body, "at_least", "arrival_rate"), "at_least", 0.0, 1.0);
-    e.by = p.number(p.need(body, "by", "arrival_rate"), "by", 0.0, 1e6);
-    e.text = who("arrival_rate") + " >= " + Parser::fmtNumber(e.threshold) + " by " +
-             Parser::fmtNumber(e.by) + "s";
-  } else if (kind == "max_stuck") {
-    e.kind = ExpectationKind::MaxStuck;
-    e.threshold = p.integer(body, "max_stuck", 0, 1000000);
-    e.text = "max_stuck <= " + Parser::fmtNumber(e.threshold);
-  } else if (kind == "arrival_time") {
-    p.checkKeys(body, "arrival_time", {"team", "type", "percentile", "at_most"});
-    e.kind = ExpectationKind::ArrivalTime;
-    e.percentile = p.number(p.need(body, "percentile", "arrival_time"), "percentile", 0.0, 100.0);
-    e.threshold = p.number(p.need(body, "at_most", "arrival_time"), "at_most", 0.0, 1e6);
-    e.text = who("arrival_time") + " p" + Parser::fmtNumber(e.percentile) +
-             " <= " + Parser::fmtNumber(e.threshold) + "s";
-  } else if (kind == "winner") {
-    e.kind = ExpectationKind::Winner;
-    e.team = teamOrNone(p, body, s, "winner");
-    e.text = "winner == " +
-             (e.team < 0 ? std::string("none") : s.teams[static_cast<std::size_t>(e.team)]);
-  } else if (const std::optional<StatKind> stat = statKindFromName(kind)) {
-    p.checkKeys(body, kind, {"team", "type", "at_most", "at_least"});
-    e.kind = ExpectationKind::Stat;
-    e.stat = *stat;
-    if (static_cast<bool>(body["at_most"]) == static_cast<bool>(body["at_least"]))
-      p.fail(body, kind + " needs exactly one of 'at_most' and 'at_least'");
-    e.atMost = static_cast<bool>(body["at_most"]);
-    const char* bound = e.atMost ? "at_most" : "at_least";
-    e.threshold = p.number(body[bound], bound, 0.0, 1e12);
-    e.text = who(kind) + (e.atMost ? " <= " : " >= ") + Parser::fmtNumber(e.threshold);
-  } else {
-    p.fail(entry.first, "unknown expectation '" + kind + "' (expected " + kExpectationKinds + ")");
-  }
-  return e;
-}
-
-// `GROUP` or `[GROUP, ...]`: at least one, none twice.
-std::vector<int> parseGroupList(const Parser& p, const YAML::Node& node,
-                                const std::vector<std::string>& names, const std::string& what) {
-  std::vector<int> out;
-  const auto add = [&](const YAML::Node& item) {
-    const int g = indexOf(p, item, names, "group");
-    if (std::find(out.begin(), out.end(), g) != out.end())
-      p.fail(item, "group '" + names[static_cast<std::size_t>(g)] + "' named twice in " + what);
-    out.push_back(g);
-  };
-  if (node.IsSequence()) {
-    if (node.size() == 0) p.fail(node, what + " needs at least one group");
-    for (const auto& item : node)
-      add(item);
-  } else {
-    add(node);
-  }
-  return out;
-}
-
-// An Order action from the keys `order` (default move), `group`, `move_to` and `target` of
-// `node` (the caller has checked that no other key is there).
-ActionSpec parseOrderAction(const Parser& p, const YAML::Node& node, const Scenario& s,
-                            const std::string& what) {
-  const std::vector<std::string> groupNames = groupNamesOf(s);
-  ActionSpec a;
-  a.kind = ActionKind::Order;
-  if (const YAML::Node order = node["order"]) {
-    const std::string name = p.text(order, "order");
-    const std::optional<OrderKind> kind = orderKindFromName(name);
-    if (!kind)
-      p.fail(order,
-             "unknown order '" + name + "' (expected stop, move, attack_move, attack or hold)");
-    a.order = *kind;
-  }
-  a.groups = parseGroupList(p, p.need(node, "group", what), groupNames, "'group'");
-  const std::string kindText = "order '" + std::string(toString(a.order)) + "'";
-  if (a.order == OrderKind::Move || a.order == OrderKind::AttackMove) {
-    if (node["target"]) p.fail(node["target"], kindText + " takes 'move_to', not 'target'");
-    const YAML::Node moveTo = p.need(node, "move_to", kindText);
-    a.area = parseArea(p, moveTo, s.grid->map(), "move_to");
-    for (int g : a.groups)
-      checkReachable(p, moveTo, s, s.groups[static_cast<std::size_t>(g)], a.area);
-  } else if (a.order == OrderKind::Attack) {
-    if (node["move_to"]) p.fail(node["move_to"], kindText + " takes 'target', not 'move_to'");
-    const YAML::Node target = p.need(node, "target", kindText);
-    a.targetGroups = parseGroupList(p, target, groupNames, "'target'");
-    for (std::size_t i = 0; i < a.targetGroups.size(); ++i) {
-      const GroupSpec& enemy = s.groups[static_cast<std::size_t>(a.targetGroups[i])];
-      for (int g : a.groups) {
-        const GroupSpec& own = s.groups[static_cast<std::size_t>(g)];
-        if (own.team == enemy.team)
-          p.fail(target.IsSequence() ? target[i] : target,
-                 "attack target '" + enemy.name + "' is on team '" +
-                     s.teams[static_cast<std::size_t>(enemy.team)] +
-                     "', the team of ordered group '" + own.name + "': targets must be enemies");
-      }
-    }
-  } else {
-    for (const char* key : {"move_to", "target"}) {
-      if (node[key]) p.fail(node[key], kindText + " takes neither 'move_to' nor 'target'");
-    }
-  }
-  return a;
-}
-
-// A trigger's `when:`: exactly one condition.
-void parseCondition(const Parser& p, const YAML::Node& when, const Scenario& s, TriggerSpec& t) {
-  const std::string one =
-      "exactly one of: at: SECONDS, arrived: {group, fraction}, team_below: {team, count}, "
-      "enters: {group, area, count}, dies: {group, count}";
-  if (!when.IsMap() || when.size() == 0) p.fail(when, "a trigger's 'when' is " + one);
-  if (when.size() > 1)
-    p.fail(when, "a trigger's 'when' has " + std::to_string(when.size()) + " conditions; give " +
-                     one + " (use two triggers for either of two)");
-  const std::vector<std::string> groupNames = groupNamesOf(s);
-  const auto entry = *when.begin();
-  const std::string kind = p.text(entry.first, "condition");
-  const YAML::Node body = entry.second;
-  // `count` of a group's units: 1 by default, at most the group's size.
-  const auto groupCount = [&](const char* what) {
-    if (!body["count"]) return 1;
-    const GroupSpec& g = s.groups[static_cast<std::size_t>(t.group)];
-    return p.integer(body["count"], std::string(what) + " count (group '" + g.name + "')", 1,
-                     g.count);
-  };
-  if (kind == "at") {
-    t.kind = TriggerKind::At;
-    t.at = p.number(body, "at", 0.0, 1e6);
-  } else if (kind == "arrived") {
-    p.checkKeys(body, "arrived", {"group", "fraction"});
-    t.kind = TriggerKind::Arrived;
-    t.group = indexOf(p, p.need(body, "group", "arrived"), groupNames, "group");
-    if (body["fraction"]) t.fraction = p.number(body["fraction"], "fraction", 0.0, 1.0);
-  } else if (kind == "team_below") {
-    p.checkKeys(body, "team_below", {"team", "count"});
-    t.kind = TriggerKind::TeamBelow;
-    t.team = indexOf(p, p.need(body, "team", "team_below"), s.teams, "team");
-    t.count = p.integer(p.need(body, "count", "team_below"), "team_below count", 1, 100000000);
-  } else if (kind == "enters") {
-    p.checkKeys(body, "enters", {"group", "area", "count"});
-    t.kind = TriggerKind::Enters;
-    t.group = indexOf(p, p.need(body, "group", "enters"), groupNames, "group");
-    t.area = parseArea(p, p.need(body, "area", "enters"), s.grid->map(), "enters area");
-    t.count = groupCount("enters");
-  } else if (kind == "dies") {
-    p.checkKeys(body, "dies", {"group", "count"});
-    t.kind = TriggerKind::Dies;
-    t.group = indexOf(p, p.need(body, "group", "dies"), groupNames, "group");
-    t.count = groupCount("dies");
-  } else {
-    p.fail(entry.first, "unknown trigger condition '" + kind +
-                            "' (expected at, arrived, team_below, enters or dies)");
-  }
-}
-
-// One entry of a trigger's `do:`. `reinforcedBy` holds, per group, the trigger that already
-// brings it in (empty when none).
-ActionSpec parseAction(const Parser& p, const YAML::Node& node, const Scenario& s,
-                       const std::string& trigger, std::vector<std::string>& reinforcedBy) {
-  const std::string one =
-      "an action is exactly one of: {order: KIND, group, move_to or target}, "
-      "{reinforce: GROUP}, {end_battle: TEAM or none}";
-  if (!node.IsMap()) p.fail(node, one);
-  const int kinds =
-      (node["order"] ? 1 : 0) + (node["reinforce"] ? 1 : 0) + (node["end_battle"] ? 1 : 0);
-  if (kinds != 1) p.fail(node, one);
-  if (node["order"]) {
-    p.checkKeys(node, "an order action", {"order", "group", "move_to", "target"});
-    return parseOrderAction(p, node, s, "an order action");
-  }
-  ActionSpec a;
-  if (const YAML::Node reinforce = node["reinforce"]) {
-    p.checkKeys(node, "a reinforce action", {"reinforce"});
-    a.kind = ActionKind::Reinforce;
-    a.group = indexOf(p, reinforce, groupNamesOf(s), "group");
-    const GroupSpec& g = s.groups[static_cast<std::size_t>(a.group)];
-    if (!g.reinforcement)
-      p.fail(reinforce, "group '" + g.name +
-                            "' is not a reinforcement group (it spawns at the start; give it "
-                            "'reinforcement: true')");
-    std::string& by = reinforcedBy[static_cast<std::size_t>(a.group)];
-    if (!by.empty())
-      p.fail(reinforce, "group '" + g.name + "' is already brought in by trigger '" + by + "'");
-    by = trigger;
-    return a;
-  }
-  p.checkKeys(node, "an end_battle action", {"end_battle"});
-  a.kind = ActionKind::EndBattle;
-  a.team = teamOrNone(p, node["end_battle"], s, "end_battle");
-  return a;
-}
-
-VictorySpec parseVictory(const Parser& p, const YAML::Node& node, const Scenario& s) {
-  const std::string one =
-      "a victory condition is exactly one of: eliminate: TEAM, hold: {team, area, seconds}, "
-      "exit: {team, area, count}";
-  if (!node.IsMap() || node.size() != 1) p.fail(node, one);
-  const auto entry = *node.begin();
-  const std::string kind = p.text(entry.first, "victory condition");
-  const YAML::Node body = entry.second;
-  VictorySpec v;
-  if (kind == "eliminate") {
-    v.kind = VictoryKind::Eliminate;
-    v.team = indexOf(p, body, s.teams, "team");
-  } else if (kind == "hold") {
-    p.checkKeys(body, "hold", {"team", "area", "seconds"});
-    v.kind = VictoryKind::HoldArea;
-    v.team = indexOf(p, p.need(body, "team", "hold"), s.teams, "team");
-    v.area = parseArea(p, p.need(body, "area", "hold"), s.grid->map(), "hold area");
-    v.seconds = p.number(p.need(body, "seconds", "hold"), "hold seconds", 0.0, 1e6);
-  } else if (kind == "exit") {
-    p.checkKeys(body, "exit", {"team", "area", "count"});
-    v.kind = VictoryKind::Exit;
-    v.team = indexOf(p, p.need(body, "team", "exit"), s.teams, "team");
-    v.area = parseArea(p, p.need(body, "area", "exit"), s.grid->map(), "exit area");
-    int units = 0;
-    for (const GroupSpec& g : s.groups)
-      units += g.team == v.team ? g.count : 0;
-    const std::string& team = s.teams[static_cast<std::size_t>(v.team)];
-    const YAML::Node count = p.need(body, "count", "exit");
-    v.count = p.integer(count, "exit count", 1, 100000000);
-    if (v.count > units)
-      p.fail(count, "exit count " + std::to_string(v.count) + " is more than team '" + team +
-                        "' has (" + std::to_string(units) + " units, reinforcements included)");
-  } else {
-    p.fail(entry.first,
-           "unknown victory condition '" + kind + "' (expected eliminate, hold or exit)");
-  }
-  v.text = describe(v, s.teams);
-  return v;
 }
 
 Result<std::vector<units::UnitType>> parseCatalogue(std::string_view text, const fs::path& file) {
-  // A catalogue names no other files.
-  const FileReader none = [](const fs::path& f, FileLimit) -> Result<std::string> {
-    return Error{f.string(), 0, 0, std::string(kNoSuchFile)};
-  };
-  const Parser p(file, none);
   try {
-    const YAML::Node root = loadYaml(p, text);
-    p.checkKeys(root, "the catalogue", {"unit_types"});
     std::vector<units::UnitType> catalogue;
-    parseUnitTypes(p, p.need(root, "unit_types", "the catalogue"), catalogue);
+    applyUnitTypes(Checker(file.string()), decode::catalogue(text, file.string()), catalogue);
     return catalogue;
   } catch (const Error& e) {
     return e;
-  } catch (const YAML::Exception& e) {
-    return Error{file.string(), e.mark.line + 1, e.mark.column + 1, e.msg};
   }
 }
 
-Scenario parse(const Parser& p, std::string_view text) {
-  const YAML::Node root = loadYaml(p, text);
-  p.checkKeys(
-      root, "the scenario",
-      {"name", "map", "catalogue", "unit_types", "seed", "tick_rate", "duration", "pathing",
-       "stuck", "combat", "teams", "groups", "orders", "triggers", "victory", "expectations"});
-  Scenario s;
-  s.file = p.file();
-  s.name = root["name"] ? p.text(root["name"], "name") : p.file().stem().string();
-  s.grid =
-      std::make_shared<const AnnotatedGrid>(parseMapNode(p, p.need(root, "map", "the scenario")));
-  const GridMap& map = s.grid->map();
+// ---- settings --------------------------------------------------------------------------------
 
-  if (const YAML::Node cat = root["catalogue"]) {
-    const auto [file, contents] = p.referenced(cat, "catalogue", kYamlFileLimit);
-    Result<std::vector<units::UnitType>> loaded = parseCatalogue(contents, file);
-    if (!loaded.ok()) throw loaded.error();
-    s.catalogue = std::move(loaded).value();
+// `tick_rate` and `duration`: what a scenario's length in ticks follows from.
+void applyTiming(const Checker& c, const raw::Timing& in, Scenario& s) {
+  if (in.tickRate) s.settings.tickRate = c.range(*in.tickRate, "tick_rate", 1.0, 1000.0);
+  s.duration = c.range(in.duration, "duration", 0.0, 1e6);
+}
+
+void applyPathing(const Checker& c, const raw::Pathing& in, PathServiceSettings& out) {
+  if (in.algorithm) out.algorithm = in.algorithm->value;
+  if (in.clusterSize)
+    out.clusterSize = c.range(*in.clusterSize, "cluster_size", 2, kMaxClusterSize);
+  if (in.budget)
+    out.expansionBudget = static_cast<std::uint64_t>(c.range(*in.budget, "budget", 1, 1000000000));
+  if (in.cache)
+    out.cacheCapacity = static_cast<std::size_t>(c.range(*in.cache, "cache", 0, 100000000));
+  if (in.cooperative) out.cooperative = in.cooperative->value;
+  if (in.window) out.window = c.range(*in.window, "window", 1, kMaxCooperativeWindow);
+  if (in.corridorSearch) out.corridorSearch = in.corridorSearch->value;
+  if (in.corridor) out.corridor = c.range(*in.corridor, "corridor", 1, 64);
+}
+
+void applyStuck(const Checker& c, const raw::Stuck& in, units::StuckRule& out) {
+  if (in.seconds) out.windowSeconds = c.range(*in.seconds, "stuck seconds", 0.01, 1e6);
+  if (in.minProgress) out.minProgress = c.range(*in.minProgress, "min_progress", 0.0, 1e6);
+  if (in.flagAfter) out.flagAfter = c.range(*in.flagAfter, "flag_after", 1, 1000000);
+}
+
+void applyCombat(const Checker& c, const raw::Combat& in, CombatSettings& out) {
+  if (in.enabled) out.enabled = in.enabled->value;
+  if (in.wreckSeconds) out.wreckSeconds = c.range(*in.wreckSeconds, "wreck_seconds", 0.0, 1e6);
+  if (in.sightThroughTrees)
+    out.sight.maxTreeCells = c.range(*in.sightThroughTrees, "sight_through_trees", -1, 1000000);
+  if (in.scanEvery) out.scanEveryTicks = c.range(*in.scanEvery, "scan_every", 1, 1000000);
+  for (const raw::ArmourPercent& p : in.armour) {
+    out.armour[static_cast<std::size_t>(p.kind.value)][static_cast<std::size_t>(p.armour.value)] =
+        c.range(p.percent,
+                "armour percent " + std::string(units::damageKindName(p.kind.value)) + " vs " +
+                    std::string(units::armourClassName(p.armour.value)),
+                0, 1000);
   }
-  if (root["unit_types"]) parseUnitTypes(p, root["unit_types"], s.catalogue);
-  if (s.catalogue.empty()) p.fail(root, "no unit types: give 'catalogue' or 'unit_types'");
-  std::vector<std::string> typeNames;
-  for (const units::UnitType& t : s.catalogue)
-    typeNames.push_back(t.name);
+}
 
-  if (root["seed"]) s.settings.seed = p.as<std::uint64_t>(root["seed"], "seed");
-  if (root["tick_rate"])
-    s.settings.tickRate = p.number(root["tick_rate"], "tick_rate", 1.0, 1000.0);
-  s.duration = p.number(p.need(root, "duration", "the scenario"), "duration", 0.0, 1e6);
-  if (const YAML::Node pathing = root["pathing"]) {
-    p.checkKeys(pathing, "pathing",
-                {"algo", "cluster_size", "budget", "cache", "cooperative", "window",
-                 "cooperative_search", "corridor"});
-    if (pathing["algo"]) {
-      const std::string name = p.text(pathing["algo"], "algo");
-      const std::optional<Algorithm> algo = algorithmFromName(name);
-      if (!algo)
-        p.fail(pathing["algo"], "unknown algo '" + name + "' (aa, haa-hq, haa-lq, hybrid)");
-      s.settings.pathing.algorithm = *algo;
+// The world settings the file gives, each in its range, then problemWith(WorldSettings) (what
+// World's constructor would throw on) reported at the key that set the field it names.
+void applySettings(const Checker& c, const raw::Settings& in, Scenario& s) {
+  WorldSettings& out = s.settings;
+  if (in.seed) out.seed = in.seed->value;
+  applyTiming(c, in.timing, s);
+  if (in.pathing) applyPathing(c, *in.pathing, out.pathing);
+  if (in.stuck) applyStuck(c, *in.stuck, out.stuck);
+  if (in.combat) applyCombat(c, *in.combat, out.combat);
+  if (const std::string problem = problemWith(out); !problem.empty()) {
+    const auto section = [](const auto& part, auto field) {
+      return part ? markOf((*part).*field) : std::nullopt;
+    };
+    failAtSetter(
+        c, problem,
+        {{"tickRate", "tick_rate", markOf(in.timing.tickRate)},
+         {"stuck.windowSeconds", "stuck seconds", section(in.stuck, &raw::Stuck::seconds)},
+         {"stuck.minProgress", "min_progress", section(in.stuck, &raw::Stuck::minProgress)},
+         {"stuck.flagAfter", "flag_after", section(in.stuck, &raw::Stuck::flagAfter)},
+         {"pathing: clusterSize", "cluster_size", section(in.pathing, &raw::Pathing::clusterSize)},
+         {"pathing: expansionBudget", "budget", section(in.pathing, &raw::Pathing::budget)},
+         {"combat.wreckSeconds", "wreck_seconds", section(in.combat, &raw::Combat::wreckSeconds)},
+         {"combat.scanEveryTicks", "scan_every", section(in.combat, &raw::Combat::scanEvery)}},
+        in.root, "");
+  }
+}
+
+// ---- the scenario ----------------------------------------------------------------------------
+
+// Builds a Scenario from a decoded file, checking each part against what came before it.
+class Builder {
+ public:
+  Builder(const fs::path& file, const FileReader& files)
+      : c_(file.string()), file_(file), files_(files) {}
+
+  // Takes the file's sections in the schema's order: the map, the unit types, the settings,
+  // teams, groups, then what refers to them.
+  Scenario build(const decode::ScenarioFile& in) {
+    const raw::Maybe<std::string> name = in.name();
+    s_.file = file_;
+    s_.name = name ? name->value : file_.stem().string();
+    s_.grid = std::make_shared<const AnnotatedGrid>(map(in.map()));
+    catalogue(in);
+    applySettings(c_, in.settings(), s_);
+    teams(in.teams());
+    groups(in.groups());
+    for (const raw::Order& o : in.orders())
+      s_.triggers.push_back(order(o));
+    const std::vector<raw::Trigger> triggers = in.triggers();
+    std::vector<std::string> reinforcedBy(s_.groups.size());
+    for (std::size_t i = 0; i < triggers.size(); ++i)
+      s_.triggers.push_back(trigger(triggers[i], static_cast<int>(i) + 1, reinforcedBy));
+    for (const raw::Victory& v : in.victory())
+      s_.victory.push_back(victory(v));
+    for (const raw::Expectation& e : in.expectations())
+      s_.expectations.push_back(expectation(e));
+    return std::move(s_);
+  }
+
+ private:
+  const GridMap& gridMap() const { return s_.grid->map(); }
+
+  // The contents of the file `name` names (resolved against the scenario's folder) through the
+  // file reader; fails at `name` when it has none or cannot read it ("map: FILE: is a
+  // directory"). `what` is "map" or "catalogue".
+  std::pair<fs::path, std::string> referenced(const raw::Field<std::string>& name,
+                                              const std::string& what, FileLimit limit) const {
+    const fs::path file = file_.parent_path() / name.value;
+    Result<std::string> contents = files_(file, limit);
+    if (!contents) {
+      if (contents.error().message == kNoSuchFile)
+        c_.fail(name.mark, what + " file '" + file.string() + "' not found");
+      c_.fail(name.mark, what + ": " + contents.error().describe());
     }
-    if (pathing["cluster_size"])
-      s.settings.pathing.clusterSize = p.integer(pathing["cluster_size"], "cluster_size", 2, 4096);
-    if (pathing["budget"])
-      s.settings.pathing.expansionBudget =
-          static_cast<std::uint64_t>(p.integer(pathing["budget"], "budget", 1, 1000000000));
-    if (pathing["cache"])
-      s.settings.pathing.cacheCapacity =
-          static_cast<std::size_t>(p.integer(pathing["cache"], "cache", 0, 100000000));
-    if (pathing["cooperative"])
-      s.settings.pathing.cooperative = p.boolean(pathing["cooperative"], "cooperative");
-    if (pathing["window"])
-      s.settings.pathing.window =
-          p.integer(pathing["window"], "window", 1, kMaxCooperativeWindow);
-    if (pathing["cooperative_search"]) {
-      const std::string name = p.text(pathing["cooperative_search"], "cooperative_search");
-      if (name != "cpra" && name != "whca")
-        p.fail(pathing["cooperative_search"],
-               "unknown cooperative_search '" + name + "' (cpra, whca)");
-      s.settings.pathing.corridorSearch = name == "cpra";
-    }
-    if (pathing["corridor"])
-      s.settings.pathing.corridor = p.integer(pathing["corridor"], "corridor", 1, 64);
-  }
-  if (const YAML::Node stuck = root["stuck"]) {
-    p.checkKeys(stuck, "stuck", {"seconds", "min_progress", "flag_after"});
-    if (stuck["seconds"])
-      s.settings.stuck.windowSeconds = p.number(stuck["seconds"], "stuck seconds", 0.01, 1e6);
-    if (stuck["min_progress"])
-      s.settings.stuck.minProgress = p.number(stuck["min_progress"], "min_progress", 0.0, 1e6);
-    if (stuck["flag_after"])
-      s.settings.stuck.flagAfter = p.integer(stuck["flag_after"], "flag_after", 1, 1000000);
+    return {file, std::move(contents).value()};
   }
 
-  if (const YAML::Node combat = root["combat"]) {
-    p.checkKeys(combat, "combat",
-                {"enabled", "wreck_seconds", "sight_through_trees", "scan_every", "armour"});
-    CombatSettings& c = s.settings.combat;
-    if (combat["enabled"]) c.enabled = p.boolean(combat["enabled"], "combat enabled");
-    if (combat["wreck_seconds"])
-      c.wreckSeconds = p.number(combat["wreck_seconds"], "wreck_seconds", 0.0, 1e6);
-    if (combat["sight_through_trees"])
-      c.sight.maxTreeCells =
-          p.integer(combat["sight_through_trees"], "sight_through_trees", -1, 1000000);
-    if (combat["scan_every"])
-      c.scanEveryTicks = p.integer(combat["scan_every"], "scan_every", 1, 1000000);
-    if (const YAML::Node armour = combat["armour"]) {
-      p.expectMap(armour, "combat armour");
-      for (const auto& row : armour) {
-        const units::DamageKind kind = parseDamageKind(p, row.first, "combat armour");
-        const std::string kindName(units::damageKindName(kind));
-        p.expectMap(row.second, "combat armour " + kindName);
-        for (const auto& cell : row.second) {
-          const units::ArmourClass a = parseArmourClass(p, cell.first, "combat armour");
-          c.armour[static_cast<std::size_t>(kind)][static_cast<std::size_t>(a)] = p.integer(
-              cell.second,
-              "armour percent " + kindName + " vs " + std::string(units::armourClassName(a)), 0,
-              1000);
+  GridMap map(const raw::Map& in) const {
+    if (in.file) {
+      const auto [file, contents] = referenced(*in.file, "map", kMapFileLimit);
+      Result<GridMap> map = parseMap(std::string_view(contents), file.string());
+      if (!map) c_.fail(in.file->mark, "map: " + map.error().describe());
+      return std::move(map).value();
+    }
+    // Inline rows use the .map glyphs; reading them through the .map parser keeps one reader.
+    std::string text = "type octile\nheight " + std::to_string(in.rows.size()) + "\nwidth " +
+                       std::to_string(in.rows[0].value.size()) + "\nmap\n";
+    for (const raw::Field<std::string>& row : in.rows)
+      text += row.value + "\n";
+    Result<GridMap> map = parseMap(std::string_view(text), "inline map");
+    if (!map) {
+      constexpr int kHeaderLines = 4;
+      const int row = map.error().line - kHeaderLines - 1;
+      if (row >= 0 && row < static_cast<int>(in.rows.size()))
+        c_.fail(in.rows[static_cast<std::size_t>(row)].mark, "map row: " + map.error().message);
+      c_.fail(in.rowsMark, "map: " + map.error().message);
+    }
+    return std::move(map).value();
+  }
+
+  // The catalogue file, then `unit_types`.
+  void catalogue(const decode::ScenarioFile& in) {
+    if (const raw::Maybe<std::string> named = in.catalogue()) {
+      const auto [file, contents] = referenced(*named, "catalogue", kYamlFileLimit);
+      Result<std::vector<units::UnitType>> loaded = parseCatalogue(contents, file);
+      if (!loaded.ok()) throw loaded.error();
+      s_.catalogue = std::move(loaded).value();
+    }
+    applyUnitTypes(c_, in.unitTypes(), s_.catalogue);
+    if (s_.catalogue.empty()) c_.fail(in.root(), "no unit types: give 'catalogue' or 'unit_types'");
+    for (const units::UnitType& t : s_.catalogue)
+      typeNames_.push_back(t.name);
+  }
+
+  void teams(const std::vector<raw::Field<std::string>>& in) {
+    for (const raw::Field<std::string>& team : in) {
+      if (team.value == "none")
+        c_.fail(team.mark, "'none' cannot name a team (it means no team in winner and end_battle)");
+      if (std::find(s_.teams.begin(), s_.teams.end(), team.value) != s_.teams.end())
+        c_.fail(team.mark, "team '" + team.value + "' given twice");
+      s_.teams.push_back(team.value);
+    }
+  }
+
+  // A team name, or `none` (-1): the winner expectation and the end_battle action.
+  int teamOrNone(const raw::Field<std::string>& name, const std::string& what) const {
+    if (name.value == "none") return -1;
+    const auto it = std::find(s_.teams.begin(), s_.teams.end(), name.value);
+    if (it != s_.teams.end()) return static_cast<int>(it - s_.teams.begin());
+    c_.fail(name.mark, "unknown team '" + name.value + "' in " + what +
+                           " (known: " + Checker::joined(s_.teams) + "; or none)");
+  }
+
+  // Each group placed in its spawn area (footprints apart from the groups before it), its goal
+  // checked reachable.
+  void groups(const std::vector<raw::Group>& in) {
+    std::vector<std::uint8_t> occupied(gridMap().cellCount(), 0);
+    for (const raw::Group& node : in) {
+      GroupSpec g;
+      g.name = node.name ? node.name->value : "group" + std::to_string(s_.groups.size() + 1);
+      if (std::find(groupNames_.begin(), groupNames_.end(), g.name) != groupNames_.end())
+        c_.fail(node.name ? node.name->mark : node.mark, "group '" + g.name + "' given twice");
+      g.team = c_.indexOf(node.team, s_.teams, "team");
+      g.type = c_.indexOf(node.type, typeNames_, "unit type");
+      g.count = c_.range(node.count, "count", 1, 1000000);
+      g.spawn = c_.area(node.spawn, gridMap(), "spawn");
+      const units::UnitType& type = s_.catalogue[static_cast<std::size_t>(g.type)];
+      g.anchors = placeUnits(*s_.grid, type.agent(), g.spawn, g.count, occupied);
+      if (static_cast<int>(g.anchors.size()) < g.count)
+        c_.fail(node.spawn.mark, "spawn area " + describeRect(g.spawn) + " has room for only " +
+                                     std::to_string(g.anchors.size()) + " of " +
+                                     std::to_string(g.count) + " " + type.name + " (size " +
+                                     std::to_string(type.size) + ", " + type.capability.toString() +
+                                     ") on terrain it can stand on");
+      if (node.reinforcement) g.reinforcement = node.reinforcement->value;
+      if (node.goal) {
+        g.goal = c_.area(*node.goal, gridMap(), "goal");
+        checkReachable(node.goal->mark, g, *g.goal);
+      }
+      groupNames_.push_back(g.name);
+      s_.groups.push_back(std::move(g));
+    }
+  }
+
+  // Every spawn cell of `group` must reach some cell of `area` where its type can stand.
+  void checkReachable(raw::Mark where, const GroupSpec& group, const CellRect& area) {
+    const AreaKey key{group.type, area.x, area.y, area.width, area.height};
+    if (reachableGroups_.contains({group.name, key})) return;
+    const units::UnitType& type = s_.catalogue[static_cast<std::size_t>(group.type)];
+    const auto& components = s_.grid->layer(type.agent()).components();
+    auto [found, isNew] = reachableComponents_.try_emplace(key);
+    std::set<std::uint32_t>& reachable = found->second;
+    if (isNew) {
+      for (int y = area.y; y < area.y + area.height; ++y) {
+        for (int x = area.x; x < area.x + area.width; ++x) {
+          if (s_.grid->canStand(type.agent(), {x, y}))
+            reachable.insert(components[gridMap().indexOf({x, y})]);
         }
       }
     }
+    if (reachable.empty())
+      c_.fail(where, "goal area " + describeRect(area) + " has no cell where a " + type.name +
+                         " (size " + std::to_string(type.size) + ", " + type.capability.toString() +
+                         ") can stand");
+    for (Cell cell : group.anchors) {
+      if (!reachable.contains(components[gridMap().indexOf(cell)]))
+        c_.fail(where, "goal area " + describeRect(area) + " is unreachable for " + type.name +
+                           " of group '" + group.name + "' spawned at " + std::to_string(cell.x) +
+                           "," + std::to_string(cell.y));
+    }
+    reachableGroups_.insert({group.name, key});
   }
 
-  const YAML::Node teams = p.need(root, "teams", "the scenario");
-  if (!teams.IsSequence() || teams.size() == 0) p.fail(teams, "teams must be a non-empty list");
-  for (const auto& team : teams) {
-    s.teams.push_back(p.text(team, "team"));
-    if (s.teams.back() == "none")
-      p.fail(team, "'none' cannot name a team (it means no team in winner and end_battle)");
-    for (std::size_t i = 0; i + 1 < s.teams.size(); ++i) {
-      if (s.teams[i] == s.teams.back()) p.fail(team, "team '" + s.teams.back() + "' given twice");
+  // Group names: at least one, none twice.
+  std::vector<int> groupList(const raw::Names& in, const std::string& what) const {
+    std::vector<int> out;
+    for (const raw::Field<std::string>& item : in.items) {
+      const int g = c_.indexOf(item, groupNames_, "group");
+      if (std::find(out.begin(), out.end(), g) != out.end())
+        c_.fail(item.mark, "group '" + item.value + "' named twice in " + what);
+      out.push_back(g);
     }
+    return out;
   }
 
-  const YAML::Node groups = p.need(root, "groups", "the scenario");
-  if (!groups.IsSequence()) p.fail(groups, "groups must be a list");
-  checkUnitTotal(p, groups);
-  std::vector<std::uint8_t> occupied(map.cellCount(), 0);
-  std::vector<std::string> groupNames;
-  std::vector<YAML::Node> goalNodes;
-  for (const auto& node : groups) {
-    p.checkKeys(node, "a group",
-                {"name", "team", "type", "count", "spawn", "goal", "reinforcement"});
-    GroupSpec g;
-    g.name = node["name"] ? p.text(node["name"], "group name")
-                          : "group" + std::to_string(s.groups.size() + 1);
-    for (const std::string& other : groupNames) {
-      if (other == g.name) p.fail(node["name"], "group '" + g.name + "' given twice");
+  ActionSpec orderAction(const raw::OrderAction& in) {
+    ActionSpec a;
+    a.kind = ActionKind::Order;
+    a.order = in.order.value;
+    a.groups = groupList(in.groups, "'group'");
+    if (in.moveTo) {
+      a.area = c_.area(*in.moveTo, gridMap(), "move_to");
+      for (int g : a.groups)
+        checkReachable(in.moveTo->mark, s_.groups[static_cast<std::size_t>(g)], a.area);
     }
-    g.team = indexOf(p, p.need(node, "team", "a group"), s.teams, "team");
-    g.type = indexOf(p, p.need(node, "type", "a group"), typeNames, "unit type");
-    g.count = p.integer(p.need(node, "count", "a group"), "count", 1, 1000000);
-    const YAML::Node spawn = p.need(node, "spawn", "a group");
-    g.spawn = parseArea(p, spawn, map, "spawn");
-    const units::UnitType& type = s.catalogue[static_cast<std::size_t>(g.type)];
-    g.anchors = placeUnits(*s.grid, type.agent(), g.spawn, g.count, occupied);
-    if (static_cast<int>(g.anchors.size()) < g.count)
-      p.fail(spawn, "spawn area " + describeRect(g.spawn) + " has room for only " +
-                        std::to_string(g.anchors.size()) + " of " + std::to_string(g.count) + " " +
-                        type.name + " (size " + std::to_string(type.size) + ", " +
-                        type.capability.toString() + ") on terrain it can stand on");
-    if (node["reinforcement"]) g.reinforcement = p.boolean(node["reinforcement"], "reinforcement");
-    if (node["goal"]) {
-      g.goal = parseArea(p, node["goal"], map, "goal");
-      checkReachable(p, node["goal"], s, g, *g.goal);
-    }
-    groupNames.push_back(g.name);
-    s.groups.push_back(std::move(g));
-  }
-
-  if (const YAML::Node orders = root["orders"]) {
-    if (!orders.IsSequence()) p.fail(orders, "orders must be a list");
-    for (const auto& node : orders) {
-      p.checkKeys(node, "an order", {"at", "when", "group", "order", "move_to", "target"});
-      TriggerSpec o;
-      o.name = "order " + std::to_string(s.triggers.size() + 1);
-      if (node["at"] && node["when"]) p.fail(node, "an order has either 'at' or 'when', not both");
-      if (node["at"]) {
-        o.kind = TriggerKind::At;
-        o.at = p.number(node["at"], "at", 0.0, 1e6);
-      } else {
-        const YAML::Node when = p.need(node, "when", "an order (or 'at')");
-        p.checkKeys(when, "when", {"arrived", "fraction"});
-        o.kind = TriggerKind::Arrived;
-        o.group = indexOf(p, p.need(when, "arrived", "when"), groupNames, "group");
-        if (when["fraction"]) o.fraction = p.number(when["fraction"], "fraction", 0.0, 1.0);
+    if (in.target) {
+      a.targetGroups = groupList(*in.target, "'target'");
+      for (std::size_t i = 0; i < a.targetGroups.size(); ++i) {
+        const GroupSpec& enemy = s_.groups[static_cast<std::size_t>(a.targetGroups[i])];
+        for (int g : a.groups) {
+          const GroupSpec& own = s_.groups[static_cast<std::size_t>(g)];
+          if (own.team == enemy.team)
+            c_.fail(in.target->items[i].mark, "attack target '" + enemy.name + "' is on team '" +
+                                                  s_.teams[static_cast<std::size_t>(enemy.team)] +
+                                                  "', the team of ordered group '" + own.name +
+                                                  "': targets must be enemies");
+        }
       }
-      o.actions.push_back(parseOrderAction(p, node, s, "an order"));
-      s.triggers.push_back(std::move(o));
+    }
+    return a;
+  }
+
+  // An `orders:` entry: a trigger named "order N" with one order action.
+  TriggerSpec order(const raw::Order& in) {
+    TriggerSpec o;
+    o.name = "order " + std::to_string(s_.triggers.size() + 1);
+    if (in.at) {
+      o.kind = TriggerKind::At;
+      o.at = c_.range(*in.at, "at", 0.0, 1e6);
+    } else {
+      o.kind = TriggerKind::Arrived;
+      o.group = c_.indexOf(in.arrived, groupNames_, "group");
+      if (in.fraction) o.fraction = c_.range(*in.fraction, "fraction", 0.0, 1.0);
+    }
+    o.actions.push_back(orderAction(in.action));
+    return o;
+  }
+
+  void condition(const raw::Condition& in, TriggerSpec& t) const {
+    t.kind = in.kind.value;
+    // `count` of a group's units: 1 by default, at most the group's size.
+    const auto groupCount = [&](const std::string& what) {
+      if (!in.count) return 1;
+      const GroupSpec& g = s_.groups[static_cast<std::size_t>(t.group)];
+      return c_.range(*in.count, what + " count (group '" + g.name + "')", 1, g.count);
+    };
+    switch (in.kind.value) {
+      case TriggerKind::At:
+        t.at = c_.range(in.at, "at", 0.0, 1e6);
+        break;
+      case TriggerKind::Arrived:
+        t.group = c_.indexOf(in.group, groupNames_, "group");
+        if (in.fraction) t.fraction = c_.range(*in.fraction, "fraction", 0.0, 1.0);
+        break;
+      case TriggerKind::TeamBelow:
+        t.team = c_.indexOf(in.team, s_.teams, "team");
+        t.count = c_.range(*in.count, "team_below count", 1, 100000000);
+        break;
+      case TriggerKind::Enters:
+        t.group = c_.indexOf(in.group, groupNames_, "group");
+        t.area = c_.area(in.area, gridMap(), "enters area");
+        t.count = groupCount("enters");
+        break;
+      case TriggerKind::Dies:
+        t.group = c_.indexOf(in.group, groupNames_, "group");
+        t.count = groupCount("dies");
+        break;
     }
   }
 
-  if (const YAML::Node triggers = root["triggers"]) {
-    if (!triggers.IsSequence()) p.fail(triggers, "triggers must be a list");
-    std::vector<std::string> reinforcedBy(s.groups.size());
-    int number = 0;
-    for (const auto& node : triggers) {
-      ++number;
-      p.checkKeys(node, "a trigger", {"name", "when", "do"});
-      TriggerSpec t;
-      t.name =
-          node["name"] ? p.text(node["name"], "trigger name") : "trigger " + std::to_string(number);
-      for (const TriggerSpec& other : s.triggers) {
-        if (other.name == t.name)
-          p.fail(node["name"] ? node["name"] : node, "trigger name '" + t.name + "' used twice");
+  // `reinforcedBy` holds, per group, the trigger that already brings it in (empty when none).
+  ActionSpec action(const raw::Action& in, const std::string& trigger,
+                    std::vector<std::string>& reinforcedBy) {
+    ActionSpec a;
+    switch (in.kind) {
+      case ActionKind::Order:
+        return orderAction(in.order);
+      case ActionKind::Reinforce: {
+        a.kind = ActionKind::Reinforce;
+        a.group = c_.indexOf(in.name, groupNames_, "group");
+        const GroupSpec& g = s_.groups[static_cast<std::size_t>(a.group)];
+        if (!g.reinforcement)
+          c_.fail(in.name.mark, "group '" + g.name +
+                                    "' is not a reinforcement group (it spawns at the start; "
+                                    "give it 'reinforcement: true')");
+        std::string& by = reinforcedBy[static_cast<std::size_t>(a.group)];
+        if (!by.empty())
+          c_.fail(in.name.mark,
+                  "group '" + g.name + "' is already brought in by trigger '" + by + "'");
+        by = trigger;
+        return a;
       }
-      parseCondition(p, p.need(node, "when", "a trigger"), s, t);
-      const YAML::Node actions = p.need(node, "do", "a trigger");
-      if (!actions.IsSequence() || actions.size() == 0)
-        p.fail(actions, "a trigger's 'do' must be a non-empty list of actions");
-      for (const auto& action : actions)
-        t.actions.push_back(parseAction(p, action, s, t.name, reinforcedBy));
-      s.triggers.push_back(std::move(t));
+      case ActionKind::EndBattle:
+        a.kind = ActionKind::EndBattle;
+        a.team = teamOrNone(in.name, "end_battle");
+        return a;
     }
+    return a;
   }
 
-  if (const YAML::Node victory = root["victory"]) {
-    if (!victory.IsSequence()) p.fail(victory, "victory must be a list");
-    for (const auto& node : victory)
-      s.victory.push_back(parseVictory(p, node, s));
+  // The `number`th entry of `triggers:`.
+  TriggerSpec trigger(const raw::Trigger& in, int number, std::vector<std::string>& reinforcedBy) {
+    TriggerSpec t;
+    t.name = in.name ? in.name->value : "trigger " + std::to_string(number);
+    for (const TriggerSpec& other : s_.triggers) {
+      if (other.name == t.name)
+        c_.fail(in.name ? in.name->mark : in.mark, "trigger name '" + t.name + "' used twice");
+    }
+    condition(in.when, t);
+    for (const raw::Action& action : in.actions)
+      t.actions.push_back(this->action(action, t.name, reinforcedBy));
+    return t;
   }
 
-  if (const YAML::Node expectations = root["expectations"]) {
-    if (!expectations.IsSequence()) p.fail(expectations, "expectations must be a list");
-    for (const auto& node : expectations)
-      s.expectations.push_back(parseExpectation(p, node, s));
+  VictorySpec victory(const raw::Victory& in) const {
+    VictorySpec v;
+    v.kind = in.kind.value;
+    v.team = c_.indexOf(in.team, s_.teams, "team");
+    switch (in.kind.value) {
+      case VictoryKind::Eliminate:
+        break;
+      case VictoryKind::HoldArea:
+        v.area = c_.area(in.area, gridMap(), "hold area");
+        v.seconds = c_.range(in.seconds, "hold seconds", 0.0, 1e6);
+        break;
+      case VictoryKind::Exit: {
+        v.area = c_.area(in.area, gridMap(), "exit area");
+        int units = 0;
+        for (const GroupSpec& g : s_.groups)
+          units += g.team == v.team ? g.count : 0;
+        v.count = c_.range(in.count, "exit count", 1, 100000000);
+        if (v.count > units)
+          c_.fail(in.count.mark, "exit count " + std::to_string(v.count) + " is more than team '" +
+                                     s_.teams[static_cast<std::size_t>(v.team)] + "' has (" +
+                                     std::to_string(units) + " units, reinforcements included)");
+        break;
+      }
+    }
+    v.text = describe(v, s_.teams);
+    return v;
   }
-  return s;
-}
+
+  Expectation expectation(const raw::Expectation& in) const {
+    Expectation e;
+    e.kind = in.kind;
+    // "kind(team, type)", the team and type resolved.
+    const auto who = [&](const std::string& what) {
+      if (in.team) e.team = c_.indexOf(*in.team, s_.teams, "team");
+      if (in.type) e.type = c_.indexOf(*in.type, typeNames_, "unit type");
+      return what + "(" + (e.team < 0 ? "*" : s_.teams[static_cast<std::size_t>(e.team)]) + ", " +
+             (e.type < 0 ? "*" : typeNames_[static_cast<std::size_t>(e.type)]) + ")";
+    };
+    switch (in.kind) {
+      case ExpectationKind::ArrivalRate:
+        e.threshold = c_.range(in.threshold, "at_least", 0.0, 1.0);
+        e.by = c_.range(in.by, "by", 0.0, 1e6);
+        e.text =
+            who("arrival_rate") + " >= " + fmtNumber(e.threshold) + " by " + fmtNumber(e.by) + "s";
+        break;
+      case ExpectationKind::MaxStuck:
+        e.threshold = c_.range(in.maxStuck, "max_stuck", 0, 1000000);
+        e.text = "max_stuck <= " + fmtNumber(e.threshold);
+        break;
+      case ExpectationKind::ArrivalTime:
+        e.percentile = c_.range(in.percentile, "percentile", 0.0, 100.0);
+        e.threshold = c_.range(in.threshold, "at_most", 0.0, 1e6);
+        e.text = who("arrival_time") + " p" + fmtNumber(e.percentile) +
+                 " <= " + fmtNumber(e.threshold) + "s";
+        break;
+      case ExpectationKind::Winner:
+        e.team = teamOrNone(*in.team, "winner");
+        e.text = "winner == " +
+                 (e.team < 0 ? std::string("none") : s_.teams[static_cast<std::size_t>(e.team)]);
+        break;
+      case ExpectationKind::Stat:
+        e.stat = in.stat;
+        e.atMost = in.atMost;
+        e.threshold = c_.range(in.threshold, e.atMost ? "at_most" : "at_least", 0.0, 1e12);
+        e.text = who(in.key.value) + (e.atMost ? " <= " : " >= ") + fmtNumber(e.threshold);
+        break;
+    }
+    return e;
+  }
+
+  // What checkReachable has worked out already: the map components a unit type can reach in an
+  // area, and the (group, area) pairs found reachable. Aliases can repeat one order or goal
+  // thousands of times; each is checked once.
+  using AreaKey = std::tuple<int, int, int, int, int>;
+  std::map<AreaKey, std::set<std::uint32_t>> reachableComponents_;
+  std::set<std::pair<std::string, AreaKey>> reachableGroups_;
+
+  Checker c_;
+  fs::path file_;
+  const FileReader& files_;
+  Scenario s_;
+  std::vector<std::string> typeNames_;
+  std::vector<std::string> groupNames_;
+};
 
 }  // namespace
 
 std::string_view toString(StatKind kind) {
-  switch (kind) {
-    case StatKind::Kills:
-      return "kills";
-    case StatKind::Losses:
-      return "losses";
-    case StatKind::DamageDealt:
-      return "damage_dealt";
-    case StatKind::DamageTaken:
-      return "damage_taken";
-    case StatKind::ShotsFired:
-      return "shots_fired";
-    case StatKind::Alive:
-      return "alive";
-  }
-  return "?";
+  return kStatKindNames.name(kind);
 }
 
 std::string describe(const VictorySpec& v, const std::vector<std::string>& teams) {
@@ -1002,7 +720,7 @@ std::string describe(const VictorySpec& v, const std::vector<std::string>& teams
     case VictoryKind::Eliminate:
       return team + " eliminates the others";
     case VictoryKind::HoldArea:
-      return team + " holds " + describeRect(v.area) + " for " + Parser::fmtNumber(v.seconds) + "s";
+      return team + " holds " + describeRect(v.area) + " for " + fmtNumber(v.seconds) + "s";
     case VictoryKind::Exit:
       return std::to_string(v.count) + " of " + team + " exit at " + describeRect(v.area);
   }
@@ -1044,11 +762,9 @@ Result<Scenario> parseScenario(std::string_view text, const fs::path& file) {
 Result<Scenario> parseScenario(std::string_view text, const fs::path& file,
                                const FileReader& files) {
   try {
-    return parse(Parser(file, files), text);
+    return Builder(file, files).build(decode::ScenarioFile(text, file.string()));
   } catch (const Error& e) {
     return e;
-  } catch (const YAML::Exception& e) {
-    return Error{file.string(), e.mark.line + 1, e.mark.column + 1, e.msg};
   }
 }
 
@@ -1059,23 +775,13 @@ Result<Scenario> loadScenario(const fs::path& file) {
 }
 
 Result<std::int64_t> scenarioDurationTicks(std::string_view text, const fs::path& file) {
-  const FileReader none = [](const fs::path& f, FileLimit) -> Result<std::string> {
-    return Error{f.string(), 0, 0, std::string(kNoSuchFile)};
-  };
-  const Parser p(file, none);
   try {
-    // The same keys and ranges as parse(); only the root's two scalars are looked at.
-    const YAML::Node root = loadYaml(p, text);
-    p.expectMap(root, "the scenario");
+    // The same keys and ranges as a whole scenario's; only `tick_rate` and `duration` are read.
     Scenario s;
-    if (root["tick_rate"])
-      s.settings.tickRate = p.number(root["tick_rate"], "tick_rate", 1.0, 1000.0);
-    s.duration = p.number(p.need(root, "duration", "the scenario"), "duration", 0.0, 1e6);
+    applyTiming(Checker(file.string()), decode::timing(text, file.string()), s);
     return s.durationTicks();
   } catch (const Error& e) {
     return e;
-  } catch (const YAML::Exception& e) {
-    return Error{file.string(), e.mark.line + 1, e.mark.column + 1, e.msg};
   }
 }
 

@@ -8,14 +8,18 @@
 
 namespace warpath::engine::world {
 
+int maxUnitSize(const std::vector<units::UnitType>& catalogue) {
+  int size = 1;
+  for (const units::UnitType& type : catalogue)
+    size = std::max(size, type.size);
+  return size;
+}
+
 void TargetIndex::rebuild(const Refs& w) {
   // Counting sort of the living units into buckets of kBucketCells² cells (CSR layout).
   const pathing::GridMap& map = w.map();
   bucketsWide_ = (map.width() + kBucketCells - 1) / kBucketCells;
   bucketsHigh_ = (map.height() + kBucketCells - 1) / kBucketCells;
-  maxUnitSize_ = 1;
-  for (const units::UnitType& type : w.catalogue)
-    maxUnitSize_ = std::max(maxUnitSize_, type.size);
   const std::size_t buckets = static_cast<std::size_t>(bucketsWide_ * bucketsHigh_);
   start_.assign(buckets + 1, 0);
   combatants_.clear();

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "engine/src/world/phases.h"
 #include "pathing/invariant.h"
@@ -22,16 +23,11 @@ units::Combatant Refs::combatantOf(const Unit& unit) const {
 }
 
 Unit& Refs::unit(UnitId id) {
-  WARPATH_INVARIANT(
-      id.index < state.units.size() && state.units[id.index].id.generation == id.generation,
-      "a unit handle the world did not give out");
-  return state.units[id.index];
+  return const_cast<Unit&>(std::as_const(*this).unit(id));
 }
 
 const Unit& Refs::unit(UnitId id) const {
-  WARPATH_INVARIANT(
-      id.index < state.units.size() && state.units[id.index].id.generation == id.generation,
-      "a unit handle the world did not give out");
+  WARPATH_INVARIANT(state.find(id) != nullptr, "a unit handle the world did not give out");
   return state.units[id.index];
 }
 
@@ -46,8 +42,8 @@ int chebyshev(Cell a, Cell b) {
 namespace {
 
 bool livingKnown(const Refs& w, UnitId id) {
-  return id.index < w.state.units.size() &&
-         w.state.units[id.index].id.generation == id.generation && w.state.units[id.index].alive();
+  const Unit* unit = w.state.find(id);
+  return unit != nullptr && unit->alive();
 }
 
 std::vector<Cell> shuffledStandable(Refs& w, Agent agent, const CellRect& area) {

@@ -32,6 +32,8 @@ struct Refs {
 };
 
 int chebyshev(pathing::Cell a, pathing::Cell b);
+// The largest unit size in the catalogue (1 when it is empty).
+int maxUnitSize(const std::vector<units::UnitType>& catalogue);
 
 // --- Orders: what a unit was told and what it holds for it (engine/src/world/orders.cpp) ---
 
@@ -62,6 +64,8 @@ void kill(Refs& w, Unit& unit, UnitId killer);
 // at the units near the shooter only.
 class TargetIndex {
  public:
+  // `maxUnitSize`: the largest size in the catalogue (it never changes during a run).
+  explicit TargetIndex(int maxUnitSize) : maxUnitSize_(maxUnitSize) {}
   void rebuild(const Refs& w);
   const units::Combatant& combatant(UnitId id) const { return combatants_[id.index]; }
   int maxUnitSize() const { return maxUnitSize_; }
@@ -73,7 +77,7 @@ class TargetIndex {
   static constexpr int kBucketCells = 8;  // side of a bucket
   int bucketsWide_ = 0;
   int bucketsHigh_ = 0;
-  int maxUnitSize_ = 1;
+  int maxUnitSize_;
   std::vector<std::uint32_t> start_;
   std::vector<std::uint32_t> units_;
   std::vector<std::uint32_t> fill_;           // next free slot per bucket
@@ -83,6 +87,7 @@ class TargetIndex {
 
 class Combat {
  public:
+  explicit Combat(int maxUnitSize) : index_(maxUnitSize) {}
   // Each armed living unit keeps, changes or drops its target (units::chooseTarget); halts
   // to fight under AttackMove and Attack orders.
   void chooseTargets(Refs& w);

@@ -8,6 +8,7 @@
 //   kColourNames.name(Colour::Green)  -> "green"
 //   kColourNames.parse("verdant")     -> Colour::Green
 //   kColourNames.list()               -> "red, green"
+//   kColourNames.list(", ", " or ")   -> "red or green"
 
 #include <array>
 #include <cstddef>
@@ -40,13 +41,20 @@ class EnumNames {
       if (row.name == text) return row.value;
     return std::nullopt;
   }
-  // The canonical names in table order, for "expected one of: …" messages.
-  std::string list(std::string_view separator = ", ") const {
+  // The canonical names in table order, for "expected one of: …" messages; `last` goes before
+  // the last name instead of `separator` ("a, b or c").
+  std::string list(std::string_view separator = ", ") const { return list(separator, separator); }
+  std::string list(std::string_view separator, std::string_view last) const {
+    std::size_t names = 0;
+    for (std::size_t i = 0; i < N; ++i)
+      names += isCanonical(i) ? 1 : 0;
     std::string out;
+    std::size_t written = 0;
     for (std::size_t i = 0; i < N; ++i) {
       if (!isCanonical(i)) continue;
-      if (!out.empty()) out.append(separator);
+      if (written > 0) out.append(written + 1 == names ? last : separator);
       out.append(rows_[i].name);
+      ++written;
     }
     return out;
   }

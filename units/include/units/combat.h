@@ -96,7 +96,8 @@ struct Weapon {
   std::uint8_t rankOf(ArmourClass a) const { return priority[static_cast<std::size_t>(a)]; }
 };
 
-// Empty when the weapon is usable, else what is wrong with it (for error messages).
+// Empty when the weapon is usable, else what is wrong with it (for error messages), beginning
+// with the field as scenario files spell it ("cooldown must be positive").
 std::string problemWith(const Weapon& weapon);
 
 // A unit's default armour and weapon by catalogue type name ("infantry", "jeep", "tank",

@@ -35,7 +35,9 @@ struct UnitType {
   void setSpeed(double cellsPerSecond) { speed.fill(cellsPerSecond); }
 };
 
-// Empty when the type is usable, else what is wrong with it (for error messages).
+// Empty when the type is usable, else what is wrong with it (for error messages). The message
+// begins with the field as scenario files spell it ("radius must be …", "speed on water …",
+// "weapon: range …"): the scenario loader reports it at that key.
 std::string problemWith(const UnitType& type);
 
 }  // namespace warpath::units
