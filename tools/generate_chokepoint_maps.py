@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the chokepoint maps of issue 12 under assets/maps/ (MovingAI .map format): corridors,
 a door, bridges, a crossroads, a U-shaped trap and a gap, for the scenarios
-scenarios/{corridor_tanks_4,corridor_tanks_5,door_30v30,bridge_two_way,crossroads,u_trap,
+scenarios/chokepoints/{corridor_tanks_4,corridor_tanks_5,door_30v30,bridge_two_way,crossroads,u_trap,
 gap_200,bridge_2000}.yaml. Deterministic (no randomness): run it again and the files come out
 byte for byte the same. Standard library only. Usage: tools/generate_chokepoint_maps.py
 

@@ -511,7 +511,6 @@ Result<ReplayPlayback> ReplayPlayback::open(const Replay& replay, const std::str
   auto scenario = std::make_unique<Scenario>(std::move(loaded).value());
   if (replay.version < kFirstCooperativeReplayVersion) {
     // Recorded before cooperative movement: replayed under the movement of its time.
-    scenario->settings.movement = MovementRules::FirstRelease;
     scenario->settings.pathing.cooperative = false;
   }
   return ReplayPlayback(replay, std::move(scenario));

@@ -69,7 +69,7 @@ struct World::Phases {
   explicit Phases(int maxUnitSize) : combat(maxUnitSize), nearby(maxUnitSize) {}
   world::Combat combat;
   world::Traffic traffic;
-  world::TargetIndex nearby;  // steering's view of who touches whom
+  world::TargetIndex nearby;           // steering's view of who touches whom
   std::vector<bool> contestedTracked;  // per catalogue type: its chokepoints are tracked
   std::vector<PathDelivery> deliveries;
   world::PhaseTimer timer;

@@ -67,7 +67,8 @@ void addFrameOptions(CLI::App& cmd, FrameOptions& options, const std::string& ev
   cmd.add_option("--frame-size", options.size, "Pixels along the frame's longer side (default 512)")
       ->check(CLI::Range(16, 8192));
   cmd.add_option("--overlay", options.overlays,
-                 "Overlays to switch on in frames: paths, footprints, reservations, stuck, zones, hud, or none");
+                 "Overlays to switch on in frames: paths, footprints, reservations, stuck, zones, "
+                 "hud, or none");
 }
 
 FrameRecorder::FrameRecorder(const FrameOptions& options, const pathing::GridMap& map,

@@ -28,9 +28,12 @@ struct PathServiceSettings {
   std::uint64_t expansionBudget = 20000;  // [Limit: >= 1] node expansions per tick
   std::size_t cacheCapacity = 4096;       // answers kept; the oldest go first
   // Cooperative movement (docs/cooperative.md): moving units plan space-time windows against
-  // each other's reservations; false: each unit follows its spatial path alone and Box2D
-  // settles every conflict (the first release's behaviour).
-  bool cooperative = true;
+  // each other's reservations at chokepoints, and the movement rules that go with it hold
+  // (turning-circle slow-down, stuck = no progress along the path, pushing limited to the
+  // pushed unit's speed, units holding position braced). false: each unit follows its spatial
+  // path alone and Box2D settles every conflict, exactly as the first release did. Off by
+  // default until it beats that on the bundled scenarios (docs/cooperative.md).
+  bool cooperative = false;
   // [Unit: moves] [Limit: 1..kMaxCooperativeWindow] how far ahead a unit reserves: this many
   // cardinal moves at its top speed; re-planned when half of it is left.
   int window = 16;

@@ -28,8 +28,7 @@ namespace warpath::engine {
 // hashes are computed without it: engine/state_description.h's Since). Version-1 files (move
 // orders only) are refused with a message saying so.
 inline constexpr std::uint32_t kReplayVersion = 4;
-// Formats before this one were recorded under MovementRules::FirstRelease without cooperative
-// pathing, and play back so.
+// Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 

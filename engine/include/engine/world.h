@@ -47,18 +47,8 @@ struct CombatSettings {
 // Empty when the settings can be used, else the first field out of its limits and why.
 std::string problemWith(const CombatSettings& settings);
 
-// Which steering and stuck rules the world runs. Replays of formats 2 and 3 were recorded
-// under the first release's and replay under them (ReplayPlayback sets FirstRelease, and
-// cooperative pathing off), so that they still verify.
-enum class MovementRules : std::uint8_t {
-  FirstRelease,  // steer at waypoints, stuck = no displacement, pushing unlimited
-  Current,       // + turning-circle slow-down, stuck = no progress along the path, pushing
-                 // limited to the pushed unit's speed, Hold units not driven through
-};
-
 struct WorldSettings {
   double tickRate = 30.0;  // [Unit: ticks/s] [Limit: > 0]
-  MovementRules movement = MovementRules::Current;
   std::uint64_t seed = 1;
   PathServiceSettings pathing;
   units::StuckRule stuck;

@@ -167,7 +167,7 @@ void leaveOrder(Refs& w, Unit& unit) {
   unit.path.reset();
   unit.next = 0;
   if (unit.plan) releaseReservations(w, unit);  // it holds where it stands until it moves
-  if (unit.order == OrderKind::Hold && w.settings.movement == MovementRules::Current)
+  if (unit.order == OrderKind::Hold && w.settings.pathing.cooperative)
     w.state.physics->setBraced(unit.body, false);
   unit.waitSince = -1;
   unit.attackTargets.clear();
@@ -208,8 +208,7 @@ void applyCommand(Refs& w, const Command& command) {
         unit.goalCell = nearestStandable(w, unit);
         unit.state = UnitState::Parked;
         w.state.goals.take(GoalLayer::Parked, unit.goalCell, w.typeOf(unit).size, unit.id);
-        if (w.settings.movement == MovementRules::Current)
-          w.state.physics->setBraced(unit.body, true);
+        if (w.settings.pathing.cooperative) w.state.physics->setBraced(unit.body, true);
         break;
       case OrderKind::Stop:
         unit.state = UnitState::Idle;

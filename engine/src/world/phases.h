@@ -153,7 +153,7 @@ class Traffic {
 };
 
 // --- Steering: desired velocities into physics (engine/src/world/steering.cpp) ---
-// `index` is scratch (the units near each one, for MovementRules::Current).
+// `index` is scratch (the units near each one, with cooperative movement).
 void steerAll(Refs& w, TargetIndex& index);
 
 // --- Physics: Box2D steps, positions read back ---

@@ -45,11 +45,11 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor) {
   }
   const WorldSettings& settings = w.settings;
   bool stuck = false;
-  if (settings.movement == MovementRules::FirstRelease) {
+  if (!settings.pathing.cooperative) {
     stuck = unit.progress.update(unit.position, w.state.tick, settings.tickRate, settings.stuck);
   } else if (w.settings.pathing.cooperative &&
-             (!unit.plan || (cooperative && waitingAt(*unit.plan, w.state.tick) &&
-                             onSchedule(w, unit)))) {
+             (!unit.plan ||
+              (cooperative && waitingAt(*unit.plan, w.state.tick) && onSchedule(w, unit)))) {
     // A wait its window holds it to, or waiting for a window, is not a jam; moving, it must
     // make progress like anyone else.
     unit.progress.restartWindow(unit.position, w.state.tick);

@@ -23,7 +23,7 @@ void arrive(Refs& w, Unit& unit, const units::UnitType& type) {
   w.log(EventKind::Parked, unit);
 }
 
-// MovementRules::Current: a unit pushing into another goes no faster than that one can walk,
+// Cooperative movement: a unit pushing into another goes no faster than that one can walk,
 // so a jeep does not drive infantry ahead of it at three times their speed.
 Vec2 limitPushing(const Refs& w, TargetIndex& index, const Unit& unit, Vec2 desired) {
   const double speed = desired.length();
@@ -56,7 +56,7 @@ Vec2 limitPushing(const Refs& w, TargetIndex& index, const Unit& unit, Vec2 desi
 void steerAll(Refs& w, TargetIndex& index) {
   const double dt = 1.0 / w.settings.tickRate;
   const pathing::GridMap& map = w.map();
-  const bool current = w.settings.movement == MovementRules::Current;
+  const bool current = w.settings.pathing.cooperative;
   const bool cooperative = w.settings.pathing.cooperative;
   if (current) index.rebuild(w);
   for (Unit& unit : w.state.units) {

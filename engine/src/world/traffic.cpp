@@ -5,8 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "engine/src/world/phases.h"
 #include "pathing/moves.h"
@@ -172,8 +170,8 @@ bool Traffic::needsWindow(const Refs& w, const Unit& unit) {
       // could lose its turn to whoever planned since), unless that window is nearly used up.
       const Tick step = cardinalTicks(w, type);
       const Cell here = nearestStandable(w, unit);
-      const bool narrow = w.map().contains(here) &&
-                          passingRoom(w, type.agent())[w.map().indexOf(here)] == 0;
+      const bool narrow =
+          w.map().contains(here) && passingRoom(w, type.agent())[w.map().indexOf(here)] == 0;
       if (end - now <= (narrow ? 2 * step : step * w.settings.pathing.window / 2)) return true;
       break;
     }
@@ -208,15 +206,14 @@ void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent) {
       return;
     case CooperativeStatus::Blocked:
       ++stats.blockedWindows;
-      if (std::getenv("WP_DEBUG"))
-        std::fprintf(stderr,
-                     "tick %lld unit %u blocked start %d,%d goal %d,%d steps %zu last tick %lld "
-                     "exp %llu win %lld hold %lld\n",
-                     (long long)w.state.tick, unit.id.index, start.x, start.y, unit.goalCell.x,
-                     unit.goalCell.y, found.steps.size(),
-                     found.steps.empty() ? -1LL : (long long)found.steps.back().tick,
-                     (unsigned long long)found.metrics.expanded, (long long)request.window,
-                     (long long)request.holdTicks);
+      std::fprintf(stderr,
+                   "tick %lld unit %u blocked start %d,%d goal %d,%d steps %zu last tick %lld "
+                   "exp %llu win %lld hold %lld\n",
+                   (long long)w.state.tick, unit.id.index, start.x, start.y, unit.goalCell.x,
+                   unit.goalCell.y, found.steps.size(),
+                   found.steps.empty() ? -1LL : (long long)found.steps.back().tick,
+                   (unsigned long long)found.metrics.expanded, (long long)request.window,
+                   (long long)request.holdTicks);
       if (found.steps.empty()) found.steps.push_back({start, w.state.tick});
       CooperativeSearch::reserve(*w.state.reservations, found.steps, size, ownerOf(unit),
                                  request.waitTicks);
@@ -350,29 +347,6 @@ void Traffic::plan(Refs& w, std::uint64_t budget) {
     if (!first && spent >= budget) break;
     first = false;
     planWindow(w, all[index], spent);
-  }
-  if (const char* dbg = std::getenv("WP_DEBUG_TICK"); dbg && std::atoll(dbg) == now) {
-    for (Unit& unit : all) {
-      if (!unit.alive()) continue;
-      const Cell a = nearestStandable(w, unit);
-      std::fprintf(stderr,
-                   "unit %u type %d state %d pos %.2f,%.2f anchor %d,%d goal %d,%d wait %lld held "
-                   "%d,%d plan %s:",
-                   unit.id.index, unit.type, (int)unit.state, unit.position.x, unit.position.y, a.x,
-                   a.y, unit.goalCell.x, unit.goalCell.y, (long long)unit.waitSince, unit.held.x,
-                   unit.held.y,
-                   unit.plan ? std::string(kCooperativeStatusNames.name(unit.plan->status)).c_str()
-                             : "none");
-      if (unit.plan)
-        for (std::size_t i = 0; i < unit.plan->steps.size() && i < 80; ++i)
-          std::fprintf(stderr, " (%d,%d@%lld)", unit.plan->steps[i].cell.x,
-                       unit.plan->steps[i].cell.y, (long long)(unit.plan->steps[i].tick - now));
-      if (following(unit)) {
-        auto b = waitsFor(w, unit);
-        std::fprintf(stderr, " waitsFor %d", b ? (int)*b : -1);
-      }
-      std::fprintf(stderr, "\n");
-    }
   }
   // Waiting: counted when it begins, timed while it lasts (the priority ages with it).
   MovementStats& stats = w.state.movement;
