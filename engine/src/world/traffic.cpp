@@ -206,14 +206,6 @@ void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent) {
       return;
     case CooperativeStatus::Blocked:
       ++stats.blockedWindows;
-      std::fprintf(stderr,
-                   "tick %lld unit %u blocked start %d,%d goal %d,%d steps %zu last tick %lld "
-                   "exp %llu win %lld hold %lld\n",
-                   (long long)w.state.tick, unit.id.index, start.x, start.y, unit.goalCell.x,
-                   unit.goalCell.y, found.steps.size(),
-                   found.steps.empty() ? -1LL : (long long)found.steps.back().tick,
-                   (unsigned long long)found.metrics.expanded, (long long)request.window,
-                   (long long)request.holdTicks);
       if (found.steps.empty()) found.steps.push_back({start, w.state.tick});
       CooperativeSearch::reserve(*w.state.reservations, found.steps, size, ownerOf(unit),
                                  request.waitTicks);
