@@ -1,0 +1,225 @@
+// Space-time reservations and the cooperative window search (pathing/reservation_table.h,
+// pathing/cooperative_search.h).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "pathing/aa_star.h"
+#include "pathing/cooperative_search.h"
+#include "pathing/map_generator.h"
+#include "pathing/map_io.h"
+
+namespace warpath::pathing {
+namespace {
+
+const Capability kGround = Capability::of({Terrain::Ground});
+
+GridMap mapFromRows(const std::string& text) {
+  std::istringstream in(text);
+  auto map = parseMap(in, "inline");
+  EXPECT_TRUE(map) << map.error().describe();
+  return map.value();
+}
+
+TEST(ReservationTable, FootprintsOverHalfOpenIntervals) {
+  ReservationTable table(10, 10);
+  table.reserve({2, 2}, 3, 10, 20, 7);
+  EXPECT_EQ(table.blocker({4, 4}, 1, 15, 16, 1), std::optional<std::uint32_t>(7));
+  EXPECT_TRUE(table.isFree({5, 5}, 1, 15, 16, 1));   // outside the 3x3 footprint
+  EXPECT_TRUE(table.isFree({2, 2}, 1, 20, 30, 1));   // the interval ends at 20
+  EXPECT_TRUE(table.isFree({2, 2}, 1, 0, 10, 1));    // and starts at 10
+  EXPECT_TRUE(table.isFree({2, 2}, 3, 10, 20, 7));   // its own
+  EXPECT_FALSE(table.isFree({0, 0}, 3, 19, 25, 1));  // a size-3 footprint touching it
+  table.reserve({1, 1}, 1, 0, kForever, 3);
+  EXPECT_EQ(table.blocker({0, 0}, 3, 12, 13, 1), std::optional<std::uint32_t>(3));  // lowest
+  EXPECT_EQ(table.heldBy(7).size(), 1u);
+  table.release(7);
+  EXPECT_TRUE(table.isFree({4, 4}, 1, 15, 16, 1));
+  EXPECT_EQ(table.intervalCount(), 1u);
+  table.reserve({8, 8}, 1, 0, 5, 4);
+  table.forget(5);
+  EXPECT_EQ(table.intervalCount(), 1u);  // the forever one stays
+}
+
+TEST(ReservationTable, KeepsOnlyTrackedCells) {
+  ReservationTable table = ReservationTable::trackingNothing(4, 1);
+  table.reserve({0, 0}, 1, 0, 10, 1);
+  EXPECT_TRUE(table.isFree({0, 0}, 1, 0, 10, 2));
+  table.track(std::vector<std::uint8_t>{1, 0, 0, 0});
+  EXPECT_TRUE(table.tracks({0, 0}, 1));
+  EXPECT_FALSE(table.tracks({1, 0}, 1));
+  table.reserve({0, 0}, 2, 0, 10, 1);
+  EXPECT_FALSE(table.isFree({0, 0}, 1, 0, 10, 2));
+  EXPECT_TRUE(table.isFree({1, 0}, 1, 0, 10, 2));
+}
+
+CooperativeRequest requestFor(Agent agent, Cell start, Cell goal, Tick window) {
+  CooperativeRequest r;
+  r.agent = agent;
+  r.start = start;
+  r.goal = goal;
+  r.self = 1;
+  r.ticksPerCell.fill(10.0);
+  r.waitTicks = 5;
+  r.window = window;
+  r.maxWindow = 4 * window;
+  r.holdTicks = 10;
+  return r;
+}
+
+// Each step is a wait or one legal move lasting what its terrain says.
+void expectLegal(const AnnotatedGrid& grid, const CooperativeRequest& r,
+                 const std::vector<TimedCell>& steps) {
+  ASSERT_FALSE(steps.empty());
+  EXPECT_EQ(steps.front().cell, r.start);
+  EXPECT_EQ(steps.front().tick, r.startTick);
+  for (std::size_t i = 1; i < steps.size(); ++i) {
+    const TimedCell& a = steps[i - 1];
+    const TimedCell& b = steps[i];
+    if (a.cell == b.cell) {
+      EXPECT_EQ(b.tick - a.tick, r.waitTicks);
+      continue;
+    }
+    const std::vector<Cell> move{a.cell, b.cell};
+    EXPECT_EQ(findIllegalStep(grid, r.agent, move), "") << "step " << i;
+    const bool diagonal = a.cell.x != b.cell.x && a.cell.y != b.cell.y;
+    EXPECT_EQ(b.tick - a.tick, diagonal ? 15 : 10) << "step " << i;
+  }
+}
+
+TEST(CooperativeSearch, AloneItTakesTheShortestTime) {
+  // On an empty table the plan to a goal within the window costs what AA* says, in ticks.
+  int compared = 0;
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    RandomMapSpec spec;
+    spec.width = 40;
+    spec.height = 30;
+    spec.seed = seed;
+    spec.blockedPercent = 20;
+    const AnnotatedGrid grid(generateRandomMap(spec));
+    AnnotatedAStar astar(grid);
+    CooperativeSearch search(grid);
+    ReservationTable table(grid.map().width(), grid.map().height());
+    for (int size = 1; size <= 2; ++size) {
+      const Agent agent{size, kGround};
+      const Cell start{1, 1};
+      const Cell goal{36, 26};
+      std::vector<Cell> path;
+      if (!grid.canStand(agent, start) || !grid.canStand(agent, goal)) continue;
+      const PathResult best = astar.findPath(agent, start, goal, &path);
+      if (!best.found()) continue;
+      ++compared;
+      CooperativeRequest r = requestFor(agent, start, goal, 10000);
+      r.maxWindow = 10000;
+      r.expansionLimit = 1000000;
+      CorridorDistance corridor(grid, agent, path, 2);
+      ReverseResumableSearch whole(grid, agent, goal, start);
+      for (DistanceField* field :
+           {static_cast<DistanceField*>(&corridor), static_cast<DistanceField*>(&whole)}) {
+        const CooperativePlan plan = search.plan(r, *field, table);
+        ASSERT_EQ(plan.status, CooperativeStatus::ReachedGoal) << "seed " << seed;
+        expectLegal(grid, r, plan.steps);
+        // Cardinal 10 ticks, diagonal 15 (ceil of 14.14): the AA* path's own timing.
+        Tick ticks = 0;
+        for (std::size_t i = 1; i < path.size(); ++i)
+          ticks += path[i].x != path[i - 1].x && path[i].y != path[i - 1].y ? 15 : 10;
+        EXPECT_LE(plan.steps.back().tick, ticks) << "seed " << seed << " size " << size;
+        EXPECT_DOUBLE_EQ(whole.distance(start), best.cost);
+      }
+    }
+  }
+  EXPECT_GE(compared, 6);
+}
+
+TEST(CooperativeSearch, WaitsOutsideAPassageSomeoneHolds) {
+  // A door one cell wide: owner 2 crosses it northward; our agent, going south, may not enter
+  // it while 2 is there, and may not wait inside it.
+  const AnnotatedGrid grid(mapFromRows(
+      "type octile\nheight 7\nwidth 7\nmap\n.......\n.......\n.......\n@@@.@@@\n.......\n"
+      ".......\n.......\n"));
+  const Agent agent{1, kGround};
+  CooperativeSearch search(grid);
+  ReservationTable table(7, 7);
+  const std::vector<TimedCell> theirs{{{3, 6}, 0},  {{3, 5}, 10}, {{3, 4}, 20},
+                                      {{3, 3}, 30}, {{3, 2}, 40}, {{3, 1}, 50}};
+  CooperativeSearch::reserve(table, theirs, 1, 2, 0);
+  CooperativeRequest r = requestFor(agent, {3, 0}, {3, 6}, 100);
+  const std::vector<std::uint8_t> room = passingRoom(grid, agent);
+  EXPECT_EQ(room[3 * 7 + 3], 0);  // the door
+  EXPECT_EQ(room[0], 1);
+  r.passing = &room;
+  ReverseResumableSearch field(grid, agent, r.goal, r.start);
+  const CooperativePlan plan = search.plan(r, field, table);
+  ASSERT_EQ(plan.status, CooperativeStatus::ReachedGoal);
+  expectLegal(grid, r, plan.steps);
+  for (std::size_t i = 0; i + 1 < plan.steps.size(); ++i) {
+    const TimedCell& a = plan.steps[i];
+    const TimedCell& b = plan.steps[i + 1];
+    if (a.cell == b.cell) {
+      EXPECT_NE(room[static_cast<std::size_t>(a.cell.y * 7 + a.cell.x)], 0);
+    }
+    if (b.cell == Cell{3, 3}) {
+      EXPECT_GE(b.tick, 40);  // through the door after them
+    }
+  }
+}
+
+TEST(CooperativeSearch, TwoAgentsCannotSwapCells) {
+  const AnnotatedGrid grid(mapFromRows("type octile\nheight 1\nwidth 4\nmap\n....\n"));
+  const Agent agent{1, kGround};
+  CooperativeSearch search(grid);
+  ReservationTable table(4, 1);
+  // Owner 2 moves from (2,0) to (1,0) over ticks 0-10 and stays.
+  CooperativeSearch::reserve(table, std::vector<TimedCell>{{{2, 0}, 0}, {{1, 0}, 10}}, 1, 2,
+                             kForever);
+  const MoveSpan theirs = moveSpan(0, 10);
+  const CooperativeRequest r = requestFor(agent, {1, 0}, {3, 0}, 100);
+  ReverseResumableSearch field(grid, agent, r.goal, r.start);
+  const CooperativePlan plan = search.plan(r, field, table);
+  ASSERT_EQ(plan.status, CooperativeStatus::ReachedGoal);
+  expectLegal(grid, r, plan.steps);
+  // Our agent stands at (1,0) already, so it may leave it late; but it enters (2,0) only once
+  // they have left it: moving at once, each would pass through the other.
+  ASSERT_GE(plan.steps.size(), 2u);
+  EXPECT_EQ(plan.steps[1].cell, (Cell{1, 0}));  // a wait first
+  for (std::size_t i = 1; i < plan.steps.size(); ++i) {
+    if (plan.steps[i].cell != Cell{2, 0} || plan.steps[i - 1].cell == Cell{2, 0}) continue;
+    const Tick t = plan.steps[i - 1].tick;
+    EXPECT_GE(moveSpan(t, plan.steps[i].tick - t).enterAt, theirs.leaveBy);
+  }
+}
+
+TEST(CooperativeSearch, AGoalTakenForGoodIsNeverReached) {
+  const AnnotatedGrid grid(
+      mapFromRows("type octile\nheight 3\nwidth 6\nmap\n......\n......\n......\n"));
+  const Agent agent{1, kGround};
+  CooperativeSearch search(grid);
+  ReservationTable table(6, 3);
+  table.reserve({5, 1}, 1, 0, kForever, 2);
+  const CooperativeRequest r = requestFor(agent, {0, 1}, {5, 1}, 50);
+  ReverseResumableSearch field(grid, agent, r.goal, r.start);
+  const CooperativePlan plan = search.plan(r, field, table);
+  EXPECT_NE(plan.status, CooperativeStatus::ReachedGoal);
+  EXPECT_EQ(search.plan(requestFor(agent, {0, 1}, {9, 9}, 50), field, table).status,
+            CooperativeStatus::InvalidGoal);
+  CooperativeRequest bad = r;
+  bad.waitTicks = 0;
+  EXPECT_NE(problemWith(bad), "");
+  EXPECT_EQ(problemWith(r), "");
+}
+
+TEST(CooperativeSearch, ContestedCellsAreThePassages) {
+  const AnnotatedGrid grid(mapFromRows(
+      "type octile\nheight 7\nwidth 7\nmap\n.......\n.......\n.......\n@@@.@@@\n.......\n"
+      ".......\n.......\n"));
+  const Agent agent{1, kGround};
+  const std::vector<std::uint8_t> contested =
+      contestedCells(grid, std::span<const Agent>(&agent, 1));
+  EXPECT_EQ(contested[3 * 7 + 3], 1);  // the door
+  EXPECT_EQ(contested[0], 0);          // open ground
+}
+
+}  // namespace
+}  // namespace warpath::pathing
