@@ -280,6 +280,14 @@ CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceFie
   const auto free = [&](Cell c, Tick from, Tick to) {
     return table.isFree(c, size, from, to, r.self);
   };
+  // Whoever shares the start with the agent now (bodies are not cells: two can round to one
+  // anchor) does not stop it from staying there at first or leaving; anyone else who reserved
+  // it later does.
+  const std::vector<std::uint32_t> sharing =
+      table.holders(r.start, size, r.startTick, r.startTick + 1, r.self);
+  const auto freeAtStart = [&](Tick from, Tick to) {
+    return table.isFree(r.start, size, from, to, r.self, sharing);
+  };
 
   add(map.indexOf(r.start), r.startTick, -1, startDistance);
   std::int32_t found = -1;
@@ -312,9 +320,8 @@ CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceFie
     }
     ++out.metrics.expanded;
     if (node.tick >= hardEnd) continue;  // a dead end: not free to stay, and no time left
-    // The agent stands at its start already, whoever else reserved it (bodies are not cells:
-    // two can round to one anchor): staying there at first, and leaving it, need nothing of
-    // the table but the destination. A window may still not end there while it is not free.
+    // The agent stands at its start already: staying there at first, and leaving it, are
+    // checked against the table without those who share it now (freeAtStart).
     const bool atStart = node.cell == nodes_.front().cell && node.tick - r.startTick <= r.window &&
                          startChain(index);
     const std::uint8_t mask = moves[node.cell];
@@ -331,14 +338,15 @@ CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceFie
       const double nextH = field.distance(next);
       if (!std::isfinite(nextH)) continue;
       const MoveSpan span = moveSpan(node.tick, duration);
-      if ((!atStart && !free(here, node.tick, span.leaveBy)) ||
+      if (!(atStart ? freeAtStart(node.tick, span.leaveBy) : free(here, node.tick, span.leaveBy)) ||
           !free(next, span.enterAt, node.tick + duration))
         continue;
       add(map.indexOf(next), node.tick + duration, index, nextH);
     }
     // Nobody waits where others cannot pass (but one already standing there may stay at first).
     const bool roomToWait = r.passing == nullptr || (*r.passing)[node.cell] != 0;
-    if (atStart || (roomToWait && free(here, node.tick, node.tick + r.waitTicks)))
+    if (atStart ? freeAtStart(node.tick, node.tick + r.waitTicks)
+                : roomToWait && free(here, node.tick, node.tick + r.waitTicks))
       add(node.cell, node.tick + r.waitTicks, index, h);
   }
   if (found < 0) {

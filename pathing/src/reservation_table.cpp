@@ -83,6 +83,31 @@ std::optional<std::uint32_t> ReservationTable::blocker(Cell anchor, int size, Ti
   return found;
 }
 
+bool ReservationTable::isFree(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
+                              std::span<const std::uint32_t> ignored) const {
+  bool free = true;
+  forEachCell(anchor, size, [&](std::size_t cell) {
+    for (const Interval& i : cells_[cell]) {
+      if (i.owner == self || !(i.from < to && from < i.to)) continue;
+      if (std::find(ignored.begin(), ignored.end(), i.owner) == ignored.end()) free = false;
+    }
+  });
+  return free;
+}
+
+std::vector<std::uint32_t> ReservationTable::holders(Cell anchor, int size, Tick from, Tick to,
+                                                     std::uint32_t self) const {
+  std::vector<std::uint32_t> out;
+  forEachCell(anchor, size, [&](std::size_t cell) {
+    for (const Interval& i : cells_[cell]) {
+      if (i.owner != self && i.from < to && from < i.to) out.push_back(i.owner);
+    }
+  });
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 void ReservationTable::forget(Tick now) {
   while (!expiries_.empty() && expiries_.top().to <= now) {
     const std::uint32_t cell = expiries_.top().cell;

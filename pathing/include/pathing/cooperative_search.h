@@ -172,9 +172,10 @@ std::string problemWith(const CooperativeRequest& request);
 // legal when the footprint at a is free of other owners over [t, leaveBy) and the one at b over
 // [enterAt, t+d) (moveSpan); a wait
 // when a's footprint is free over [t, t+waitTicks). The start is the exception: the agent stands
-// there already (two bodies can round to one anchor), so waiting there first (up to `window`)
-// and leaving it need only the destination free. g is ticks since startTick, h the field's
-// distance times the smallest ticksPerCell (admissible). The first state popped that is
+// there already (two bodies can round to one anchor), so while waiting there first (up to
+// `window`) and leaving it, the owners that share the start at startTick are ignored. g is ticks
+// since startTick, h the field's distance times the smallest ticksPerCell (admissible). The first
+// state popped that is
 //   (1) the goal, free from then on: ReachedGoal; or
 //   (2) at or past startTick + window, free for holdTicks more, and with passing room (or
 //       past maxWindow): Windowed

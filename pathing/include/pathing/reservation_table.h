@@ -55,6 +55,13 @@ class ReservationTable {
   bool isFree(Cell anchor, int size, Tick from, Tick to, std::uint32_t self) const {
     return !blocker(anchor, size, from, to, self);
   }
+  // The same, also ignoring the owners in `ignored`.
+  bool isFree(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
+              std::span<const std::uint32_t> ignored) const;
+  // Every owner but `self` holding a cell of the footprint during part of [from, to),
+  // ascending, once each.
+  std::vector<std::uint32_t> holders(Cell anchor, int size, Tick from, Tick to,
+                                     std::uint32_t self) const;
   // Drops the intervals that ended at or before `now`; the cost is proportional to what it
   // drops. Call it as time moves on (the engine does, once a tick).
   void forget(Tick now);
