@@ -55,7 +55,7 @@ TimedPlan timedPlan(std::vector<pathing::TimedCell> steps, pathing::CooperativeS
                     bool timed) {
   std::uint64_t h = 0xCBF29CE484222325ull;
   const auto word = [&](std::uint64_t v) {
-    for (int i = 0; i < 80; ++i) {
+    for (int i = 0; i < 8; ++i) {
       h ^= (v >> (8 * i)) & 0xFFu;
       h *= 0x100000001B3ull;
     }
