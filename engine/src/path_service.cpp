@@ -3,6 +3,7 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "engine/fnv1a.h"
 #include "pathing/moves.h"
 
 namespace warpath::engine {
@@ -10,21 +11,17 @@ namespace warpath::engine {
 using namespace pathing;
 
 PlannedPath planned(std::vector<Cell> cells) {
-  std::uint64_t h = 0xCBF29CE484222325ull;
+  Fnv1a h;
   for (const Cell& c : cells) {
-    for (const int v : {c.x, c.y}) {
-      for (int i = 0; i < 4; ++i) {
-        h ^= (static_cast<std::uint32_t>(v) >> (8 * i)) & 0xFFu;
-        h *= 0x100000001B3ull;
-      }
-    }
+    h.add(static_cast<std::uint32_t>(c.x), 4);
+    h.add(static_cast<std::uint32_t>(c.y), 4);
   }
   std::vector<double> remaining(cells.size(), 0.0);
   for (std::size_t i = cells.size(); i-- > 1;) {
     const bool diagonal = cells[i].x != cells[i - 1].x && cells[i].y != cells[i - 1].y;
     remaining[i - 1] = remaining[i] + (diagonal ? kSqrt2 : 1.0);
   }
-  return {std::move(cells), std::move(remaining), h};
+  return {std::move(cells), std::move(remaining), h.value()};
 }
 
 std::string problemWith(const PathServiceSettings& settings) {

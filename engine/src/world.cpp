@@ -3,6 +3,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "engine/fnv1a.h"
 #include "engine/src/world/phase_timer.h"
 #include "engine/src/world/phases.h"
 #include "engine/state_description.h"
@@ -66,11 +67,11 @@ std::string problemWith(const WorldSettings& settings) {
 
 // The tick's phases and their scratch memory.
 struct World::Phases {
-  explicit Phases(int maxUnitSize) : combat(maxUnitSize), nearby(maxUnitSize) {}
+  explicit Phases(int maxUnitSize) : combat(maxUnitSize) {}
   world::Combat combat;
   world::Traffic traffic;
-  world::TargetIndex nearby;           // steering's view of who touches whom
-  std::vector<bool> contestedTracked;  // per catalogue type: its chokepoints are tracked
+  std::vector<std::uint32_t> touching;  // steering's scratch: who touches a unit
+  std::vector<bool> contestedTracked;   // per catalogue type: its chokepoints are tracked
   std::vector<PathDelivery> deliveries;
   world::PhaseTimer timer;
 };
@@ -114,7 +115,7 @@ UnitId World::spawn(int type, int team, int group, Cell anchor) {
   unit.group = group;
   unit.hp = kind.hp;
   unit.position = units::anchorToCentre(anchor, kind.size);
-  unit.body = state_.physics->addBody(unit.position, kind.radius, kind.capability);
+  unit.body = state_.physics->addBody(unit.position, kind.radius, kind.capability, unit.id.index);
   // A weapon is ready one cooldown after spawning, so that units spawned in range of each
   // other do not all fire in their first tick.
   if (kind.weapon)
@@ -162,7 +163,7 @@ void World::step() {
   const bool combat = settings_.combat.enabled;
   if (combat) phases_->combat.chooseTargets(w);
   timer.mark(Phase::Combat);
-  world::steerAll(w, phases_->nearby);
+  world::steerAll(w, phases_->touching);
   timer.mark(Phase::Steering);
   if (combat) phases_->combat.fire(w);
   timer.mark(Phase::Combat);
@@ -187,13 +188,8 @@ std::uint64_t World::legacyStateHash() const {
   // The field list replays of format 2 recorded, byte-wise FNV-1a: kept so that those replays
   // still verify.
   const WorldState& state = state_;
-  std::uint64_t hash = 0xCBF29CE484222325ull;
-  const auto word = [&](std::uint64_t v) {
-    for (int i = 0; i < 8; ++i) {
-      hash ^= (v >> (8 * i)) & 0xFFu;
-      hash *= 0x100000001B3ull;
-    }
-  };
+  Fnv1a hash;
+  const auto word = [&](std::uint64_t v) { hash.add(v); };
   const auto add = [&](auto value) {
     if constexpr (std::is_same_v<decltype(value), double>)
       word(static_cast<std::uint64_t>(std::llround(value * 1024.0)));
@@ -225,7 +221,7 @@ std::uint64_t World::legacyStateHash() const {
     add(static_cast<std::int64_t>(shot.damage));
     add(shot.landTick);
   }
-  return hash;
+  return hash.value();
 }
 
 TickTiming World::meanTiming() const {

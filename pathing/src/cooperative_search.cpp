@@ -92,46 +92,88 @@ double ReverseResumableSearch::distance(Cell c) {
 // --- Corridor ---
 
 CorridorDistance::CorridorDistance(const AnnotatedGrid& grid, Agent agent,
-                                   std::span<const Cell> path, int radius)
-    : map_(grid.map()) {
+                                   std::span<const Cell> path, int radius) {
+  const GridMap& map = grid.map();
+  if (path.empty() || map.width() <= 0 || map.height() <= 0) return;
+  // Each path cell's square, as row runs clipped to the map; then sorted and merged.
   for (const Cell& p : path) {
-    for (int y = p.y - radius; y <= p.y + radius; ++y) {
-      for (int x = p.x - radius; x <= p.x + radius; ++x) {
-        if (grid.canStand(agent, {x, y})) distances_.try_emplace(map_.indexOf({x, y}), kInfinity);
-      }
+    const int x0 = std::max(0, p.x - radius);
+    const int x1 = std::min(map.width() - 1, p.x + radius);
+    if (x0 > x1) continue;
+    for (int y = std::max(0, p.y - radius); y <= std::min(map.height() - 1, p.y + radius); ++y)
+      runs_.push_back({y, x0, x1, 0});
+  }
+  if (runs_.empty()) return;
+  std::sort(runs_.begin(), runs_.end(),
+            [](const Run& a, const Run& b) { return a.y != b.y ? a.y < b.y : a.x0 < b.x0; });
+  std::size_t kept = 0;
+  for (const Run& run : runs_) {
+    Run& last = runs_[kept > 0 ? kept - 1 : 0];
+    if (kept > 0 && last.y == run.y && run.x0 <= last.x1 + 1) {
+      last.x1 = std::max(last.x1, run.x1);
+    } else {
+      runs_[kept++] = run;
     }
   }
-  if (path.empty()) return;
-  // Dijkstra from the goal over the corridor (moves are symmetric).
+  runs_.resize(kept);
+  top_ = runs_.front().y;
+  // rowRuns_[r]: the runs of rows before top_ + r, counted.
+  rowRuns_.assign(static_cast<std::size_t>(runs_.back().y - top_ + 2), 0);
+  for (const Run& run : runs_)
+    ++rowRuns_[static_cast<std::size_t>(run.y - top_ + 1)];
+  for (std::size_t r = 1; r < rowRuns_.size(); ++r)
+    rowRuns_[r] += rowRuns_[r - 1];
+  std::uint32_t offset = 0;
+  for (Run& run : runs_) {
+    run.offset = offset;
+    offset += static_cast<std::uint32_t>(run.x1 - run.x0 + 1);
+  }
+  distances_.assign(offset, kInfinity);
+
+  // Dijkstra from the goal over the corridor (moves are symmetric; they lead only to cells the
+  // agent may stand on).
+  if (!grid.canStand(agent, path.back())) return;
   const std::span<const std::uint8_t> moves = grid.layer(agent).moveMasks();
   using Item = std::pair<double, std::uint32_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
-  const auto goal = distances_.find(map_.indexOf(path.back()));
-  if (goal == distances_.end()) return;
-  goal->second = 0.0;
-  open.push({0.0, goal->first});
+  distances_[static_cast<std::size_t>(slot(path.back()))] = 0.0;
+  open.push({0.0, map.indexOf(path.back())});
   while (!open.empty()) {
     const auto [g, cell] = open.top();
     open.pop();
-    if (g > distances_[cell]) continue;
+    const Cell here = cellAt(map, cell);
+    if (g > distances_[static_cast<std::size_t>(slot(here))]) continue;
     ++expanded_;
-    const Cell here = cellAt(map_, cell);
     const std::uint8_t mask = moves[cell];
     for (int d = 0; d < kDirectionCount; ++d) {
       if ((mask & (1u << d)) == 0) continue;
       const Direction& dir = kDirections[static_cast<std::size_t>(d)];
-      const auto next = distances_.find(map_.indexOf({here.x + dir.dx, here.y + dir.dy}));
-      if (next == distances_.end() || next->second <= g + dir.cost) continue;
-      next->second = g + dir.cost;
-      open.push({next->second, next->first});
+      const Cell next{here.x + dir.dx, here.y + dir.dy};
+      const std::ptrdiff_t at = slot(next);
+      if (at < 0) continue;
+      double& known = distances_[static_cast<std::size_t>(at)];
+      if (known <= g + dir.cost) continue;
+      known = g + dir.cost;
+      open.push({known, map.indexOf(next)});
     }
   }
 }
 
+std::ptrdiff_t CorridorDistance::slot(Cell c) const {
+  const int row = c.y - top_;
+  if (row < 0 || row + 1 >= static_cast<int>(rowRuns_.size())) return -1;
+  for (std::uint32_t i = rowRuns_[static_cast<std::size_t>(row)];
+       i < rowRuns_[static_cast<std::size_t>(row) + 1]; ++i) {
+    const Run& run = runs_[i];
+    if (c.x < run.x0) return -1;
+    if (c.x <= run.x1) return static_cast<std::ptrdiff_t>(run.offset) + (c.x - run.x0);
+  }
+  return -1;
+}
+
 double CorridorDistance::distance(Cell c) {
-  if (!map_.contains(c)) return kInfinity;
-  const auto it = distances_.find(map_.indexOf(c));
-  return it == distances_.end() ? kInfinity : it->second;
+  const std::ptrdiff_t at = slot(c);
+  return at < 0 ? kInfinity : distances_[static_cast<std::size_t>(at)];
 }
 
 // --- Passing room ---

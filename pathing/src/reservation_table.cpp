@@ -23,6 +23,7 @@ ReservationTable ReservationTable::trackingNothing(int width, int height) {
 
 void ReservationTable::track(std::span<const std::uint8_t> cells) {
   if (tracked_.empty() || cells.size() != tracked_.size()) return;
+  ++trackChanges_;
   for (std::size_t i = 0; i < cells.size(); ++i)
     tracked_[i] = static_cast<std::uint8_t>(tracked_[i] | (cells[i] != 0 ? 1 : 0));
 }

@@ -129,6 +129,18 @@ TEST(Cooperative, TanksHeadOnInACorridorWhatCooperationChanges) {
   }
 }
 
+// Far from any chokepoint nothing is searched or reserved: on open ground units cruise along
+// their paths; the same units through the door plan windows.
+TEST(Cooperative, OpenGroundNeedsNoWindows) {
+  std::string open = kDoor;
+  const std::string wall = "'@@@@.@@@@@'";
+  open.replace(open.find(wall), wall.size(), "'..........'");
+  const Report r = runToEnd(parse(open), 1);
+  EXPECT_TRUE(r.passed());
+  EXPECT_EQ(r.movement.counters.windows, 0);
+  EXPECT_GT(runToEnd(parse(kDoor), 1).movement.counters.windows, 0);
+}
+
 // A unit that holds its position is not driven through: a tank ordered through it goes around.
 TEST(CooperativeMovementRules, HoldingUnitsAreNotDrivenThrough) {
   const Scenario s = parse(

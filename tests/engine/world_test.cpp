@@ -215,6 +215,26 @@ TEST(Physics, ABodyCannotBePushedThroughAGapNarrowerThanIt) {
   EXPECT_GT(other.position(small).x, 8.0);  // a 2-cell unit fits
 }
 
+TEST(Physics, TouchingReportsTheOwnersOfBodiesInContact) {
+  const pathing::GridMap map(20, 10);
+  const pathing::Capability ground = pathing::Capability::of({Terrain::Ground});
+  Physics physics(map, std::span<const pathing::Capability>(&ground, 1));
+  const BodyId a = physics.addBody({5.0, 5.0}, 0.5, ground, 11);
+  const BodyId b = physics.addBody({5.9, 5.0}, 0.5, ground, 22);  // overlapping a
+  const BodyId far = physics.addBody({15.0, 5.0}, 0.5, ground, 33);
+  physics.step(1.0 / 30.0);
+  std::vector<std::uint32_t> owners{99};
+  physics.touching(a, owners);
+  EXPECT_EQ(owners, std::vector<std::uint32_t>{22});
+  physics.touching(b, owners);
+  EXPECT_EQ(owners, std::vector<std::uint32_t>{11});
+  physics.touching(far, owners);
+  EXPECT_TRUE(owners.empty());
+  physics.removeBody(b);
+  physics.touching(a, owners);
+  EXPECT_TRUE(owners.empty());
+}
+
 TEST(Physics, CollisionMasksFollowCapabilities) {
   const auto tank = collisionMaskFor(pathing::Capability::of({Terrain::Ground}));
   const auto amphibious =

@@ -4,12 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <set>
 #include <sstream>
 
 #include "pathing/aa_star.h"
 #include "pathing/cooperative_search.h"
 #include "pathing/map_generator.h"
 #include "pathing/map_io.h"
+#include "pathing/moves.h"
 
 namespace warpath::pathing {
 namespace {
@@ -127,6 +130,80 @@ TEST(CooperativeSearch, AloneItTakesTheShortestTime) {
           ticks += path[i].x != path[i - 1].x && path[i].y != path[i - 1].y ? 15 : 10;
         EXPECT_LE(plan.steps.back().tick, ticks) << "seed " << seed << " size " << size;
         EXPECT_DOUBLE_EQ(whole.distance(start), best.cost);
+      }
+    }
+  }
+  EXPECT_GE(compared, 6);
+}
+
+TEST(CorridorDistance, IsDijkstraInsideTheCellsNearThePath) {
+  // Against a plain Dijkstra over the set of standable cells within `radius` of a path cell:
+  // equal inside, infinite outside, never below the distance on the whole map.
+  int compared = 0;
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    RandomMapSpec spec;
+    spec.width = 48;
+    spec.height = 36;
+    spec.seed = seed;
+    spec.blockedPercent = 12;
+    const AnnotatedGrid grid(generateRandomMap(spec));
+    AnnotatedAStar astar(grid);
+    const Agent agent{1 + static_cast<int>(seed % 2), kGround};
+    // The first cells the agent may stand on from two opposite corners.
+    Cell start{-1, -1};
+    Cell goal{-1, -1};
+    for (int i = 0; i < spec.width * spec.height && (start.x < 0 || goal.x < 0); ++i) {
+      const Cell a{i % spec.width, i / spec.width};
+      const Cell b{spec.width - 1 - a.x, spec.height - 1 - a.y};
+      if (start.x < 0 && grid.canStand(agent, a)) start = a;
+      if (goal.x < 0 && grid.canStand(agent, b)) goal = b;
+    }
+    std::vector<Cell> path;
+    if (!astar.findPath(agent, start, goal, &path).found()) continue;
+    ++compared;
+    const int radius = 1 + static_cast<int>(seed % 3);
+    CorridorDistance corridor(grid, agent, path, radius);
+    ReverseResumableSearch whole(grid, agent, goal, start);
+    const GridMap& map = grid.map();
+    std::vector<char> inside(static_cast<std::size_t>(map.width() * map.height()), 0);
+    for (const Cell& p : path) {
+      for (int y = p.y - radius; y <= p.y + radius; ++y) {
+        for (int x = p.x - radius; x <= p.x + radius; ++x) {
+          if (map.contains({x, y}) && grid.canStand(agent, {x, y})) inside[map.indexOf({x, y})] = 1;
+        }
+      }
+    }
+    std::vector<double> expected(inside.size(), std::numeric_limits<double>::infinity());
+    std::set<std::pair<double, std::uint32_t>> open{{0.0, map.indexOf(goal)}};
+    expected[map.indexOf(goal)] = 0.0;
+    const std::span<const std::uint8_t> moves = grid.layer(agent).moveMasks();
+    while (!open.empty()) {
+      const auto [g, index] = *open.begin();
+      open.erase(open.begin());
+      const Cell here{static_cast<int>(index) % map.width(), static_cast<int>(index) / map.width()};
+      for (int d = 0; d < kDirectionCount; ++d) {
+        if ((moves[index] & (1u << d)) == 0) continue;
+        const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+        const Cell next{here.x + dir.dx, here.y + dir.dy};
+        const std::uint32_t n = map.indexOf(next);
+        if (inside[n] == 0 || expected[n] <= g + dir.cost) continue;
+        open.erase({expected[n], n});
+        expected[n] = g + dir.cost;
+        open.insert({expected[n], n});
+      }
+    }
+    for (int y = -1; y <= map.height(); ++y) {
+      for (int x = -1; x <= map.width(); ++x) {
+        const double got = corridor.distance({x, y});
+        if (!map.contains({x, y})) {
+          EXPECT_TRUE(std::isinf(got));
+          continue;
+        }
+        EXPECT_DOUBLE_EQ(got, expected[map.indexOf({x, y})])
+            << "seed " << seed << " at " << x << "," << y;
+        if (std::isfinite(got)) {
+          EXPECT_GE(got + 1e-9, whole.distance({x, y}));
+        }
       }
     }
   }

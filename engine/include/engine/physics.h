@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "engine/handle.h"
 #include "pathing/grid_map.h"
@@ -42,7 +43,9 @@ class Physics {
   // Adds a dynamic circle (handles are never reused). Every other call takes a handle this
   // Physics returned; any other handle is a bug (an invariant in checked builds, ignored and
   // read as a body at rest at the origin in Release).
-  BodyId addBody(units::Vec2 centre, double radius, pathing::Capability capability);
+  // `owner` is what touching() reports for this body (the engine gives the unit's index).
+  BodyId addBody(units::Vec2 centre, double radius, pathing::Capability capability,
+                 std::uint32_t owner = 0);
   // Turns a body into a fixed obstacle (a wreck): it stops and no longer moves when pushed.
   void freeze(BodyId body);
   // A braced body (a unit holding its position) weighs kBracedMassFactor times its own: others
@@ -56,6 +59,9 @@ class Physics {
   void step(double dt);
   units::Vec2 position(BodyId body) const;
   units::Vec2 velocity(BodyId body) const;
+  // The owners of the moving bodies whose shapes touch `body`'s after the last step, in
+  // Box2D's contact order (deterministic for one sequence of calls); `out` is overwritten.
+  void touching(BodyId body, std::vector<std::uint32_t>& out) const;
   const PhysicsStats& stats() const { return stats_; }
 
  private:

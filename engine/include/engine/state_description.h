@@ -85,6 +85,7 @@ void describe(V& v, const TimedPlan& p) {
   v("steps", p.steps.size());  // the steps themselves through their digest
   v("status", p.status);
   v("timed", p.timed);
+  v("cruising", p.cruising);
   v("digest", p.digest);
 }
 template <class V>

@@ -117,10 +117,13 @@ struct TimedPlan {
   // the reservation table). Otherwise it follows its path as a unit without a plan would, and
   // the plan only looks ahead for the next chokepoint.
   bool timed = false;
+  // No chokepoint lies within a window's reach along the path: nothing was searched or
+  // reserved, and the unit follows its path until one comes into reach.
+  bool cruising = false;
   std::uint64_t digest = 0;  // FNV-1a over the steps and the flags
 };
 TimedPlan timedPlan(std::vector<pathing::TimedCell> steps, pathing::CooperativeStatus status,
-                    bool timed);
+                    bool timed, bool cruising = false);
 using SharedPlan = std::shared_ptr<const TimedPlan>;
 
 struct Unit {

@@ -122,9 +122,11 @@ Physics::Physics(const GridMap& map, std::span<const Capability> capabilities)
 
 Physics::~Physics() = default;
 
-BodyId Physics::addBody(units::Vec2 centre, double radius, Capability capability) {
+BodyId Physics::addBody(units::Vec2 centre, double radius, Capability capability,
+                        std::uint32_t owner) {
   b2BodyDef def;
   def.type = b2_dynamicBody;
+  def.userData.pointer = owner;
   def.position.Set(static_cast<float>(centre.x), static_cast<float>(centre.y));
   def.fixedRotation = true;
   b2Body* body = impl_->world.CreateBody(&def);
@@ -190,6 +192,16 @@ void Physics::step(double dt) {
   constexpr int kVelocityIterations = 8;
   constexpr int kPositionIterations = 3;
   impl_->world.Step(static_cast<float>(dt), kVelocityIterations, kPositionIterations);
+}
+
+void Physics::touching(BodyId body, std::vector<std::uint32_t>& out) const {
+  out.clear();
+  if (!known(body) || impl_->bodies[body.index] == nullptr) return;
+  for (const b2ContactEdge* e = impl_->bodies[body.index]->GetContactList(); e != nullptr;
+       e = e->next) {
+    if (e->contact->IsTouching() && e->other->GetType() == b2_dynamicBody)
+      out.push_back(static_cast<std::uint32_t>(e->other->GetUserData().pointer));
+  }
 }
 
 units::Vec2 Physics::position(BodyId body) const {

@@ -136,6 +136,9 @@ class Traffic {
   const std::vector<std::uint8_t>& passingRoom(const Refs& w, pathing::Agent agent);
   pathing::DistanceField& fieldFor(const Refs& w, const Unit& unit);
   void hold(Refs& w, Unit& unit);
+  bool chokepointAhead(const Refs& w, const Unit& unit);
+  // Marks a unit with no chokepoint ahead as cruising: it follows its path, holding nothing.
+  void cruise(Refs& w, Unit& unit);
   bool needsWindow(const Refs& w, const Unit& unit);
   void planWindow(Refs& w, Unit& unit, std::uint64_t& spent);
   std::optional<std::uint32_t> waitsFor(Refs& w, const Unit& unit);
@@ -145,6 +148,13 @@ class Traffic {
   std::optional<pathing::CooperativeSearch> search_;
   std::map<pathing::Agent, std::vector<std::uint8_t>> passing_;
   std::vector<Field> fields_;  // per unit index
+  // Per unit index: the cells of `path` before `clearUntil` are not tracked.
+  struct Lookahead {
+    SharedPath path;
+    std::size_t clearUntil = 0;
+    std::uint64_t trackChanges = 0;
+  };
+  std::vector<Lookahead> lookahead_;
   std::vector<std::uint32_t> candidates_;
   std::vector<std::uint8_t> planned_;
   std::vector<std::uint32_t> waitFor_;
@@ -153,8 +163,8 @@ class Traffic {
 };
 
 // --- Steering: desired velocities into physics (engine/src/world/steering.cpp) ---
-// `index` is scratch (the units near each one, with cooperative movement).
-void steerAll(Refs& w, TargetIndex& index);
+// `touching` is scratch (the bodies touching each unit, with cooperative movement).
+void steerAll(Refs& w, std::vector<std::uint32_t>& touching);
 
 // --- Physics: Box2D steps, positions read back ---
 void stepPhysics(Refs& w);

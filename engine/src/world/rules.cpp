@@ -24,9 +24,9 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor) {
   const bool movingToArea = unit.order != OrderKind::Attack;
   // The goal cell was taken by a unit that parked there first: pick the nearest free one.
   const bool nearEnd = unit.next + static_cast<std::size_t>(type.size) + 2 >= path.size();
-  const bool goalTaken =
-      !w.state.goals.freeFor(GoalLayer::Parked, unit.goalCell, type.size, unit.id);
-  if (movingToArea && nearEnd && goalTaken && reassignGoal(w, unit)) {
+  if (movingToArea && nearEnd &&
+      !w.state.goals.freeFor(GoalLayer::Parked, unit.goalCell, type.size, unit.id) &&
+      reassignGoal(w, unit)) {
     w.log(EventKind::Repath, unit, 2);
     requestPath(w, unit);
     return;

@@ -2,6 +2,8 @@
 // or halted to fight) limited by what it can do in a tick, handed to physics; and the physics
 // step itself, whose positions and velocities are read back into the units.
 
+#include <limits>
+
 #include "engine/src/world/phases.h"
 
 namespace warpath::engine::world {
@@ -24,24 +26,23 @@ void arrive(Refs& w, Unit& unit, const units::UnitType& type) {
 }
 
 // Cooperative movement: a unit pushing into another goes no faster than that one can walk,
-// so a jeep does not drive infantry ahead of it at three times their speed.
-Vec2 limitPushing(const Refs& w, TargetIndex& index, const Unit& unit, Vec2 desired) {
+// so a jeep does not drive infantry ahead of it at three times their speed. Who touches whom
+// is Box2D's (its contacts after the last step); `touching` is scratch.
+Vec2 limitPushing(const Refs& w, std::vector<std::uint32_t>& touching, const Unit& unit,
+                  Vec2 desired) {
   const double speed = desired.length();
   if (speed < 1e-9) return desired;
   const Vec2 heading = desired * (1.0 / speed);
-  const double radius = w.typeOf(unit).radius;
-  constexpr double kContact = 0.15;  // [Unit: cells] gap at which bodies count as touching
   double cap = speed;
-  for (const units::Combatant& c :
-       index.near(unit.position, radius + 0.5 * index.maxUnitSize() + kContact)) {
-    if (c.id == unit.id.index) continue;
-    const Unit& other = w.state.units[c.id];
+  w.state.physics->touching(unit.body, touching);
+  for (const std::uint32_t index : touching) {
+    if (index >= w.state.units.size()) continue;
+    const Unit& other = w.state.units[index];
+    if (!other.alive()) continue;
     const units::UnitType& otherType = w.typeOf(other);
     const Vec2 offset = other.position - unit.position;
-    const double distance = offset.length();
-    if (distance - radius - otherType.radius > kContact) continue;
     // Only what lies ahead (within 60° of the heading) is pushed.
-    if (offset.x * heading.x + offset.y * heading.y < 0.5 * distance) continue;
+    if (offset.x * heading.x + offset.y * heading.y < 0.5 * offset.length()) continue;
     const Cell under{static_cast<int>(std::floor(other.position.x)),
                      static_cast<int>(std::floor(other.position.y))};
     double walk = w.map().contains(under) ? otherType.speedOn(w.map().at(under)) : 0.0;
@@ -53,12 +54,13 @@ Vec2 limitPushing(const Refs& w, TargetIndex& index, const Unit& unit, Vec2 desi
 
 }  // namespace
 
-void steerAll(Refs& w, TargetIndex& index) {
+void steerAll(Refs& w, std::vector<std::uint32_t>& touching) {
   const double dt = 1.0 / w.settings.tickRate;
   const pathing::GridMap& map = w.map();
-  const bool current = w.settings.pathing.cooperative;
   const bool cooperative = w.settings.pathing.cooperative;
-  if (current) index.rebuild(w);
+  double lightest = std::numeric_limits<double>::infinity();
+  for (const units::UnitType& type : w.catalogue)
+    lightest = std::min(lightest, type.radius);
   for (Unit& unit : w.state.units) {
     if (!unit.alive()) continue;
     const units::UnitType& type = w.typeOf(unit);
@@ -98,11 +100,12 @@ void steerAll(Refs& w, TargetIndex& index) {
           arrive(w, unit, type);
       }
     }
-    if (current) {
+    if (cooperative) {
       const double speed = desired.length();
       const double turnCap = units::turnLimitedSpeed(unit.velocity, toward, type.turnRate);
       if (speed > turnCap) desired = desired * (turnCap / speed);
-      desired = limitPushing(w, index, unit, desired);
+      // Mass grows with area: only a unit heavier than the lightest kind can drive another.
+      if (type.radius > lightest) desired = limitPushing(w, touching, unit, desired);
     }
     const Vec2 v =
         units::limitVelocity(unit.velocity, desired, type.acceleration, type.turnRate, dt);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/fnv1a.h"
 #include "engine/src/world/phases.h"
 #include "pathing/moves.h"
 
@@ -52,22 +53,18 @@ bool hasBody(const Unit& unit) {
 namespace warpath::engine {
 
 TimedPlan timedPlan(std::vector<pathing::TimedCell> steps, pathing::CooperativeStatus status,
-                    bool timed) {
-  std::uint64_t h = 0xCBF29CE484222325ull;
-  const auto word = [&](std::uint64_t v) {
-    for (int i = 0; i < 8; ++i) {
-      h ^= (v >> (8 * i)) & 0xFFu;
-      h *= 0x100000001B3ull;
-    }
-  };
-  word(static_cast<std::uint64_t>(status));
-  word(timed ? 1 : 0);
+                    bool timed, bool cruising) {
+  Fnv1a h;
+  h.add(static_cast<std::uint64_t>(status));
+  h.add(timed ? 1 : 0);
   for (const pathing::TimedCell& s : steps) {
-    word(static_cast<std::uint64_t>(static_cast<std::uint32_t>(s.cell.x)) << 32 |
-         static_cast<std::uint32_t>(s.cell.y));
-    word(static_cast<std::uint64_t>(s.tick));
+    h.add(static_cast<std::uint64_t>(static_cast<std::uint32_t>(s.cell.x)) << 32 |
+          static_cast<std::uint32_t>(s.cell.y));
+    h.add(static_cast<std::uint64_t>(s.tick));
   }
-  return {std::move(steps), status, timed, h};
+  // Hashed only when set, so the digests of windows stay what they were.
+  if (cruising) h.add(2);
+  return {std::move(steps), status, timed, cruising, h.value()};
 }
 
 }  // namespace warpath::engine
@@ -156,8 +153,41 @@ void Traffic::hold(Refs& w, Unit& unit) {
   unit.heldSince = w.state.tick;
 }
 
+bool Traffic::chokepointAhead(const Refs& w, const Unit& unit) {
+  // A window reaches `window` moves ahead and then on to the far side of a chokepoint, so a
+  // unit needs one once a tracked cell is that near along its path (or under it now).
+  const int size = w.typeOf(unit).size;
+  const ReservationTable& table = *w.state.reservations;
+  if (table.tracks(units::centreToAnchor(unit.position, size), size)) return true;
+  // The path cells found untracked are remembered: a unit scans about a cell a tick.
+  if (lookahead_.size() < w.state.units.size()) lookahead_.resize(w.state.units.size());
+  Lookahead& known = lookahead_[unit.id.index];
+  if (known.path != unit.path || known.trackChanges != table.trackChanges()) {
+    known = {unit.path, 0, table.trackChanges()};
+  }
+  const std::vector<Cell>& cells = unit.path->cells;
+  const std::size_t from = unit.next > 0 ? unit.next - 1 : 0;
+  const std::size_t reach = static_cast<std::size_t>(w.settings.pathing.window + size + 2);
+  const std::size_t to = std::min(cells.size(), from + reach);
+  for (std::size_t i = std::max(from, known.clearUntil); i < to; ++i) {
+    if (table.tracks(cells[i], size)) {
+      known.clearUntil = i;
+      return true;
+    }
+  }
+  known.clearUntil = std::max(known.clearUntil, to);
+  return false;
+}
+
+void Traffic::cruise(Refs& w, Unit& unit) {
+  if (unit.plan && unit.plan->cruising) return;
+  releaseReservations(w, unit);
+  unit.plan = std::make_shared<const TimedPlan>(timedPlan(
+      {{nearestStandable(w, unit), w.state.tick}}, CooperativeStatus::Windowed, false, true));
+}
+
 bool Traffic::needsWindow(const Refs& w, const Unit& unit) {
-  if (!unit.plan) return true;
+  if (!unit.plan || unit.plan->cruising) return true;
   const TimedPlan& plan = *unit.plan;
   const Tick now = w.state.tick;
   const Tick end = plan.steps.back().tick;
@@ -318,6 +348,13 @@ void Traffic::plan(Refs& w, std::uint64_t budget) {
   planned_.assign(all.size(), 0);
   candidates_.clear();
   for (Unit& unit : all) {
+    // Far from any chokepoint a unit needs no window: Box2D alone keeps it apart from others
+    // there, as nothing is reserved in the open (docs/cooperative.md).
+    if (following(unit) && (!unit.plan || !unit.plan->timed) && !chokepointAhead(w, unit)) {
+      cruise(w, unit);
+      unit.waitSince = -1;
+      continue;
+    }
     // A unit without a window (waiting for a path, or for the budget) holds where it stands.
     if (!following(unit) || !unit.plan) hold(w, unit);
     if (!following(unit)) {
@@ -339,6 +376,15 @@ void Traffic::plan(Refs& w, std::uint64_t budget) {
     if (!first && spent >= budget) break;
     first = false;
     planWindow(w, all[index], spent);
+    planned_[index] = 1;
+  }
+  // A cruising unit that nears a chokepoint without a window stands until it gets one.
+  for (std::uint32_t index : candidates_) {
+    Unit& unit = all[index];
+    if (planned_[index] == 0 && unit.plan && unit.plan->cruising) {
+      releaseReservations(w, unit);
+      hold(w, unit);
+    }
   }
   // Waiting: counted when it begins, timed while it lasts (the priority ages with it).
   MovementStats& stats = w.state.movement;

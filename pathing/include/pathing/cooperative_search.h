@@ -79,11 +79,23 @@ class CorridorDistance final : public DistanceField {
   CorridorDistance(const AnnotatedGrid& grid, Agent agent, std::span<const Cell> path, int radius);
   double distance(Cell c) override;
   std::uint64_t expanded() const override { return expanded_; }
-  std::size_t cells() const { return distances_.size(); }
 
  private:
-  const GridMap& map_;
-  std::unordered_map<std::uint32_t, double> distances_;  // +inf until reached
+  // The corridor as runs of cells along rows, sorted by row then column; `distances_` has a
+  // slot per cell of each run, from `offset` on. Lookups cost a scan of one row's runs.
+  struct Run {
+    int y;
+    int x0;
+    int x1;  // inclusive
+    std::uint32_t offset;
+  };
+  // The slot of `c` in distances_; -1 outside the corridor.
+  std::ptrdiff_t slot(Cell c) const;
+
+  int top_ = 0;                         // first row of the corridor
+  std::vector<std::uint32_t> rowRuns_;  // per row from top_: first run; one entry past the end
+  std::vector<Run> runs_;
+  std::vector<double> distances_;  // +inf until reached
   std::uint64_t expanded_ = 0;
 };
 

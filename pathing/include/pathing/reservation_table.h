@@ -45,6 +45,8 @@ class ReservationTable {
   void track(std::span<const std::uint8_t> cells);
   // True when a cell of the footprint is tracked.
   bool tracks(Cell anchor, int size) const;
+  // Counts the track() calls: what a caller learnt from tracks() holds while it is unchanged.
+  std::uint64_t trackChanges() const { return trackChanges_; }
   // Removes every reservation `owner` holds.
   void release(std::uint32_t owner);
   // The lowest owner other than `self` holding a cell of the footprint during part of
@@ -94,6 +96,7 @@ class ReservationTable {
   std::vector<std::vector<Reservation>> owners_;  // per owner id
   std::priority_queue<Expiry, std::vector<Expiry>, std::greater<>> expiries_;
   std::size_t intervals_ = 0;
+  std::uint64_t trackChanges_ = 0;
 };
 
 }  // namespace warpath::pathing
