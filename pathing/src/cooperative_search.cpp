@@ -238,6 +238,7 @@ std::vector<std::uint8_t> contestedCells(const AnnotatedGrid& grid, std::span<co
 
 std::string problemWith(const CooperativeRequest& r) {
   if (r.agent.size < 1) return "agent.size must be >= 1 (got " + std::to_string(r.agent.size) + ")";
+  if (r.startTicks < 0) return "startTicks must be >= 0 (got " + std::to_string(r.startTicks) + ")";
   if (r.waitTicks < 1) return "waitTicks must be >= 1 (got " + std::to_string(r.waitTicks) + ")";
   if (r.window < 1) return "window must be >= 1 (got " + std::to_string(r.window) + ")";
   if (r.maxWindow < r.window) {
@@ -366,6 +367,10 @@ CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceFie
     // checked against the table without those who share it now (freeAtStart).
     const bool atStart = node.cell == nodes_.front().cell && node.tick - r.startTick <= r.window &&
                          startChain(index);
+    // A move from rest takes longer: the schedule is one the agent can keep to.
+    const bool atRest = node.parent < 0
+                            ? r.startsAtRest
+                            : nodes_[static_cast<std::size_t>(node.parent)].cell == node.cell;
     const std::uint8_t mask = moves[node.cell];
     for (int d = 0; d < kDirectionCount; ++d) {
       if ((mask & (1u << d)) == 0) continue;
@@ -376,7 +381,8 @@ CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceFie
       const double perCell = r.ticksPerCell[static_cast<std::size_t>(under)];
       if (!(perCell > 0.0) || !std::isfinite(perCell)) continue;
       const Tick duration =
-          std::max<Tick>(1, static_cast<Tick>(std::ceil(dir.cost * perCell - 1e-9)));
+          std::max<Tick>(1, static_cast<Tick>(std::ceil(dir.cost * perCell - 1e-9))) +
+          (atRest ? r.startTicks : 0);
       const double nextH = field.distance(next);
       if (!std::isfinite(nextH)) continue;
       const MoveSpan span = moveSpan(node.tick, duration);

@@ -88,7 +88,8 @@ void expectLegal(const AnnotatedGrid& grid, const CooperativeRequest& r,
     const std::vector<Cell> move{a.cell, b.cell};
     EXPECT_EQ(findIllegalStep(grid, r.agent, move), "") << "step " << i;
     const bool diagonal = a.cell.x != b.cell.x && a.cell.y != b.cell.y;
-    EXPECT_EQ(b.tick - a.tick, diagonal ? 15 : 10) << "step " << i;
+    const bool atRest = i == 1 ? r.startsAtRest : steps[i - 2].cell == a.cell;
+    EXPECT_EQ(b.tick - a.tick, (diagonal ? 15 : 10) + (atRest ? r.startTicks : 0)) << "step " << i;
   }
 }
 
@@ -134,6 +135,39 @@ TEST(CooperativeSearch, AloneItTakesTheShortestTime) {
     }
   }
   EXPECT_GE(compared, 6);
+}
+
+TEST(CooperativeSearch, AMoveFromRestTakesLonger) {
+  // Five cells east on open ground: 50 ticks at speed; a start from rest adds startTicks once,
+  // and so does setting off again after a wait.
+  const AnnotatedGrid grid(
+      mapFromRows("type octile\nheight 3\nwidth 10\nmap\n..........\n..........\n..........\n"));
+  const Agent agent{1, kGround};
+  CooperativeSearch search(grid);
+  ReservationTable table(10, 3);
+  CooperativeRequest r = requestFor(agent, {0, 1}, {5, 1}, 200);
+  r.startTicks = 7;
+  ReverseResumableSearch field(grid, agent, r.goal, r.start);
+  CooperativePlan plan = search.plan(r, field, table);
+  ASSERT_EQ(plan.status, CooperativeStatus::ReachedGoal);
+  EXPECT_EQ(plan.steps.back().tick, 50);
+  r.startsAtRest = true;
+  plan = search.plan(r, field, table);
+  ASSERT_EQ(plan.status, CooperativeStatus::ReachedGoal);
+  expectLegal(grid, r, plan.steps);
+  EXPECT_EQ(plan.steps.back().tick, 57);
+  // Someone crosses the whole column x = 2 during [10, 40): the agent waits once on the way.
+  table.reserve({2, 0}, 1, 10, 40, 9);
+  table.reserve({2, 1}, 1, 10, 40, 9);
+  table.reserve({2, 2}, 1, 10, 40, 9);
+  r.startsAtRest = false;
+  plan = search.plan(r, field, table);
+  ASSERT_EQ(plan.status, CooperativeStatus::ReachedGoal);
+  expectLegal(grid, r, plan.steps);
+  bool waited = false;
+  for (std::size_t i = 1; i < plan.steps.size(); ++i)
+    waited = waited || plan.steps[i].cell == plan.steps[i - 1].cell;
+  EXPECT_TRUE(waited);
 }
 
 TEST(CorridorDistance, IsDijkstraInsideTheCellsNearThePath) {

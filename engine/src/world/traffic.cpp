@@ -104,6 +104,10 @@ CooperativeRequest Traffic::requestFor(const Refs& w, const Unit& unit, Cell sta
     r.ticksPerCell[static_cast<std::size_t>(slot)] = speed > 0.0 ? w.settings.tickRate / speed : 0;
   }
   const Tick step = cardinalTicks(w, type);
+  // Reaching speed v at acceleration a from rest loses v / 2a against moving at speed.
+  r.startTicks = static_cast<Tick>(
+      std::ceil(w.settings.tickRate * type.maxSpeed() / (2.0 * type.acceleration)));
+  r.startsAtRest = unit.velocity.length() < 0.5 * type.maxSpeed();
   r.waitTicks = std::max<Tick>(1, step / 2);
   r.window = step * settings.window;
   r.maxWindow = 4 * r.window;

@@ -137,6 +137,10 @@ struct CooperativeRequest {
   // (anchor + size/2) has this terrain; a move of cost c takes max(1, ceil(c · ticksPerCell))
   // ticks. <= 0 or not finite: the terrain is not entered.
   std::array<double, kTraversableTerrainSlots> ticksPerCell{};
+  // [Unit: ticks] [Limit: >= 0] what a move begun at rest (after a wait, or the first move
+  // when `startsAtRest`) takes longer than one at speed: the time lost accelerating (v / 2a).
+  Tick startTicks = 0;
+  bool startsAtRest = false;
   Tick waitTicks = 8;    // [Unit: ticks] [Limit: >= 1] one wait move
   Tick window = 128;     // [Unit: ticks] [Limit: >= 1] plan at least this far past startTick
   Tick maxWindow = 512;  // [Unit: ticks] [Limit: >= window] where a window extended by
