@@ -321,7 +321,8 @@ CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceFie
     return true;
   };
   const auto free = [&](Cell c, Tick from, Tick to) {
-    return table.isFree(c, size, from, to, r.self);
+    return r.sharing != nullptr ? table.isFree(c, size, from, to, r.self, *r.sharing)
+                                : table.isFree(c, size, from, to, r.self);
   };
   // Whoever shares the start with the agent now (bodies are not cells: two can round to one
   // anchor) does not stop it from staying there at first or leaving; anyone else who reserved

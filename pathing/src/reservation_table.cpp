@@ -96,6 +96,18 @@ bool ReservationTable::isFree(Cell anchor, int size, Tick from, Tick to, std::ui
   return free;
 }
 
+bool ReservationTable::isFree(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
+                              const std::vector<std::uint8_t>& ignored) const {
+  bool free = true;
+  forEachCell(anchor, size, [&](std::size_t cell) {
+    for (const Interval& i : cells_[cell]) {
+      if (i.owner == self || !(i.from < to && from < i.to)) continue;
+      if (i.owner >= ignored.size() || ignored[i.owner] == 0) free = false;
+    }
+  });
+  return free;
+}
+
 std::vector<std::uint32_t> ReservationTable::holders(Cell anchor, int size, Tick from, Tick to,
                                                      std::uint32_t self) const {
   std::vector<std::uint32_t> out;

@@ -170,6 +170,37 @@ TEST(CooperativeSearch, AMoveFromRestTakesLonger) {
   EXPECT_TRUE(waited);
 }
 
+TEST(CooperativeSearch, SharedReservationsDoNotBlock) {
+  // Owner 9 holds the middle column for a long time: the agent waits for it, unless it may
+  // share owner 9's reservations (a unit going the same way), while owner 4 still blocks.
+  const AnnotatedGrid grid(
+      mapFromRows("type octile\nheight 3\nwidth 10\nmap\n..........\n..........\n..........\n"));
+  const Agent agent{1, kGround};
+  CooperativeSearch search(grid);
+  ReservationTable table(10, 3);
+  for (int y = 0; y < 3; ++y)
+    table.reserve({4, y}, 1, 0, 300, 9);
+  CooperativeRequest r = requestFor(agent, {0, 1}, {8, 1}, 400);
+  ReverseResumableSearch field(grid, agent, r.goal, r.start);
+  CooperativePlan plan = search.plan(r, field, table);
+  ASSERT_EQ(plan.status, CooperativeStatus::ReachedGoal);
+  EXPECT_GE(plan.steps.back().tick, 300);
+  std::vector<std::uint8_t> sharing(10, 0);
+  sharing[9] = 1;
+  r.sharing = &sharing;
+  plan = search.plan(r, field, table);
+  ASSERT_EQ(plan.status, CooperativeStatus::ReachedGoal);
+  expectLegal(grid, r, plan.steps);
+  EXPECT_EQ(plan.steps.back().tick, 80);
+  table.reserve({6, 0}, 1, 0, 200, 4);
+  table.reserve({6, 1}, 1, 0, 200, 4);
+  table.reserve({6, 2}, 1, 0, 200, 4);
+  plan = search.plan(r, field, table);
+  ASSERT_EQ(plan.status, CooperativeStatus::ReachedGoal);
+  EXPECT_GE(plan.steps.back().tick, 200);
+  EXPECT_LT(plan.steps.back().tick, 300);
+}
+
 TEST(CorridorDistance, IsDijkstraInsideTheCellsNearThePath) {
   // Against a plain Dijkstra over the set of standable cells within `radius` of a path cell:
   // equal inside, infinite outside, never below the distance on the whole map.

@@ -156,6 +156,8 @@ class Traffic {
   };
   std::vector<Lookahead> lookahead_;
   std::vector<std::uint32_t> candidates_;
+  std::vector<units::Vec2> headings_;  // per unit index: unit vector toward its goal, this tick
+  std::vector<std::uint8_t> sharing_;  // per unit index: the request's `sharing`
   std::vector<std::uint8_t> planned_;
   std::vector<std::uint32_t> waitFor_;
   std::vector<std::uint32_t> walk_;

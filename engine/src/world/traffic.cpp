@@ -21,6 +21,9 @@ constexpr double kOffSchedule = 1.0;
 // How far ahead [Unit: s] a unit steers toward its schedule.
 constexpr double kLookaheadSeconds = 0.3;
 
+// Two units whose directions to their goals are within about 45° (cosine) go the same way.
+constexpr double kSameWay = 0.7;
+
 std::uint32_t ownerOf(const Unit& unit) {
   return unit.id.index;
 }
@@ -116,6 +119,16 @@ CooperativeRequest Traffic::requestFor(const Refs& w, const Unit& unit, Cell sta
   r.holdTicks = r.window / 2 + r.waitTicks;
   r.passing = &passingRoom(w, r.agent);
   r.expansionLimit = std::min<std::uint64_t>(settings.expansionBudget, kWindowExpansionLimit);
+  // Units heading the same way share reservations: they queue behind one another as in the
+  // open, and the table arbitrates only between flows that meet head on or cross.
+  sharing_.assign(w.state.units.size(), 0);
+  const units::Vec2 mine = headings_[unit.id.index];
+  for (std::size_t other = 0; other < headings_.size(); ++other) {
+    const units::Vec2 theirs = headings_[other];
+    if (other != unit.id.index && mine.x * theirs.x + mine.y * theirs.y > kSameWay)
+      sharing_[other] = 1;
+  }
+  r.sharing = &sharing_;
   return r;
 }
 
@@ -366,6 +379,15 @@ void Traffic::plan(Refs& w, std::uint64_t budget) {
       continue;
     }
     if (needsWindow(w, unit)) candidates_.push_back(unit.id.index);
+  }
+  // Each following unit's direction to its goal (zero when it follows nothing), for `sharing`.
+  headings_.assign(all.size(), {});
+  for (const Unit& unit : all) {
+    if (!following(unit)) continue;
+    const units::Vec2 toGoal =
+        units::anchorToCentre(unit.goalCell, w.typeOf(unit).size) - unit.position;
+    const double length = toGoal.length();
+    if (length > 1e-9) headings_[unit.id.index] = toGoal * (1.0 / length);
   }
   std::uint64_t spent = 0;
   // Once a second (staggered by nothing: all at once, so a cycle is seen whole).

@@ -154,6 +154,9 @@ struct CooperativeRequest {
   // meet head-on inside one.
   const std::vector<std::uint8_t>* passing = nullptr;
   std::uint64_t expansionLimit = 20000;  // [Limit: >= 1] space-time nodes expanded
+  // Per owner id, or null: 1 where the agent may overlap that owner's reservations (units
+  // moving the same way, which queue behind one another on their own).
+  const std::vector<std::uint8_t>* sharing = nullptr;
 };
 
 enum class CooperativeStatus : std::uint8_t {

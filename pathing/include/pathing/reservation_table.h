@@ -60,6 +60,9 @@ class ReservationTable {
   // The same, also ignoring the owners in `ignored`.
   bool isFree(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
               std::span<const std::uint32_t> ignored) const;
+  // The same, also ignoring every owner o with o < ignored.size() && ignored[o] != 0.
+  bool isFree(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
+              const std::vector<std::uint8_t>& ignored) const;
   // Every owner but `self` holding a cell of the footprint during part of [from, to),
   // ascending, once each.
   std::vector<std::uint32_t> holders(Cell anchor, int size, Tick from, Tick to,
