@@ -109,21 +109,24 @@ TEST(Cooperative, ReportsDelayAgainstThePlannedTime) {
   }
 }
 
-// The bundled head-on corridor 5 cells wide (scenarios/chokepoints): with cooperation both
-// tanks arrive in time at every seed, one waiting in the open for the other; without it they
+// The bundled head-on corridors 4 and 5 cells wide (scenarios/chokepoints): with cooperation
+// both tanks arrive in time at every seed, one waiting in the open for the other; without it they
 // meet inside and one shoves the other back, too late at every seed.
 TEST(Cooperative, TanksHeadOnInACorridorWhatCooperationChanges) {
-  Result<Scenario> loaded = loadScenario(std::string(WARPATH_SOURCE_DIR) +
-                                         "/scenarios/chokepoints/corridor_tanks_5.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  for (const bool cooperative : {true, false}) {
-    s.settings.pathing.cooperative = cooperative;
-    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-      const Report r = runToEnd(s, seed);
-      EXPECT_EQ(r.passed(), cooperative) << "seed " << seed << " cooperative " << cooperative;
-      if (cooperative) {
-        EXPECT_EQ(r.movement.counters.deadlocksBroken, 0) << "seed " << seed;
+  for (const char* file : {"corridor_tanks_4.yaml", "corridor_tanks_5.yaml"}) {
+    Result<Scenario> loaded =
+        loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/chokepoints/" + file);
+    ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+    Scenario s = std::move(loaded).value();
+    for (const bool cooperative : {true, false}) {
+      s.settings.pathing.cooperative = cooperative;
+      for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+        const Report r = runToEnd(s, seed);
+        EXPECT_EQ(r.passed(), cooperative)
+            << file << " seed " << seed << " cooperative " << cooperative;
+        if (cooperative) {
+          EXPECT_EQ(r.movement.counters.deadlocksBroken, 0) << file << " seed " << seed;
+        }
       }
     }
   }
