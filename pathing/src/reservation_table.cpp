@@ -84,28 +84,30 @@ std::optional<std::uint32_t> ReservationTable::blocker(Cell anchor, int size, Ti
   return found;
 }
 
-bool ReservationTable::isFree(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
-                              std::span<const std::uint32_t> ignored) const {
+template <class Ignored>
+bool ReservationTable::freeBut(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
+                               Ignored&& ignored) const {
   bool free = true;
   forEachCell(anchor, size, [&](std::size_t cell) {
     for (const Interval& i : cells_[cell]) {
-      if (i.owner == self || !(i.from < to && from < i.to)) continue;
-      if (std::find(ignored.begin(), ignored.end(), i.owner) == ignored.end()) free = false;
+      if (i.owner != self && i.from < to && from < i.to && !ignored(i.owner)) free = false;
     }
   });
   return free;
 }
 
 bool ReservationTable::isFree(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
-                              const std::vector<std::uint8_t>& ignored) const {
-  bool free = true;
-  forEachCell(anchor, size, [&](std::size_t cell) {
-    for (const Interval& i : cells_[cell]) {
-      if (i.owner == self || !(i.from < to && from < i.to)) continue;
-      if (i.owner >= ignored.size() || ignored[i.owner] == 0) free = false;
-    }
+                              std::span<const std::uint32_t> ignored) const {
+  return freeBut(anchor, size, from, to, self, [&](std::uint32_t owner) {
+    return std::find(ignored.begin(), ignored.end(), owner) != ignored.end();
   });
-  return free;
+}
+
+bool ReservationTable::isFree(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
+                              const std::vector<std::uint8_t>& ignored) const {
+  return freeBut(anchor, size, from, to, self, [&](std::uint32_t owner) {
+    return owner < ignored.size() && ignored[owner] != 0;
+  });
 }
 
 std::vector<std::uint32_t> ReservationTable::holders(Cell anchor, int size, Tick from, Tick to,

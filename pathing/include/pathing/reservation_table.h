@@ -91,6 +91,10 @@ class ReservationTable {
   };
   template <class F>
   void forEachCell(Cell anchor, int size, F&& f) const;
+  // Free for `self` when every other holder during part of [from, to) is ignored(owner).
+  template <class Ignored>
+  bool freeBut(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
+               Ignored&& ignored) const;
 
   int width_;
   int height_;
