@@ -72,6 +72,15 @@ CooperativeRequest requestFor(Agent agent, Cell start, Cell goal, Tick window) {
   return r;
 }
 
+AnnotatedGrid randomGrid(int width, int height, std::uint64_t seed, int blockedPercent) {
+  RandomMapSpec spec;
+  spec.width = width;
+  spec.height = height;
+  spec.seed = seed;
+  spec.blockedPercent = blockedPercent;
+  return AnnotatedGrid(generateRandomMap(spec));
+}
+
 // Each step is a wait or one legal move lasting what its terrain says.
 void expectLegal(const AnnotatedGrid& grid, const CooperativeRequest& r,
                  const std::vector<TimedCell>& steps) {
@@ -97,12 +106,7 @@ TEST(CooperativeSearch, AloneItTakesTheShortestTime) {
   // On an empty table the plan to a goal within the window costs what AA* says, in ticks.
   int compared = 0;
   for (std::uint64_t seed = 1; seed <= 12; ++seed) {
-    RandomMapSpec spec;
-    spec.width = 40;
-    spec.height = 30;
-    spec.seed = seed;
-    spec.blockedPercent = 20;
-    const AnnotatedGrid grid(generateRandomMap(spec));
+    const AnnotatedGrid grid = randomGrid(40, 30, seed, 20);
     AnnotatedAStar astar(grid);
     CooperativeSearch search(grid);
     ReservationTable table(grid.map().width(), grid.map().height());
@@ -206,20 +210,16 @@ TEST(CorridorDistance, IsDijkstraInsideTheCellsNearThePath) {
   // equal inside, infinite outside, never below the distance on the whole map.
   int compared = 0;
   for (std::uint64_t seed = 1; seed <= 12; ++seed) {
-    RandomMapSpec spec;
-    spec.width = 48;
-    spec.height = 36;
-    spec.seed = seed;
-    spec.blockedPercent = 12;
-    const AnnotatedGrid grid(generateRandomMap(spec));
+    const AnnotatedGrid grid = randomGrid(48, 36, seed, 12);
     AnnotatedAStar astar(grid);
     const Agent agent{1 + static_cast<int>(seed % 2), kGround};
+    const GridMap& map = grid.map();
     // The first cells the agent may stand on from two opposite corners.
     Cell start{-1, -1};
     Cell goal{-1, -1};
-    for (int i = 0; i < spec.width * spec.height && (start.x < 0 || goal.x < 0); ++i) {
-      const Cell a{i % spec.width, i / spec.width};
-      const Cell b{spec.width - 1 - a.x, spec.height - 1 - a.y};
+    for (int i = 0; i < map.width() * map.height() && (start.x < 0 || goal.x < 0); ++i) {
+      const Cell a{i % map.width(), i / map.width()};
+      const Cell b{map.width() - 1 - a.x, map.height() - 1 - a.y};
       if (start.x < 0 && grid.canStand(agent, a)) start = a;
       if (goal.x < 0 && grid.canStand(agent, b)) goal = b;
     }
@@ -229,7 +229,6 @@ TEST(CorridorDistance, IsDijkstraInsideTheCellsNearThePath) {
     const int radius = 1 + static_cast<int>(seed % 3);
     CorridorDistance corridor(grid, agent, path, radius);
     ReverseResumableSearch whole(grid, agent, goal, start);
-    const GridMap& map = grid.map();
     std::vector<char> inside(static_cast<std::size_t>(map.width() * map.height()), 0);
     for (const Cell& p : path) {
       for (int y = p.y - radius; y <= p.y + radius; ++y) {

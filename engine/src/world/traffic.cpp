@@ -407,10 +407,7 @@ void Traffic::plan(Refs& w, std::uint64_t budget) {
   // A cruising unit that nears a chokepoint without a window stands until it gets one.
   for (std::uint32_t index : candidates_) {
     Unit& unit = all[index];
-    if (planned_[index] == 0 && unit.plan && unit.plan->cruising) {
-      releaseReservations(w, unit);
-      hold(w, unit);
-    }
+    if (planned_[index] == 0 && unit.plan && unit.plan->cruising) hold(w, unit);
   }
   // Waiting: counted when it begins, timed while it lasts (the priority ages with it).
   MovementStats& stats = w.state.movement;
