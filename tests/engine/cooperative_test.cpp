@@ -132,6 +132,45 @@ TEST(Cooperative, TanksHeadOnInACorridorWhatCooperationChanges) {
   }
 }
 
+// Three tanks a side cross a river both ways on a bridge six cells wide: room for two tanks
+// side by side. With cooperation each keeps to its lane (the right half) and all arrive near
+// free flow at every seed; without it both streams take the one shortest line and meet on the
+// bridge, and some seed's tanks arrive too late.
+TEST(Cooperative, TanksCrossABridgeBothWaysInLanes) {
+  std::string rows;
+  for (int y = 0; y < 14; ++y) {
+    std::string row;
+    for (int x = 0; x < 40; ++x)
+      row += x >= 14 && x <= 25 && (y < 4 || y > 9) ? 'W' : '.';
+    rows += (y > 0 ? ", '" : "'") + row + "'";
+  }
+  const std::string text =
+      "map: {rows: [" + rows + "]}\n" +
+      "catalogue: ../assets/units.yaml\n"
+      "duration: 60\n"
+      "combat: {enabled: false}\n"
+      "pathing: {cooperative: true}\n"
+      "teams: [blue, red]\n"
+      "groups:\n"
+      "  - {name: east, team: blue, type: tank, count: 3, spawn: {x: 0, y: 2, w: 9, h: 10},\n"
+      "     goal: {x: 31, y: 2, w: 9, h: 10}}\n"
+      "  - {name: west, team: red, type: tank, count: 3, spawn: {x: 31, y: 2, w: 9, h: 10},\n"
+      "     goal: {x: 0, y: 2, w: 9, h: 10}}\n"
+      "expectations:\n"
+      "  - arrival_rate: {team: blue, type: tank, at_least: 1.0, by: 30}\n"
+      "  - arrival_rate: {team: red, type: tank, at_least: 1.0, by: 30}\n"
+      "  - max_stuck: 0\n";
+  int failedWithout = 0;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const Report with = runToEnd(parse(text), seed);
+    EXPECT_TRUE(with.passed()) << "seed " << seed;
+    for (const DelayStats& d : with.movement.delay)
+      EXPECT_LE(d.max, 1.3) << d.team << " seed " << seed;
+    if (!runToEnd(parse(withPathing(text, "{cooperative: false}")), seed).passed()) ++failedWithout;
+  }
+  EXPECT_GT(failedWithout, 0);
+}
+
 // Far from any chokepoint nothing is searched or reserved: on open ground units cruise along
 // their paths; the same units through the door plan windows.
 TEST(Cooperative, OpenGroundNeedsNoWindows) {

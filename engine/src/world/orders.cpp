@@ -7,6 +7,7 @@
 
 #include "engine/src/world/phases.h"
 #include "pathing/invariant.h"
+#include "pathing/lanes.h"
 #include "pathing/moves.h"
 
 namespace warpath::engine::world {
@@ -267,6 +268,13 @@ std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
       if (unit.plan) releaseReservations(w, unit);
       if (unit.plannedTicks < 0) unit.plannedTicks = freeFlowTicks(w, unit, delivery.path->cells);
       unit.path = delivery.path;
+      // Cooperating units keep to the right half of passages wide enough for two (lanes).
+      if (w.settings.pathing.cooperative) {
+        std::vector<Cell> lane =
+            pathing::keepRight(w.grid, w.typeOf(unit).agent(), unit.path->cells);
+        if (lane != unit.path->cells)
+          unit.path = std::make_shared<const PlannedPath>(planned(std::move(lane)));
+      }
       unit.next = 0;
       unit.state = UnitState::Moving;
       unit.progress.restartWindow(unit.position, w.state.tick);

@@ -1,0 +1,31 @@
+#pragma once
+// Two-way traffic in lanes: a path moved into the right half of the passage it runs through,
+// so that units crossing a bridge, a road or a corridor wide enough for two pass each other
+// instead of meeting head on on the one shortest line.
+
+#include <span>
+#include <vector>
+
+#include "pathing/annotated_grid.h"
+
+namespace warpath::pathing {
+
+// The widest passage [Unit: cells] that gets lanes for a size-s agent: 16 cells, or four
+// footprints for larger agents. Wider places are open ground, where local avoidance lets units
+// slide past each other.
+constexpr int laneWidth(int size) {
+  return size * 4 > 16 ? size * 4 : 16;
+}
+
+// `path` (legal single moves for the agent, start to goal) kept to the right: where the path
+// runs along a row or a column, the passage across the direction of travel (the standable
+// anchors to either side) is split in two halves of its cells, and a footprint in the left half
+// moves over to the nearest anchor whose footprint lies in the right half; where the passage is
+// narrower than two footprints or wider than laneWidth(), the path stays. A lane begins before
+// its passage and ends after it (a shift carries to the cells around, a cell less each). Shifts
+// grow and shrink by at most a cell per step (so the start and the goal stay where they are) and
+// the shifted cells are joined by legal single moves; if they cannot be, the path comes back
+// unchanged. The result is legal for the agent and runs from path.front() to path.back().
+std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<const Cell> path);
+
+}  // namespace warpath::pathing

@@ -1,0 +1,129 @@
+#include "pathing/lanes.h"
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "pathing/moves.h"
+
+namespace warpath::pathing {
+
+namespace {
+
+constexpr int sign(int v) {
+  return (v > 0) - (v < 0);
+}
+
+// To the right of the direction of travel at path[i], judged over a few cells either side so
+// that a staircase reads as the line it follows; {0, 0} where the path runs diagonally (lanes
+// are kept on passages that run along the grid).
+Cell rightOf(std::span<const Cell> path, std::size_t i) {
+  constexpr std::size_t kSpan = 2;
+  const Cell a = path[i >= kSpan ? i - kSpan : 0];
+  const Cell b = path[std::min(path.size() - 1, i + kSpan)];
+  const int dx = b.x - a.x;
+  const int dy = b.y - a.y;
+  // y grows downward: heading (hx, hy) has (-hy, hx) on its right.
+  if (std::abs(dx) > 2 * std::abs(dy)) return {0, sign(dx)};
+  if (std::abs(dy) > 2 * std::abs(dx)) return {-sign(dy), 0};
+  return {0, 0};
+}
+
+// How many cells along `right` the footprint at `c` moves to lie in the right half of the
+// passage across it; 0 when it does already, or the passage is too narrow or too wide.
+int laneShift(const ClearanceField& clearance, int size, Cell c, Cell right) {
+  if (right == Cell{0, 0}) return 0;
+  const auto standable = [&](int k) {
+    return clearance.at({c.x + k * right.x, c.y + k * right.y}) >= size;
+  };
+  const int widest = laneWidth(size);
+  int toLeft = 0;
+  while (toLeft + size <= widest && standable(-(toLeft + 1)))
+    ++toLeft;
+  int toRight = 0;
+  while (toLeft + toRight + size <= widest && standable(toRight + 1))
+    ++toRight;
+  const int width = toLeft + toRight + size;  // cells across, footprint included
+  if (width < 2 * size || width > widest) return 0;
+  const int rightHalf = (width + 1) / 2;  // its first cell, counted from the left edge
+  return std::clamp(rightHalf - toLeft, 0, toRight);
+}
+
+// Appends legal single moves from out.back() to `to`; false when a step is not legal.
+bool join(const AgentLayer& layer, const GridMap& map, std::vector<Cell>& out, Cell to) {
+  const std::span<const std::uint8_t> moves = layer.moveMasks();
+  Cell at = out.back();
+  while (at != to) {
+    const int dx = sign(to.x - at.x);
+    const int dy = sign(to.y - at.y);
+    const std::uint8_t mask = moves[map.indexOf(at)];
+    bool stepped = false;
+    for (const Cell step : {Cell{dx, dy}, Cell{dx, 0}, Cell{0, dy}}) {
+      const int d = directionOf(step.x, step.y);
+      if (d < 0 || (mask & (1u << d)) == 0) continue;
+      at = {at.x + step.x, at.y + step.y};
+      out.push_back(at);
+      stepped = true;
+      break;
+    }
+    if (!stepped) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<const Cell> path) {
+  std::vector<Cell> unchanged(path.begin(), path.end());
+  const std::size_t n = path.size();
+  if (n < 3 || agent.size < 1) return unchanged;
+  const ClearanceField& clearance = grid.clearance(agent.capability);
+  const AgentLayer& layer = grid.layer(agent);
+  const GridMap& map = grid.map();
+  std::vector<Cell> right(n);
+  std::vector<int> shift(n, 0);
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    right[i] = rightOf(path, i);
+    shift[i] = laneShift(clearance, agent.size, path[i], right[i]);
+  }
+  // A lane begins before its passage and ends after it: a shift carries over to the cells
+  // around, a cell less each, where the anchors it crosses are standable.
+  const auto carry = [&](std::size_t from, std::size_t to) {
+    const int s = shift[from] - 1;
+    if (s <= shift[to]) return;
+    for (int k = 1; k <= s; ++k) {
+      if (clearance.at({path[to].x + k * right[from].x, path[to].y + k * right[from].y}) <
+          agent.size)
+        return;
+    }
+    shift[to] = s;
+    right[to] = right[from];
+  };
+  for (std::size_t i = 2; i + 1 < n; ++i)
+    carry(i - 1, i);
+  for (std::size_t i = n - 2; i-- > 1;)
+    carry(i + 1, i);
+  // Where two shifted cells cannot be joined, the shifts there go and the path is tried again.
+  constexpr int kAttempts = 8;
+  for (int attempt = 0; attempt < kAttempts; ++attempt) {
+    // At most a cell more per step, from 0 at both ends (shrinking keeps a shift standable:
+    // every anchor between the path and its shifted cell was found standable).
+    for (std::size_t i = 1; i < n; ++i)
+      shift[i] = std::min(shift[i], shift[i - 1] + 1);
+    shift[n - 1] = 0;
+    for (std::size_t i = n - 1; i-- > 0;)
+      shift[i] = std::min(shift[i], shift[i + 1] + 1);
+    if (std::all_of(shift.begin(), shift.end(), [](int s) { return s == 0; })) return unchanged;
+    std::vector<Cell> out{path.front()};
+    std::size_t failed = n;
+    for (std::size_t i = 1; i < n && failed == n; ++i) {
+      const Cell to{path[i].x + shift[i] * right[i].x, path[i].y + shift[i] * right[i].y};
+      if (!join(layer, map, out, to)) failed = i;
+    }
+    if (failed == n) return out;
+    shift[failed - 1] = 0;
+    shift[failed] = 0;
+  }
+  return unchanged;
+}
+
+}  // namespace warpath::pathing

@@ -1,0 +1,123 @@
+// Lanes: paths kept to the right half of passages wide enough for two (pathing/lanes.h).
+
+#include "pathing/lanes.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "pathing/aa_star.h"
+#include "pathing/map_generator.h"
+
+namespace warpath::pathing {
+namespace {
+
+const Capability kGround = Capability::of({Terrain::Ground});
+
+// 40×20 ground; a river of water over columns 12..27, crossed by a bridge over rows
+// bridgeTop .. bridgeTop + bridgeWidth - 1.
+GridMap riverMap(int bridgeTop, int bridgeWidth) {
+  GridMap map(40, 20);
+  for (int y = 0; y < 20; ++y) {
+    for (int x = 12; x <= 27; ++x) {
+      if (y < bridgeTop || y >= bridgeTop + bridgeWidth) map.set({x, y}, Terrain::Water);
+    }
+  }
+  return map;
+}
+
+std::vector<Cell> shortest(const AnnotatedGrid& grid, Agent agent, Cell start, Cell goal) {
+  AnnotatedAStar astar(grid);
+  std::vector<Cell> path;
+  EXPECT_TRUE(astar.findPath(agent, start, goal, &path).found());
+  return path;
+}
+
+// Legal single moves from the same start to the same goal.
+void expectLegalBetween(const AnnotatedGrid& grid, Agent agent, const std::vector<Cell>& lane,
+                        const std::vector<Cell>& path) {
+  ASSERT_FALSE(lane.empty());
+  EXPECT_EQ(lane.front(), path.front());
+  EXPECT_EQ(lane.back(), path.back());
+  EXPECT_EQ(findIllegalStep(grid, agent, lane), "");
+}
+
+// The rows the anchors take over the bridge's middle columns.
+std::vector<int> rowsOnBridge(const std::vector<Cell>& path) {
+  std::vector<int> rows;
+  for (const Cell& c : path) {
+    if (c.x >= 15 && c.x <= 24) rows.push_back(c.y);
+  }
+  return rows;
+}
+
+TEST(Lanes, TanksCrossingABridgeBothWaysKeepToOppositeHalves) {
+  // A bridge six cells wide (rows 7..12): two size-3 tanks fit side by side, one per half.
+  const AnnotatedGrid grid(riverMap(7, 6));
+  const Agent tank{3, kGround};
+  const std::vector<Cell> east = shortest(grid, tank, {2, 8}, {35, 8});
+  const std::vector<Cell> eastLane = keepRight(grid, tank, east);
+  expectLegalBetween(grid, tank, eastLane, east);
+  // Heading east the right is south: footprints on rows 10..12.
+  for (const int y : rowsOnBridge(eastLane))
+    EXPECT_EQ(y, 10);
+  const std::vector<Cell> west = shortest(grid, tank, {35, 9}, {2, 9});
+  const std::vector<Cell> westLane = keepRight(grid, tank, west);
+  expectLegalBetween(grid, tank, westLane, west);
+  for (const int y : rowsOnBridge(westLane))
+    EXPECT_EQ(y, 7);
+  EXPECT_FALSE(rowsOnBridge(eastLane).empty());
+  EXPECT_FALSE(rowsOnBridge(westLane).empty());
+}
+
+TEST(Lanes, InfantryKeepToTheRightHalfOfTheBridge) {
+  const AnnotatedGrid grid(riverMap(7, 6));
+  const Agent infantry{1, kGround};
+  const std::vector<Cell> east = shortest(grid, infantry, {2, 7}, {35, 7});
+  const std::vector<Cell> lane = keepRight(grid, infantry, east);
+  expectLegalBetween(grid, infantry, lane, east);
+  ASSERT_FALSE(rowsOnBridge(lane).empty());
+  for (const int y : rowsOnBridge(lane))
+    EXPECT_GE(y, 10);
+}
+
+TEST(Lanes, NoLanesInTheOpenNorWhereTwoCannotPass) {
+  // Open ground wider than laneWidth: the path stays.
+  const AnnotatedGrid open(GridMap(60, 60));
+  const Agent infantry{1, kGround};
+  const std::vector<Cell> across = shortest(open, infantry, {2, 30}, {57, 30});
+  EXPECT_EQ(keepRight(open, infantry, across), across);
+  // A bridge four cells wide has no room for two size-3 tanks: nothing to keep to.
+  const AnnotatedGrid narrow(riverMap(7, 4));
+  const Agent tank{3, kGround};
+  const std::vector<Cell> east = shortest(narrow, tank, {2, 8}, {35, 8});
+  EXPECT_EQ(keepRight(narrow, tank, east), east);
+}
+
+TEST(Lanes, AlwaysLegalOnRandomMaps) {
+  int shifted = 0;
+  for (std::uint64_t seed = 1; seed <= 30; ++seed) {
+    RandomMapSpec spec;
+    spec.width = 40;
+    spec.height = 30;
+    spec.seed = seed;
+    spec.blockedPercent = 20;
+    const AnnotatedGrid grid(generateRandomMap(spec));
+    AnnotatedAStar astar(grid);
+    for (int size = 1; size <= 2; ++size) {
+      const Agent agent{size, kGround};
+      const Cell start{1, 1};
+      const Cell goal{36, 26};
+      std::vector<Cell> path;
+      if (!grid.canStand(agent, start) || !grid.canStand(agent, goal)) continue;
+      if (!astar.findPath(agent, start, goal, &path).found()) continue;
+      const std::vector<Cell> lane = keepRight(grid, agent, path);
+      expectLegalBetween(grid, agent, lane, path);
+      if (lane != path) ++shifted;
+    }
+  }
+  EXPECT_GT(shifted, 0);  // the random maps have passages that get lanes
+}
+
+}  // namespace
+}  // namespace warpath::pathing
