@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 
 #include "pathing/moves.h"
 
@@ -29,6 +30,16 @@ void AnnotatedAStar::beginQuery() {
 
 PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                                     const SearchLimits& limits) {
+  return run(agent, start, goal, path, nullptr, limits);
+}
+
+PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
+                                    const CostField& costs, const SearchLimits& limits) {
+  return run(agent, start, goal, path, &costs, limits);
+}
+
+PathResult AnnotatedAStar::run(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
+                               const CostField* costs, const SearchLimits& limits) {
   const QueryClock clock;
   PathResult result;
   if (path) path->clear();
@@ -41,8 +52,14 @@ PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vec
     return finish(PathStatus::Unreachable);
   }
   if (limits.maxExpanded == 0) return finish(PathStatus::BudgetExhausted);
-  const PathStatus status = limits.region ? search<true>(layer, start, goal, limits, result)
-                                          : search<false>(layer, start, goal, limits, result);
+  PathStatus status;
+  if (costs) {
+    status = limits.region ? search<true, true>(layer, start, goal, costs, limits, result)
+                           : search<false, true>(layer, start, goal, costs, limits, result);
+  } else {
+    status = limits.region ? search<true, false>(layer, start, goal, costs, limits, result)
+                           : search<false, false>(layer, start, goal, costs, limits, result);
+  }
   if (status == PathStatus::Found && path) {
     const std::uint32_t startIndex = map.indexOf(start);
     const auto width = static_cast<std::int64_t>(map.width());
@@ -57,9 +74,10 @@ PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vec
   return finish(status);
 }
 
-template <bool kInRegion>
+template <bool kInRegion, bool kWeighted>
 PathStatus AnnotatedAStar::search(const AgentLayer& layer, Cell start, Cell goal,
-                                  const SearchLimits& limits, PathResult& result) {
+                                  const CostField* costs, const SearchLimits& limits,
+                                  PathResult& result) {
   beginQuery();
   const GridMap& map = grid_.map();
   const std::uint32_t startIndex = map.indexOf(start);
@@ -71,7 +89,11 @@ PathStatus AnnotatedAStar::search(const AgentLayer& layer, Cell start, Cell goal
   for (std::size_t d = 0; d < kDirectionCount; ++d) {
     offset[d] = static_cast<std::int64_t>(kDirections[d].dy) * width + kDirections[d].dx;
   }
-  const auto heuristic = [&](int x, int y) { return octileDistance(goal.x - x, goal.y - y); };
+  const double scale = kWeighted ? costs->cheapest() : 1.0;
+  const auto heuristic = [&](int x, int y) {
+    if constexpr (kWeighted) return scale * octileDistance(goal.x - x, goal.y - y);
+    return octileDistance(goal.x - x, goal.y - y);
+  };
   const CellRect region = limits.region.value_or(CellRect{});
 
   const std::uint32_t openStamp = generation_ << kGenerationShift;
@@ -113,7 +135,12 @@ PathStatus AnnotatedAStar::search(const AgentLayer& layer, Cell start, Cell goal
       }
       const std::uint32_t next =
           static_cast<std::uint32_t>(current + offset[static_cast<std::size_t>(d)]);
-      const double g = currentG + dir.cost;
+      double step = dir.cost;
+      if constexpr (kWeighted) {
+        step = costs->moveCost({x, y}, d);
+        if (!std::isfinite(step)) continue;
+      }
+      const double g = currentG + step;
       const std::uint32_t seen = stamps_[next] & ~7u;
       if (seen == closedStamp || (seen == openStamp && g >= g_[next])) continue;
       stamps_[next] = openStamp | static_cast<std::uint32_t>(d);
@@ -122,7 +149,8 @@ PathStatus AnnotatedAStar::search(const AgentLayer& layer, Cell start, Cell goal
       ++result.metrics.generated;
     }
   }
-  // Without a region, the same component guarantees a path; inside one it may not exist.
+  // Without a region, the same component guarantees a path (uniform costs); inside one, or
+  // where terrains without a cost cut it, it may not exist.
   return PathStatus::Unreachable;
 }
 

@@ -11,6 +11,7 @@
 #include "pathing/annotated_grid.h"
 #include "pathing/open_list.h"
 #include "pathing/search.h"
+#include "pathing/terrain_costs.h"
 
 namespace warpath::pathing {
 
@@ -22,6 +23,11 @@ class AnnotatedAStar {
   // `path` is not null, it receives every cell from start to goal inclusive.
   PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                       const SearchLimits& limits = {});
+  // The same under terrain costs (pathing/terrain_costs.h, built for this agent on this grid):
+  // a cheapest path, result.cost in the costs' unit; moves onto an anchor without a cost are
+  // not taken. The heuristic is octile distance times costs.cheapest().
+  PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
+                      const CostField& costs, const SearchLimits& limits = {});
 
  private:
   // Per-cell search state, split so that the common checks touch 4 bytes a cell: the stamp
@@ -31,9 +37,11 @@ class AnnotatedAStar {
   static constexpr int kGenerationShift = 4;
 
   void beginQuery();
-  template <bool kInRegion>
-  PathStatus search(const AgentLayer& layer, Cell start, Cell goal, const SearchLimits& limits,
-                    PathResult& result);
+  PathResult run(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
+                 const CostField* costs, const SearchLimits& limits);
+  template <bool kInRegion, bool kWeighted>
+  PathStatus search(const AgentLayer& layer, Cell start, Cell goal, const CostField* costs,
+                    const SearchLimits& limits, PathResult& result);
 
   const AnnotatedGrid& grid_;
   std::vector<std::uint32_t> stamps_;
