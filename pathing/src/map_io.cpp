@@ -485,6 +485,56 @@ Result<std::vector<ScenQuery>> loadScen(const std::filesystem::path& file) {
   return parseScen(std::string_view(text.value()), file.string());
 }
 
+Result<TerrainCosts> parseCostTable(std::string_view text, std::string_view sourceName) {
+  const ErrorMaker error(sourceName);
+  LineReader lines(withoutBom(text));
+  std::string_view line;
+  TerrainCosts costs;
+  std::array<int, kTraversableTerrainSlots> setOn{};  // the line that set each terrain's cost
+  bool any = false;
+  while (lines.next(line)) {
+    const std::string_view trimmed = trim(line);
+    if (trimmed.empty()) continue;
+    const int at = lines.lineNumber();
+    const auto [key, value] = splitKey(trimmed);
+    if (key.size() != 1) {
+      return error(at, concat({"expected one map character then its cost, found ", quoted(key)}));
+    }
+    const std::optional<Terrain> terrain = kCharTerrain[static_cast<unsigned char>(key[0])];
+    if (!terrain) return error(at, concat({"unknown map character ", quoted(key)}));
+    if (value.empty()) return error(at, concat({"missing cost after ", quoted(key)}));
+    double cost = 0.0;
+    if (parseDouble(value, cost) != NumberStatus::Ok || !(cost >= 0.0)) {
+      return error(
+          at, concat({"cost of ", quoted(key), " must be a number >= 0, found ", quoted(value)}));
+    }
+    any = true;
+    if (!isTraversable(*terrain)) {
+      if (cost != 0.0) {
+        return error(at, concat({quoted(key), " is blocked terrain: its cost must be 0, found ",
+                                 quoted(value)}));
+      }
+      continue;
+    }
+    const auto slot = static_cast<std::size_t>(*terrain);
+    if (setOn[slot] != 0 && costs.perCell[slot] != cost) {
+      return error(
+          at, concat({quoted(key), " is ", std::string(terrainName(*terrain)), ", whose cost line ",
+                      str(setOn[slot]), " already set to ", str(costs.perCell[slot])}));
+    }
+    costs.perCell[slot] = cost;
+    setOn[slot] = at;
+  }
+  if (!any) return error(lines.lineNumber(), "empty cost table: expected lines 'CHARACTER COST'");
+  return costs;
+}
+
+Result<TerrainCosts> loadCostTable(const std::filesystem::path& file) {
+  const Result<std::string> text = readFileCapped(file, kScenFileLimit);
+  if (!text) return text.error();
+  return parseCostTable(std::string_view(text.value()), file.string());
+}
+
 Status checkScenAgainstMap(const std::vector<ScenQuery>& queries, const GridMap& map,
                            std::string_view scenName) {
   const auto size = [](int w, int h) { return concat({str(w), "x", str(h)}); };

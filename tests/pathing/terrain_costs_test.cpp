@@ -13,6 +13,7 @@
 
 #include "pathing/aa_star.h"
 #include "pathing/map_generator.h"
+#include "pathing/map_io.h"
 #include "pathing/moves.h"
 
 namespace warpath::pathing {
@@ -172,6 +173,28 @@ TEST(TerrainCosts, InfantryGoRoundASwampWhenThatIsFaster) {
   ASSERT_TRUE(astar.findPath(agent, {1, 2}, {19, 2}, &uniform).found());
   EXPECT_LT(field.pathCost(weighted), field.pathCost(uniform));
   EXPECT_GT(pathCost(weighted), pathCost(uniform));
+}
+
+TEST(TerrainCosts, ReadsWarthogCostTables) {
+  const Result<TerrainCosts> ok = parseCostTable(". 1.5\nG\t1.5\n\nS 4\nT 0\n@ 0\n", "c.txt");
+  ASSERT_TRUE(ok.ok()) << ok.error().describe();
+  EXPECT_EQ(ok.value().perCell[static_cast<std::size_t>(Terrain::Ground)], 1.5);
+  EXPECT_EQ(ok.value().perCell[static_cast<std::size_t>(Terrain::Swamp)], 4.0);
+  // Trees cost 0 and water is not named: both impassable.
+  EXPECT_EQ(ok.value().capability(), Capability::of({Terrain::Ground, Terrain::Swamp}));
+  const std::pair<const char*, const char*> bad[] = {
+      {". 1\nX 2\n", "c.txt:2: unknown map character 'X'"},
+      {". 1\nG 2\n", "c.txt:2: 'G' is ground, whose cost line 1 already set to"},
+      {". -1\n", "c.txt:1: cost of '.' must be a number >= 0, found '-1'"},
+      {"@ 3\n", "c.txt:1: '@' is blocked terrain: its cost must be 0, found '3'"},
+      {"S\n", "c.txt:1: missing cost after 'S'"},
+      {"\n", "c.txt:1: empty cost table"},
+  };
+  for (const auto& [text, message] : bad) {
+    const Result<TerrainCosts> r = parseCostTable(text, "c.txt");
+    ASSERT_FALSE(r.ok()) << text;
+    EXPECT_EQ(r.error().describe().rfind(message, 0), 0u) << r.error().describe();
+  }
 }
 
 }  // namespace

@@ -90,6 +90,23 @@ TEST(RtsCliTest, PathPrintsJsonWithLengthAndMetrics) {
   EXPECT_GE(json["metrics"]["expanded"].get<int>(), 1);
 }
 
+TEST(RtsCliTest, PathUnderTerrainCosts) {
+  // Ground costs 2 a cell and nothing else is passable: the same route, twice the length.
+  const CommandRun run =
+      rts("path " + fixture("small.map") + " --from 0,0 --to 5,3 --json --costs " +
+          fixture("costs_ground_2.txt"));
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  EXPECT_DOUBLE_EQ(json["length"].get<double>(), 16.0);
+  EXPECT_EQ(json["agent"]["capability"], "ground");
+  expectBadInput("path " + fixture("small.map") + " --from 0,0 --to 5,3 --algo haa-hq --costs " +
+                     fixture("costs_ground_2.txt"),
+                 "only --algo aa plans under terrain costs");
+  expectBadInput(
+      "path " + fixture("small.map") + " --from 0,0 --to 5,3 --costs " + fixture("small.map"),
+      "small.map:1: expected one map character then its cost");
+}
+
 TEST(RtsCliTest, PathWithoutRouteExitsOne) {
   // Water-only agent from ground: cannot stand at the start.
   const CommandRun run =
@@ -251,8 +268,10 @@ TEST(RtsCliTest, BenchPaperRejectsBadInput) {
   const std::string paper = "bench paper " + fixture("terrain.map") + " --queries 5";
   expectBadInput(paper + " --percents 0,x", "--percents: expected comma-separated whole numbers");
   expectBadInput(paper + " --percents 150", "--percents: 150 is not in 0..100");
-  expectBadInput(paper + " --cluster-sizes 1", "--cluster-sizes: 1: clusterSize must be 2..4096 (got 1)");
-  expectBadInput(paper + " --cluster-sizes 10,0", "--cluster-sizes: 0: clusterSize must be 2..4096 (got 0)");
+  expectBadInput(paper + " --cluster-sizes 1",
+                 "--cluster-sizes: 1: clusterSize must be 2..4096 (got 1)");
+  expectBadInput(paper + " --cluster-sizes 10,0",
+                 "--cluster-sizes: 0: clusterSize must be 2..4096 (got 0)");
 }
 
 // Files that cannot be maps are refused at once, naming the file and the problem. Before,

@@ -5,12 +5,15 @@
 #include <algorithm>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "pathing/aa_star.h"
 #include "pathing/annotated_grid.h"
 #include "pathing/map_io.h"
 #include "pathing/terrain.h"
+#include "pathing/terrain_costs.h"
 #include "rts/cli_support.h"
 #include "rts/commands.h"
 #include "rts/planner_choice.h"
@@ -31,6 +34,7 @@ struct PathOptions {
   bool draw = false;
   std::string png;  // empty: no picture
   bool pngGraph = false;
+  std::string costsFile;  // empty: the uniform model
 };
 
 // The map as text with the agent's footprint along the path drawn as '*', start 's', goal 'g'.
@@ -62,7 +66,20 @@ std::string drawPath(const GridMap& map, Agent agent, const std::vector<Cell>& p
 
 int runPath(const PathOptions& options) {
   const Algorithm algorithm = parseAlgorithm(options.planner.algo);
-  const Agent agent = parseAgent(options.agent);
+  Agent agent = parseAgent(options.agent);
+  std::optional<TerrainCosts> costs;
+  if (!options.costsFile.empty()) {
+    Result<TerrainCosts> loaded = loadCostTable(options.costsFile);
+    if (!loaded) throw BadInput{loaded.error().describe()};
+    if (algorithm != Algorithm::AStar) {
+      throw BadInput{
+          fmt::format("--costs: only --algo aa plans under terrain costs so far (got --algo {})",
+                      toString(algorithm))};
+    }
+    costs = loaded.value();
+    // The agent moves on the terrains that have a cost.
+    agent.capability = costs->capability();
+  }
   const Cell from = parseCell(options.from, "--from");
   const Cell to = parseCell(options.to, "--to");
 
@@ -86,7 +103,10 @@ int runPath(const PathOptions& options) {
   const double annotateMs = prepared.preprocessMs;
   Planner planner = prepared.makePlanner(grid);
   std::vector<Cell> path;
-  const PathResult result = planner.findPath(agent, from, to, &path);
+  std::optional<CostField> field;
+  if (costs) field.emplace(grid, agent, *costs);
+  const PathResult result = field ? AnnotatedAStar(grid).findPath(agent, from, to, &path, *field)
+                                  : planner.findPath(agent, from, to, &path);
   const SearchMetrics& m = result.metrics;
   if (!options.png.empty()) {
     writePathPng(options.png, map, agent, path,
@@ -101,6 +121,7 @@ int runPath(const PathOptions& options) {
     out["to"] = {to.x, to.y};
     out["algo"] = std::string(toString(algorithm));
     out["status"] = std::string(toString(result.status));
+    out["costs"] = costs ? nlohmann::json(options.costsFile) : nlohmann::json(nullptr);
     out["length"] = result.found() ? nlohmann::json(result.cost) : nlohmann::json(nullptr);
     nlohmann::json cells = nlohmann::json::array();
     for (Cell c : path)
@@ -125,7 +146,8 @@ int runPath(const PathOptions& options) {
     fmt::print("map       {} ({}x{})\n", options.mapFile, map.width(), map.height());
     fmt::print("agent     size {}, capability {}\n", agent.size, agent.capability.toString());
     fmt::print("query     {},{} -> {},{}\n", from.x, from.y, to.x, to.y);
-    fmt::print("algo      {}\n", toString(algorithm));
+    fmt::print("algo      {}{}\n", toString(algorithm),
+               costs ? fmt::format(", terrain costs from {}", options.costsFile) : "");
     fmt::print("status    {}\n", toString(result.status));
     if (result.found()) {
       fmt::print("length    {:.2f} ({} moves)\n", result.cost, path.size() - 1);
@@ -170,6 +192,10 @@ void registerPathCommand(CLI::App& app, CommandRunner& run) {
   cmd->add_option("--from", options->from, "start anchor (upper-left cell) as X,Y")->required();
   cmd->add_option("--to", options->to, "goal anchor (upper-left cell) as X,Y")->required();
   addPlannerOptions(*cmd, options->planner);
+  cmd->add_option("--costs", options->costsFile,
+                  "plan under terrain costs from a warthog cost table (one line per map "
+                  "character: the character, its cost; 0 impassable); the agent's capability is "
+                  "the terrains with a cost; --algo aa only for now");
   cmd->add_flag("--json", options->json, "print one JSON object instead of text");
   cmd->add_flag("--draw", options->draw, "also print the map with the path drawn on it");
   cmd->add_option("--png", options->png,

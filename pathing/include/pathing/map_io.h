@@ -2,6 +2,7 @@
 // MovingAI benchmark formats: octile `.map` files and `.scen` query files.
 // Map:  "type octile" / "height H" / "width W" / "map", then H rows of W characters
 //       ('.' 'G' ground, 'S' swamp, 'T' trees, 'W' water, '@' 'O' blocked).
+// Costs: warthog's cost table (parseCostTable).
 // Scen: "version 1" (tab-separated) or "version 1.0" (space-separated), then one query a
 //       line: bucket, map path, map width, map height, start x, start y, goal x, goal y,
 //       optimal length. Blank lines are skipped.
@@ -15,6 +16,7 @@
 
 #include "pathing/error.h"
 #include "pathing/grid_map.h"
+#include "pathing/terrain_costs.h"
 
 namespace warpath::pathing {
 
@@ -49,6 +51,14 @@ Result<std::vector<ScenQuery>> parseScen(std::string_view text, std::string_view
 Result<std::vector<ScenQuery>> parseScen(std::istream& in, std::string_view sourceName);
 // Through readFileCapped: at most kScenFileLimit bytes, regular files only.
 Result<std::vector<ScenQuery>> loadScen(const std::filesystem::path& file);
+
+// Warthog's cost tables: one line per map character, the character, blanks, its cost (a
+// number >= 0; 0: impassable); blank lines are skipped. Characters of one terrain ('.' and
+// 'G') must agree; blocked characters may only cost 0; terrains no line names are impassable.
+// Errors name the file, the line and the problem.
+Result<TerrainCosts> parseCostTable(std::string_view text, std::string_view sourceName);
+// Through readFileCapped: at most kScenFileLimit bytes, regular files only.
+Result<TerrainCosts> loadCostTable(const std::filesystem::path& file);
 
 // Checks the queries against the map they are run on: declared size matches, coordinates
 // inside. Errors name the scen file and line.
