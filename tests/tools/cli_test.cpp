@@ -107,6 +107,18 @@ TEST(RtsCliTest, PathUnderTerrainCosts) {
       "small.map:1: expected one map character then its cost");
 }
 
+TEST(RtsCliTest, BenchScenUnderTerrainCosts) {
+  // The scen's optimal lengths are the weighted costs: they match under --costs only.
+  const std::string args = "bench scen " + fixture("small.map") + " " +
+                           fixture("small_costs_ground_2.scen") + " --json --check-optimal";
+  const CommandRun weighted = rts(args + " --costs " + fixture("costs_ground_2.txt"));
+  ASSERT_EQ(weighted.exitCode, 0) << weighted.err;
+  const auto json = nlohmann::json::parse(weighted.out);
+  EXPECT_EQ(json["optimal_matches"], 2);
+  EXPECT_EQ(json["queries"], 2);
+  EXPECT_EQ(rts(args).exitCode, 1);
+}
+
 TEST(RtsCliTest, PathWithoutRouteExitsOne) {
   // Water-only agent from ground: cannot stand at the start.
   const CommandRun run =

@@ -5,14 +5,18 @@
 #include <fmt/os.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "pathing/aa_star.h"
 #include "pathing/annotated_grid.h"
 #include "pathing/map_io.h"
+#include "pathing/terrain_costs.h"
 #include "rts/bench_support.h"
 #include "rts/cli_support.h"
 #include "rts/commands.h"
@@ -31,6 +35,7 @@ struct ScenBenchOptions {
   bool json = false;
   bool checkOptimal = false;
   std::string rowsFile;
+  std::string costsFile;  // empty: the uniform model
 };
 
 struct QueryRow {
@@ -73,9 +78,11 @@ int runScenBench(const ScenBenchOptions& options) {
                                options.bucketMin, options.scenFile)};
   }
 
-  // MovingAI semantics: size 1, capability = the start cell's movement class.
+  // MovingAI semantics: size 1, capability = the start cell's movement class; under costs,
+  // the terrains with a cost (warthog's semantics).
+  const std::optional<TerrainCosts> costs = loadCostsOption(options.costsFile, algorithm);
   const auto agentFor = [&](const ScenQuery& q) {
-    return Agent{1, movingAiClassOf(grid.map().at(q.start))};
+    return Agent{1, costs ? costs->capability() : movingAiClassOf(grid.map().at(q.start))};
   };
   // Preprocessing = every annotation the queries will need (and the abstraction serving their
   // classes), built before timing them.
@@ -90,11 +97,21 @@ int runScenBench(const ScenBenchOptions& options) {
   const PreparedPlanner prepared =
       preparePlanner(grid, algorithm, options.planner, agents, std::move(needs));
   Planner planner = prepared.makePlanner(grid);
+  double costsMs = 0.0;
+  std::optional<CostField> field;
+  if (costs) {
+    const auto begin = std::chrono::steady_clock::now();
+    field.emplace(grid, Agent{1, costs->capability()}, *costs);
+    costsMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+  }
+  AnnotatedAStar weighted(grid);
 
   std::vector<QueryRow> rows;
   rows.reserve(queries.size());
   for (const ScenQuery& q : queries) {
-    rows.push_back({&q, planner.findPath(agentFor(q), q.start, q.goal, nullptr)});
+    rows.push_back({&q, field ? weighted.findPath(agentFor(q), q.start, q.goal, nullptr, *field)
+                              : planner.findPath(agentFor(q), q.start, q.goal, nullptr)});
   }
 
   ResultTally tally;
@@ -114,8 +131,9 @@ int runScenBench(const ScenBenchOptions& options) {
   if (prepared.abstraction) out["cluster_size"] = options.planner.clusterSize;
   if (algorithm == Algorithm::Hybrid) out["tau"] = options.planner.tau;
   out["bucket_min"] = options.bucketMin;
+  out["costs"] = costs ? nlohmann::json(options.costsFile) : nlohmann::json(nullptr);
   tally.writeTo(out);
-  out["preprocess_ms"] = prepared.preprocessMs;
+  out["preprocess_ms"] = prepared.preprocessMs + costsMs;
   const ClusterAbstraction* abstraction = prepared.abstractionOrNull();
   out["preprocess_bytes"] =
       grid.cacheBytes() +
@@ -158,6 +176,7 @@ void registerBenchCommand(CLI::App& app, CommandRunner& run) {
   scen->add_option("--bucket-min", options->bucketMin,
                    "run only the queries whose bucket is at least this (e.g. 100: long queries)")
       ->capture_default_str();
+  addCostsOption(*scen, options->costsFile);
   scen->add_flag("--json", options->json, "print one JSON object");
   scen->add_flag("--check-optimal", options->checkOptimal,
                  "exit 1 unless every query matches its optimal length within 0.01");

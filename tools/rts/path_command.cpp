@@ -192,10 +192,7 @@ void registerPathCommand(CLI::App& app, CommandRunner& run) {
   cmd->add_option("--from", options->from, "start anchor (upper-left cell) as X,Y")->required();
   cmd->add_option("--to", options->to, "goal anchor (upper-left cell) as X,Y")->required();
   addPlannerOptions(*cmd, options->planner);
-  cmd->add_option("--costs", options->costsFile,
-                  "plan under terrain costs from a warthog cost table (one line per map "
-                  "character: the character, its cost; 0 impassable); the agent's capability is "
-                  "the terrains with a cost; --algo aa only for now");
+  addCostsOption(*cmd, options->costsFile);
   cmd->add_flag("--json", options->json, "print one JSON object instead of text");
   cmd->add_flag("--draw", options->draw, "also print the map with the path drawn on it");
   cmd->add_option("--png", options->png,

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "pathing/map_io.h"
 #include "rts/cli_support.h"
 
 namespace warpath::tools {
@@ -25,6 +26,25 @@ Agent parseAgent(const AgentChoice& choice) {
   const Result<Capability> capability = parseCapability(choice.capability);
   if (!capability) throw BadInput{"--capability: " + capability.error().describe()};
   return {choice.size, capability.value()};
+}
+
+void addCostsOption(CLI::App& cmd, std::string& file) {
+  cmd.add_option("--costs", file,
+                 "plan under terrain costs from a warthog cost table (one line per map "
+                 "character: the character, its cost; 0 impassable); the agent's capability is "
+                 "the terrains with a cost; --algo aa only for now");
+}
+
+std::optional<TerrainCosts> loadCostsOption(const std::string& file, Algorithm algorithm) {
+  if (file.empty()) return std::nullopt;
+  Result<TerrainCosts> loaded = loadCostTable(file);
+  if (!loaded) throw BadInput{loaded.error().describe()};
+  if (algorithm != Algorithm::AStar) {
+    throw BadInput{
+        fmt::format("--costs: only --algo aa plans under terrain costs so far (got --algo {})",
+                    toString(algorithm))};
+  }
+  return loaded.value();
 }
 
 nlohmann::json agentJson(Agent agent) {

@@ -14,6 +14,7 @@
 #include "pathing/annotated_grid.h"
 #include "pathing/cluster_abstraction.h"
 #include "pathing/planner.h"
+#include "pathing/terrain_costs.h"
 
 namespace warpath::tools {
 
@@ -46,6 +47,13 @@ void addPlannerOptions(CLI::App& cmd, PlannerChoice& choice);
 
 // The algorithm named by `name` ("aa", "haa-hq", "haa-lq", "hybrid"); throws BadInput.
 pathing::Algorithm parseAlgorithm(const std::string& name);
+
+// Adds --costs to `cmd`, bound to `file`.
+void addCostsOption(CLI::App& cmd, std::string& file);
+// The --costs table, or nullopt when `file` is empty; throws BadInput on a bad file, or when
+// `algorithm` cannot plan under costs (only AA* does so far).
+std::optional<pathing::TerrainCosts> loadCostsOption(const std::string& file,
+                                                     pathing::Algorithm algorithm);
 
 // A planner ready for queries: the abstraction (none for AA*) and what preparing it cost.
 // Planners made from it refer to its abstraction, so it must stay where it is meanwhile.
