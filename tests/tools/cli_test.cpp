@@ -107,6 +107,22 @@ TEST(RtsCliTest, PathUnderTerrainCosts) {
       "small.map:1: expected one map character then its cost");
 }
 
+TEST(RtsCliTest, PathForACatalogueUnit) {
+  // Infantry: size 1 on ground, swamp and trees at 1.5, 0.8 and 1.0 cells/s: the same route
+  // and cost as the cost table that says so.
+  const std::string query = "path " + fixture("small.map") + " --from 0,0 --to 5,3 --json";
+  const CommandRun unit = rts(query + " --unit infantry");
+  ASSERT_EQ(unit.exitCode, 0) << unit.err;
+  const CommandRun table = rts(query + " --costs " + fixture("costs_infantry.txt"));
+  ASSERT_EQ(table.exitCode, 0) << table.err;
+  const auto a = nlohmann::json::parse(unit.out);
+  const auto b = nlohmann::json::parse(table.out);
+  EXPECT_NEAR(a["length"].get<double>(), b["length"].get<double>(), 1e-9);
+  EXPECT_EQ(a["path"], b["path"]);
+  EXPECT_EQ(a["agent"]["capability"], "ground,swamp,trees");
+  expectBadInput(query + " --unit bogus", "--unit: no type 'bogus'");
+}
+
 TEST(RtsCliTest, BenchScenUnderTerrainCosts) {
   // The scen's optimal lengths are the weighted costs: they match under --costs only.
   const std::string args = "bench scen " + fixture("small.map") + " " +

@@ -36,6 +36,13 @@ TEST(UnitType, SpeedOnlyOnTerrainsOfTheCapability) {
   EXPECT_EQ(problemWith(t), "");
 }
 
+TEST(UnitType, CostsAreSecondsPerCellOnItsTerrains) {
+  const pathing::TerrainCosts costs = tank().terrainCosts();
+  EXPECT_DOUBLE_EQ(costs.perCell[static_cast<std::size_t>(Terrain::Ground)], 0.5);
+  EXPECT_EQ(costs.perCell[static_cast<std::size_t>(Terrain::Water)], 0.0);  // not entered
+  EXPECT_EQ(costs.capability(), tank().capability);
+}
+
 TEST(UnitType, ProblemsAreNamed) {
   UnitType t = tank();
   t.radius = 1.6;  // wider than the 3-cell footprint

@@ -7,8 +7,11 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
+#include "engine/scenario.h"
 #include "pathing/aa_star.h"
 #include "pathing/annotated_grid.h"
 #include "pathing/map_io.h"
@@ -35,7 +38,22 @@ struct PathOptions {
   std::string png;  // empty: no picture
   bool pngGraph = false;
   std::string costsFile;  // empty: the uniform model
+  std::string unitType;   // empty: the agent of --size and --capability
+  std::string catalogueFile = WARPATH_CATALOGUE;
 };
+
+// The catalogue type named `name`: its agent, and its costs (1 / speed per terrain).
+std::pair<Agent, TerrainCosts> unitAgent(const std::string& catalogueFile,
+                                         const std::string& name) {
+  Result<std::vector<units::UnitType>> catalogue = engine::loadCatalogue(catalogueFile);
+  if (!catalogue) throw BadInput{catalogue.error().describe()};
+  std::string names;
+  for (const units::UnitType& type : catalogue.value()) {
+    if (type.name == name) return {type.agent(), type.terrainCosts()};
+    names += (names.empty() ? "" : ", ") + type.name;
+  }
+  throw BadInput{fmt::format("--unit: no type '{}' in {} (it has {})", name, catalogueFile, names)};
+}
 
 // The map as text with the agent's footprint along the path drawn as '*', start 's', goal 'g'.
 std::string drawPath(const GridMap& map, Agent agent, const std::vector<Cell>& path) {
@@ -67,18 +85,18 @@ std::string drawPath(const GridMap& map, Agent agent, const std::vector<Cell>& p
 int runPath(const PathOptions& options) {
   const Algorithm algorithm = parseAlgorithm(options.planner.algo);
   Agent agent = parseAgent(options.agent);
-  std::optional<TerrainCosts> costs;
-  if (!options.costsFile.empty()) {
-    Result<TerrainCosts> loaded = loadCostTable(options.costsFile);
-    if (!loaded) throw BadInput{loaded.error().describe()};
+  std::optional<TerrainCosts> costs = loadCostsOption(options.costsFile, algorithm);
+  // The agent moves on the terrains that have a cost.
+  if (costs) agent.capability = costs->capability();
+  std::string costSource = options.costsFile;
+  if (!options.unitType.empty()) {
+    costSource = fmt::format("unit {} of {}", options.unitType, options.catalogueFile);
+    std::tie(agent, costs) = unitAgent(options.catalogueFile, options.unitType);
     if (algorithm != Algorithm::AStar) {
       throw BadInput{
-          fmt::format("--costs: only --algo aa plans under terrain costs so far (got --algo {})",
+          fmt::format("--unit: only --algo aa plans under terrain costs so far (got --algo {})",
                       toString(algorithm))};
     }
-    costs = loaded.value();
-    // The agent moves on the terrains that have a cost.
-    agent.capability = costs->capability();
   }
   const Cell from = parseCell(options.from, "--from");
   const Cell to = parseCell(options.to, "--to");
@@ -121,7 +139,7 @@ int runPath(const PathOptions& options) {
     out["to"] = {to.x, to.y};
     out["algo"] = std::string(toString(algorithm));
     out["status"] = std::string(toString(result.status));
-    out["costs"] = costs ? nlohmann::json(options.costsFile) : nlohmann::json(nullptr);
+    out["costs"] = costs ? nlohmann::json(costSource) : nlohmann::json(nullptr);
     out["length"] = result.found() ? nlohmann::json(result.cost) : nlohmann::json(nullptr);
     nlohmann::json cells = nlohmann::json::array();
     for (Cell c : path)
@@ -147,7 +165,7 @@ int runPath(const PathOptions& options) {
     fmt::print("agent     size {}, capability {}\n", agent.size, agent.capability.toString());
     fmt::print("query     {},{} -> {},{}\n", from.x, from.y, to.x, to.y);
     fmt::print("algo      {}{}\n", toString(algorithm),
-               costs ? fmt::format(", terrain costs from {}", options.costsFile) : "");
+               costs ? fmt::format(", terrain costs from {}", costSource) : "");
     fmt::print("status    {}\n", toString(result.status));
     if (result.found()) {
       fmt::print("length    {:.2f} ({} moves)\n", result.cost, path.size() - 1);
@@ -192,7 +210,14 @@ void registerPathCommand(CLI::App& app, CommandRunner& run) {
   cmd->add_option("--from", options->from, "start anchor (upper-left cell) as X,Y")->required();
   cmd->add_option("--to", options->to, "goal anchor (upper-left cell) as X,Y")->required();
   addPlannerOptions(*cmd, options->planner);
-  addCostsOption(*cmd, options->costsFile);
+  CLI::Option* costs = addCostsOption(*cmd, options->costsFile);
+  cmd->add_option("--unit", options->unitType,
+                  "plan for a catalogue type: its size, capability and costs (1 / its speed on "
+                  "each terrain, seconds per cell); --algo aa only for now")
+      ->excludes(costs);
+  cmd->add_option("--catalogue", options->catalogueFile,
+                  "unit catalogue for --unit (default: the bundled assets/units.yaml)")
+      ->needs("--unit");
   cmd->add_flag("--json", options->json, "print one JSON object instead of text");
   cmd->add_flag("--draw", options->draw, "also print the map with the path drawn on it");
   cmd->add_option("--png", options->png,

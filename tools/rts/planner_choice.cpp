@@ -28,11 +28,12 @@ Agent parseAgent(const AgentChoice& choice) {
   return {choice.size, capability.value()};
 }
 
-void addCostsOption(CLI::App& cmd, std::string& file) {
-  cmd.add_option("--costs", file,
-                 "plan under terrain costs from a warthog cost table (one line per map "
-                 "character: the character, its cost; 0 impassable); the agent's capability is "
-                 "the terrains with a cost; --algo aa only for now");
+CLI::Option* addCostsOption(CLI::App& cmd, std::string& file) {
+  return cmd.add_option(
+      "--costs", file,
+      "plan under terrain costs from a warthog cost table (one line per map "
+      "character: the character, its cost; 0 impassable); the agent's capability is "
+      "the terrains with a cost; --algo aa only for now");
 }
 
 std::optional<TerrainCosts> loadCostsOption(const std::string& file, Algorithm algorithm) {

@@ -49,7 +49,7 @@ void addPlannerOptions(CLI::App& cmd, PlannerChoice& choice);
 pathing::Algorithm parseAlgorithm(const std::string& name);
 
 // Adds --costs to `cmd`, bound to `file`.
-void addCostsOption(CLI::App& cmd, std::string& file);
+CLI::Option* addCostsOption(CLI::App& cmd, std::string& file);
 // The --costs table, or nullopt when `file` is empty; throws BadInput on a bad file, or when
 // `algorithm` cannot plan under costs (only AA* does so far).
 std::optional<pathing::TerrainCosts> loadCostsOption(const std::string& file,

@@ -11,6 +11,15 @@ double UnitType::speedOn(Terrain t) const {
   return speed[static_cast<std::size_t>(t)];
 }
 
+pathing::TerrainCosts UnitType::terrainCosts() const {
+  pathing::TerrainCosts costs;
+  for (int slot = 0; slot < pathing::kTraversableTerrainSlots; ++slot) {
+    const double v = speedOn(static_cast<Terrain>(slot));
+    if (v > 0.0) costs.perCell[static_cast<std::size_t>(slot)] = 1.0 / v;
+  }
+  return costs;
+}
+
 double UnitType::maxSpeed() const {
   double best = 0.0;
   for (int slot = 0; slot < pathing::kTraversableTerrainSlots; ++slot)

@@ -9,6 +9,7 @@
 
 #include "pathing/annotated_grid.h"
 #include "pathing/terrain.h"
+#include "pathing/terrain_costs.h"
 #include "units/combat.h"
 
 namespace warpath::units {
@@ -31,6 +32,9 @@ struct UnitType {
   double speedOn(pathing::Terrain t) const;
   // The largest top speed over the capability's terrains.
   double maxSpeed() const;
+  // What the planner charges it (issue 13: cost = time): 1 / top speed per terrain [Unit: s
+  // per cell]; no cost where it has no speed.
+  pathing::TerrainCosts terrainCosts() const;
   // Sets the same top speed on every terrain.
   void setSpeed(double cellsPerSecond) { speed.fill(cellsPerSecond); }
 };
