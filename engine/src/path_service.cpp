@@ -36,12 +36,15 @@ std::string problemWith(const PathServiceSettings& settings) {
   }
   if (settings.corridor < 1 || settings.corridor > 64)
     return "corridor must be 1..64 (got " + std::to_string(settings.corridor) + ")";
+  if (settings.terrainCosts && settings.algorithm != Algorithm::AStar)
+    return "terrainCosts needs algorithm aa (weighted HAA* is not built yet)";
   return {};
 }
 
 PathService::PathService(const AnnotatedGrid& grid, const PathServiceSettings& settings,
-                         std::vector<Capability> capabilities, int maxAgentSize)
-    : settings_(settings) {
+                         std::vector<Capability> capabilities, int maxAgentSize,
+                         std::vector<CostField> costProfiles)
+    : settings_(settings), costProfiles_(std::move(costProfiles)) {
   if (std::string problem = problemWith(settings); !problem.empty())
     throw std::invalid_argument(problem);
   const auto began = std::chrono::steady_clock::now();
@@ -54,6 +57,7 @@ PathService::PathService(const AnnotatedGrid& grid, const PathServiceSettings& s
     abstraction_ = std::make_unique<ClusterAbstraction>(ClusterAbstraction::build(grid, spec));
   }
   planner_.emplace(grid, settings.algorithm, abstraction_.get());
+  if (!costProfiles_.empty()) weighted_.emplace(grid);
   metrics_.preprocessMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
 }
@@ -76,7 +80,8 @@ std::uint64_t PathService::serve(std::vector<PathDelivery>& out) {
     const PathRequest& front = queue_.front();
     const Key key{front.agent.size, front.agent.capability.mask(),
                   front.start.x,    front.start.y,
-                  front.goal.x,     front.goal.y};
+                  front.goal.x,     front.goal.y,
+                  front.costProfile};
     auto hit = cache_.find(key);
     // Cached answers cost no budget, so duplicates queued behind a search ride along with it.
     if (hit == cache_.end() && spent >= settings_.expansionBudget) break;
@@ -86,8 +91,13 @@ std::uint64_t PathService::serve(std::vector<PathDelivery>& out) {
       ++metrics_.cacheHits;
     } else {
       std::vector<Cell> cells;
+      const bool weighted = request.costProfile >= 0 &&
+                            static_cast<std::size_t>(request.costProfile) < costProfiles_.size();
       const PathResult result =
-          planner_->findPath(request.agent, request.start, request.goal, &cells);
+          weighted
+              ? weighted_->findPath(request.agent, request.start, request.goal, &cells,
+                                    costProfiles_[static_cast<std::size_t>(request.costProfile)])
+              : planner_->findPath(request.agent, request.start, request.goal, &cells);
       ++metrics_.searches;
       metrics_.expanded += result.metrics.expanded;
       metrics_.microseconds += result.metrics.microseconds;

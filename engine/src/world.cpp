@@ -88,8 +88,15 @@ World::World(std::shared_ptr<const AnnotatedGrid> grid, std::vector<units::UnitT
   state_.rng = SplitMix64(settings_.seed);
   state_.goals = GoalBoard(grid_->map());
   state_.physics = std::make_unique<Physics>(grid_->map(), capabilities);
-  state_.paths = std::make_unique<PathService>(*grid_, settings_.pathing, capabilities,
-                                               world::maxUnitSize(catalogue_));
+  // With terrain costs, one cost profile per catalogue type (index = type).
+  std::vector<CostField> costProfiles;
+  if (settings_.pathing.terrainCosts) {
+    for (const units::UnitType& type : catalogue_)
+      costProfiles.emplace_back(*grid_, type.agent(), type.terrainCosts());
+  }
+  state_.paths =
+      std::make_unique<PathService>(*grid_, settings_.pathing, capabilities,
+                                    world::maxUnitSize(catalogue_), std::move(costProfiles));
   // Reservations are kept at the chokepoints of the kinds of unit on the map only (spawn adds
   // them): in the open, Box2D lets units slide past each other, and reserving there made group
   // moves 10-30 % slower (docs/cooperative.md).

@@ -16,9 +16,11 @@
 #include <vector>
 
 #include "engine/handle.h"
+#include "pathing/aa_star.h"
 #include "pathing/annotated_grid.h"
 #include "pathing/cluster_abstraction.h"
 #include "pathing/planner.h"
+#include "pathing/terrain_costs.h"
 
 namespace warpath::engine {
 
@@ -42,6 +44,10 @@ struct PathServiceSettings {
   // a reverse resumable A* (exact distances on the whole map) as the heuristic.
   bool corridorSearch = true;
   int corridor = 4;  // [Unit: cells] [Limit: 1..64] the CPRA*(k) corridor's half-width k
+  // Terrain costs (docs/terrain_costs.md): each unit type plans the fastest route for its own
+  // speeds (cost = 1 / speed per terrain) instead of the shortest in cells. Needs algorithm
+  // AStar until weighted HAA* lands; off by default, so scenarios plan as they always did.
+  bool terrainCosts = false;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
 
@@ -51,6 +57,7 @@ struct PathRequest {
   pathing::Agent agent;
   pathing::Cell start;
   pathing::Cell goal;
+  int costProfile = -1;  // index into the service's cost profiles; -1: every cell costs 1
 };
 
 // A found path: anchor cells from start to goal, and a digest of them computed once when the
@@ -93,8 +100,10 @@ class PathService {
   // problemWith(settings) is not empty, or (for the hierarchical algorithms) when the
   // abstraction's spec is not usable (pathing::problemWith(AbstractionSpec): capabilities
   // empty, maxAgentSize outside 1..255); callers taking user input check problemWith first.
+  // `costProfiles`: what requests with costProfile >= 0 plan by (used with terrainCosts).
   PathService(const pathing::AnnotatedGrid& grid, const PathServiceSettings& settings,
-              std::vector<pathing::Capability> capabilities, int maxAgentSize);
+              std::vector<pathing::Capability> capabilities, int maxAgentSize,
+              std::vector<pathing::CostField> costProfiles = {});
   ~PathService();
   PathService(const PathService&) = delete;
   PathService& operator=(const PathService&) = delete;
@@ -115,7 +124,7 @@ class PathService {
   const pathing::ClusterAbstraction* abstraction() const { return abstraction_.get(); }
 
  private:
-  using Key = std::tuple<int, std::uint8_t, int, int, int, int>;
+  using Key = std::tuple<int, std::uint8_t, int, int, int, int, int>;
   struct Answer {
     pathing::PathStatus status;
     SharedPath path;
@@ -124,6 +133,8 @@ class PathService {
   PathServiceSettings settings_;
   std::unique_ptr<pathing::ClusterAbstraction> abstraction_;
   std::optional<pathing::Planner> planner_;
+  std::vector<pathing::CostField> costProfiles_;
+  std::optional<pathing::AnnotatedAStar> weighted_;
   std::deque<PathRequest> queue_;
   std::map<Key, Answer> cache_;
   std::deque<Key> cacheOrder_;  // insertion order, for eviction

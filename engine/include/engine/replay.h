@@ -25,9 +25,10 @@ namespace warpath::engine {
 // run state) instead of format 2's hand-picked field list, which is still computed
 // (World::legacyStateHash) so that format-2 files verify. 4: the same records, recorded with
 // cooperative movement (docs/cooperative.md); the hashes cover its state too (a format-3 file's
-// hashes are computed without it: engine/state_description.h's Since). Version-1 files (move
-// orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 4;
+// hashes are computed without it: engine/state_description.h's Since). 5: the same, the hashes
+// also covering each queued path request's cost profile (terrain costs, docs/terrain_costs.md).
+// Version-1 files (move orders only) are refused with a message saying so.
+inline constexpr std::uint32_t kReplayVersion = 5;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;

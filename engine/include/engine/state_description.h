@@ -21,7 +21,7 @@ namespace warpath::engine {
 struct Since {
   std::uint32_t format;
 };
-inline constexpr std::uint32_t kStateFormat = 4;
+inline constexpr std::uint32_t kStateFormat = 5;
 
 template <class V>
 void describe(V& v, const pathing::Cell& c) {
@@ -173,6 +173,7 @@ void describe(V& v, const PathRequest& r) {
   v("agent", r.agent);
   v("start", r.start);
   v("goal", r.goal);
+  v(Since{5}, "costProfile", r.costProfile);
 }
 // Box2D's own state (contacts, warm starts) is not reachable; the bodies' positions and
 // velocities are, through the units they move (read back every step), and so is the count.

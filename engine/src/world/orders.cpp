@@ -252,8 +252,9 @@ void pursue(Refs& w, Unit& unit, bool force) {
 
 void requestPath(Refs& w, Unit& unit) {
   ++unit.pathSerial;
-  w.state.paths->request(
-      {unit.id, unit.pathSerial, w.typeOf(unit).agent(), nearestStandable(w, unit), unit.goalCell});
+  w.state.paths->request({unit.id, unit.pathSerial, w.typeOf(unit).agent(),
+                          nearestStandable(w, unit), unit.goalCell,
+                          w.settings.pathing.terrainCosts ? unit.type : -1});
 }
 
 std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
