@@ -92,11 +92,7 @@ int runPath(const PathOptions& options) {
   if (!options.unitType.empty()) {
     costSource = fmt::format("unit {} of {}", options.unitType, options.catalogueFile);
     std::tie(agent, costs) = unitAgent(options.catalogueFile, options.unitType);
-    if (algorithm != Algorithm::AStar) {
-      throw BadInput{
-          fmt::format("--unit: only --algo aa plans under terrain costs so far (got --algo {})",
-                      toString(algorithm))};
-    }
+    requireCostPlanner(algorithm, "--unit");
   }
   const Cell from = parseCell(options.from, "--from");
   const Cell to = parseCell(options.to, "--to");

@@ -36,15 +36,17 @@ CLI::Option* addCostsOption(CLI::App& cmd, std::string& file) {
       "the terrains with a cost; --algo aa only for now");
 }
 
+void requireCostPlanner(Algorithm algorithm, std::string_view option) {
+  if (algorithm == Algorithm::AStar) return;
+  throw BadInput{fmt::format("{}: only --algo aa plans under terrain costs so far (got --algo {})",
+                             option, toString(algorithm))};
+}
+
 std::optional<TerrainCosts> loadCostsOption(const std::string& file, Algorithm algorithm) {
   if (file.empty()) return std::nullopt;
   Result<TerrainCosts> loaded = loadCostTable(file);
   if (!loaded) throw BadInput{loaded.error().describe()};
-  if (algorithm != Algorithm::AStar) {
-    throw BadInput{
-        fmt::format("--costs: only --algo aa plans under terrain costs so far (got --algo {})",
-                    toString(algorithm))};
-  }
+  requireCostPlanner(algorithm, "--costs");
   return loaded.value();
 }
 

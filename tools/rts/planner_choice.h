@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pathing/annotated_grid.h"
@@ -50,8 +51,11 @@ pathing::Algorithm parseAlgorithm(const std::string& name);
 
 // Adds --costs to `cmd`, bound to `file`.
 CLI::Option* addCostsOption(CLI::App& cmd, std::string& file);
+// Throws BadInput, naming `option`, when `algorithm` cannot plan under terrain costs (only AA*
+// does so far).
+void requireCostPlanner(pathing::Algorithm algorithm, std::string_view option);
 // The --costs table, or nullopt when `file` is empty; throws BadInput on a bad file, or when
-// `algorithm` cannot plan under costs (only AA* does so far).
+// `algorithm` cannot plan under costs (requireCostPlanner).
 std::optional<pathing::TerrainCosts> loadCostsOption(const std::string& file,
                                                      pathing::Algorithm algorithm);
 
