@@ -10,9 +10,9 @@
 
 #include "pathing/aa_star.h"
 #include "pathing/cooperative_search.h"
-#include "pathing/map_generator.h"
 #include "pathing/map_io.h"
 #include "pathing/moves.h"
+#include "random_grid.h"
 
 namespace warpath::pathing {
 namespace {
@@ -70,15 +70,6 @@ CooperativeRequest requestFor(Agent agent, Cell start, Cell goal, Tick window) {
   r.maxWindow = 4 * window;
   r.holdTicks = 10;
   return r;
-}
-
-AnnotatedGrid randomGrid(int width, int height, std::uint64_t seed, int blockedPercent) {
-  RandomMapSpec spec;
-  spec.width = width;
-  spec.height = height;
-  spec.seed = seed;
-  spec.blockedPercent = blockedPercent;
-  return AnnotatedGrid(generateRandomMap(spec));
 }
 
 // Each step is a wait or one legal move lasting what its terrain says.
