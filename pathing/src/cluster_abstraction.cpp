@@ -25,11 +25,20 @@ std::string problemWith(const AbstractionSpec& spec) {
       return "capabilities[" + std::to_string(i) + "] must allow at least one terrain (got none)";
     }
   }
+  if (spec.costs) {
+    if (spec.capabilities.size() != 1) {
+      return "capabilities must hold exactly one capability when costs are given (got " +
+             std::to_string(spec.capabilities.size()) + ")";
+    }
+    if (!spec.capabilities[0].isSubsetOf(spec.costs->capability()))
+      return "costs must give a cost to every terrain of capabilities[0]";
+  }
   return {};
 }
 
 bool ClusterAbstraction::supports(Agent agent) const {
-  return agent.size >= 1 && agent.size <= spec_.maxAgentSize &&
+  const int smallest = costs_ ? spec_.maxAgentSize : 1;
+  return agent.size >= smallest && agent.size <= spec_.maxAgentSize &&
          std::find(spec_.capabilities.begin(), spec_.capabilities.end(), agent.capability) !=
              spec_.capabilities.end();
 }
@@ -72,9 +81,16 @@ void ClusterAbstraction::appendEdgeCells(std::uint32_t from, const AbstractEdge&
 class AbstractionBuilder {
  public:
   AbstractionBuilder(const AnnotatedGrid& grid, AbstractionSpec spec)
-      : grid_(grid), map_(grid.map()), maxSize_(spec.maxAgentSize) {
+      : grid_(grid),
+        map_(grid.map()),
+        maxSize_(spec.maxAgentSize),
+        minSize_(spec.costs ? spec.maxAgentSize : 1) {
     out_.grid_ = &grid;
     out_.spec_ = std::move(spec);
+    if (out_.spec_.costs) {
+      out_.costs_.emplace(grid, Agent{maxSize_, out_.spec_.capabilities[0]}, *out_.spec_.costs);
+      costs_ = &*out_.costs_;
+    }
     const int b = out_.spec_.clusterSize;
     out_.clustersX_ = (map_.width() + b - 1) / b;
     out_.clustersY_ = (map_.height() + b - 1) / b;
@@ -126,9 +142,17 @@ class AbstractionBuilder {
   };
 
   // Clearance of `cell` for capability `ci`, truncated to the largest agent size: beyond
-  // it, differences cannot matter to any agent the graph serves.
+  // it, differences cannot matter to any agent the graph serves. Below the smallest (a
+  // weighted graph serves one size) the cell is as closed as a wall.
   int truncated(std::size_t ci, Cell cell) const {
-    return std::min<int>(fields_[ci]->at(cell), maxSize_);
+    const int clearance = std::min<int>(fields_[ci]->at(cell), maxSize_);
+    return clearance < minSize_ ? 0 : clearance;
+  }
+
+  // What crossing from `from` to its orthogonal neighbour `to` costs: 1, or the weighted
+  // graph's agent's travel time.
+  double crossingCost(Cell from, Cell to) const {
+    return costs_ ? costs_->moveCost(from, directionOf(to.x - from.x, to.y - from.y)) : 1.0;
   }
 
   std::uint32_t nodeAt(Cell cell) {
@@ -147,7 +171,7 @@ class AbstractionBuilder {
     Candidate e;
     e.a = a;
     e.b = b;
-    e.cost = 1.0;
+    e.cost = crossingCost(first, second);
     e.capability = capabilities_[ci];
     e.clearance = static_cast<std::uint8_t>(clearance);
     candidates_.push_back(e);
@@ -156,8 +180,9 @@ class AbstractionBuilder {
   // One border: pairs (inside[i], outside[i]) of adjacent cells in two clusters, in scan
   // order (left to right, or top to bottom, the directions in which clearance can only rise
   // by jumps and fall by one). Entrances are maximal runs of pairs open for the capability
-  // whose clearances never rise on either side; each gets one transition at the pair of
-  // largest clearance nearest the entrance's middle.
+  // whose clearances never rise on either side (and, in a weighted graph, that cost the same
+  // to cross: transitions are then chosen by cost too); each gets one transition at the pair
+  // of largest clearance nearest the entrance's middle.
   void scanBorder(std::span<const Cell> first, std::span<const Cell> second) {
     const std::size_t n = first.size();
     for (std::size_t ci = 0; ci < fields_.size(); ++ci) {
@@ -172,11 +197,13 @@ class AbstractionBuilder {
         const std::size_t begin = i;
         // Clearances never rise along the run, so the maximal pairs are a prefix of it.
         const int best = std::min(cvA, cvB);
+        const double cost = crossingCost(first[i], second[i]);
         std::size_t bestEnd = i;
         for (++i; i < n; ++i) {
           const int nextA = truncated(ci, first[i]);
           const int nextB = truncated(ci, second[i]);
           if (nextA == 0 || nextB == 0 || nextA > cvA || nextB > cvB) break;
+          if (costs_ && crossingCost(first[i], second[i]) != cost) break;
           cvA = nextA;
           cvB = nextB;
           if (std::min(cvA, cvB) == best) bestEnd = i;
@@ -238,7 +265,7 @@ class AbstractionBuilder {
         const Capability capability = capabilities_[ci];
         // coveredTo[i]: sizes up to this are already answered for sources nodes[i].
         std::vector<int> coveredTo(nodes.size(), 0);
-        for (int size = 1; size <= maxSize_; ++size) {
+        for (int size = minSize_; size <= maxSize_; ++size) {
           const AgentLayer& layer = grid_.layer({size, capability});
           for (std::size_t i = 0; i < nodes.size(); ++i) {
             const Cell source = nodeCells_[nodes[i]];
@@ -251,7 +278,7 @@ class AbstractionBuilder {
               targetNodes.push_back(nodes[j]);
             }
             if (targets.empty()) continue;
-            dijkstra.run(map_, layer, region, source, targets);
+            dijkstra.run(map_, layer, region, source, targets, costs_);
             int covers = maxSize_;
             for (std::size_t t = 0; t < targets.size(); ++t) {
               if (!dijkstra.reached(targets[t])) continue;
@@ -353,7 +380,7 @@ class AbstractionBuilder {
   void pruneDominatedCrossings() {
     // Weak dominance alone would accept any detour; between rooms whose doors lie a cluster
     // apart that made LQ paths 6 % longer on 8room_000 (1 % with this bound, measured).
-    const double maxDetour = out_.spec_.clusterSize;
+    const double maxDetour = out_.spec_.clusterSize * (costs_ ? costs_->cheapest() : 1.0);
     rebuildAdjacency();
     for (std::uint32_t id = 0; id < candidates_.size(); ++id) {
       Candidate& e = candidates_[id];
@@ -561,7 +588,8 @@ class AbstractionBuilder {
         const Cell to = g.nodeCell(e.target);
         if (!e.intra) {
           WARPATH_INVARIANT(std::abs(to.x - from.x) + std::abs(to.y - from.y) == 1 &&
-                                g.clusterOf(to) != g.clusterOf(from) && e.cost == 1.0,
+                                g.clusterOf(to) != g.clusterOf(from) &&
+                                e.cost == crossingCost(from, to),
                             "abstraction: inter-edge must cross a border in one step");
           continue;
         }
@@ -578,7 +606,8 @@ class AbstractionBuilder {
                             "abstraction: cached path step illegal for the edge's agents");
           WARPATH_INVARIANT(bounds.contains(cells[i]), "abstraction: cached path leaves cluster");
         }
-        WARPATH_INVARIANT(cells.back() == to && std::abs(pathCost(cells) - e.cost) < 1e-6,
+        const double walked = costs_ ? costs_->pathCost(cells) : pathCost(cells);
+        WARPATH_INVARIANT(cells.back() == to && std::abs(walked - e.cost) < 1e-6,
                           "abstraction: cached path must reach the target at the edge's cost");
       }
     }
@@ -587,6 +616,8 @@ class AbstractionBuilder {
   const AnnotatedGrid& grid_;
   const GridMap& map_;
   int maxSize_;
+  int minSize_;                       // smallest agent served: 1, or maxSize_ in a weighted graph
+  const CostField* costs_ = nullptr;  // the weighted graph's agent's costs, in out_
   ClusterAbstraction out_;
   std::vector<Capability> capabilities_;  // effective capabilities, built
   std::vector<const ClearanceField*> fields_;

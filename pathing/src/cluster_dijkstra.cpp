@@ -6,7 +6,7 @@
 namespace warpath::pathing {
 
 void ClusterDijkstra::run(const GridMap& map, const AgentLayer& layer, CellRect region, Cell source,
-                          std::span<const Cell> targets) {
+                          std::span<const Cell> targets, const CostField* costs) {
   region_ = region;
   expanded_ = 0;
   generated_ = 1;  // the source
@@ -63,7 +63,7 @@ void ClusterDijkstra::run(const GridMap& map, const AgentLayer& layer, CellRect 
       if (nx < 0 || ny < 0 || nx >= width || ny >= region.height) continue;
       const std::size_t next = static_cast<std::size_t>(ny) * static_cast<std::size_t>(width) +
                                static_cast<std::size_t>(nx);
-      const double ng = g + dir.cost;
+      const double ng = g + (costs ? costs->moveCost(here, d) : dir.cost);
       if (stamp_[next] == settled || (stamp_[next] == openStamp && ng >= g_[next])) continue;
       stamp_[next] = openStamp;
       g_[next] = ng;

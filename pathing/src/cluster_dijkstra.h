@@ -11,16 +11,18 @@
 #include "pathing/annotated_grid.h"
 #include "pathing/moves.h"
 #include "pathing/open_list.h"
+#include "pathing/terrain_costs.h"
 
 namespace warpath::pathing {
 
 class ClusterDijkstra {
  public:
   // Settles cells of `region` reachable from `source` (inside it) in cost order, and stops
-  // early once every cell of `targets` that lies in the region is settled.
+  // early once every cell of `targets` that lies in the region is settled. Moves cost their
+  // length, or with `costs` (built for the layer's agent) their travel time.
   // [Limit: region inside the map, source in region]
   void run(const GridMap& map, const AgentLayer& layer, CellRect region, Cell source,
-           std::span<const Cell> targets);
+           std::span<const Cell> targets, const CostField* costs = nullptr);
 
   bool reached(Cell c) const { return region_.contains(c) && stamp_[local(c)] == settledStamp(); }
   // [Limit: reached(c)]

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "cluster_dijkstra.h"
 #include "limit_messages.h"
@@ -93,16 +94,25 @@ HierarchicalAStar::HierarchicalAStar(const ClusterAbstraction& abstraction, HaaO
 
 HierarchicalAStar::~HierarchicalAStar() = default;
 
+PathResult HierarchicalAStar::gridSearch(Agent agent, Cell start, Cell goal,
+                                         std::vector<Cell>* path, const SearchLimits& limits) {
+  if (const CostField* costs = abstraction_.costs())
+    return gridSearch_.findPath(agent, start, goal, path, *costs, limits);
+  return gridSearch_.findPath(agent, start, goal, path, limits);
+}
+
 namespace {
 
 // Straight connections for smoothing: the octile-shortest walks from a to b that keep to a
 // simple shape (all diagonal moves first, all straight moves first, or the two interleaved
-// as evenly as a line), tried in turn; the first legal one for the agent is appended.
+// as evenly as a line), tried in turn; the first legal one for the agent that costs less
+// than `budget` (its length, or with costs its travel time) is appended.
 class StraightWalker {
  public:
-  StraightWalker(const GridMap& map, const AgentLayer& layer) : map_(map), layer_(layer) {}
+  StraightWalker(const GridMap& map, const AgentLayer& layer, const CostField* costs)
+      : map_(map), layer_(layer), costs_(costs) {}
 
-  bool tryAppend(Cell a, Cell b, std::vector<Cell>* out) const {
+  bool tryAppend(Cell a, Cell b, double budget, std::vector<Cell>* out) const {
     const int dx = b.x - a.x;
     const int dy = b.y - a.y;
     const int ax = std::abs(dx);
@@ -124,7 +134,7 @@ class StraightWalker {
         // integer, like a line drawn from a to b.
         return ((k + 1) * diagonals) / total != (k * diagonals) / total ? diagonal : straight;
       };
-      if (legal(a, total, moveAt)) {
+      if (walkCost(a, total, moveAt) < budget) {
         Cell at = a;
         for (int k = 0; k < total; ++k) {
           const Direction& dir = kDirections[static_cast<std::size_t>(moveAt(k))];
@@ -138,21 +148,26 @@ class StraightWalker {
   }
 
  private:
+  // The walk's cost, or infinity when a move of it is illegal for the agent.
   template <class MoveAt>
-  bool legal(Cell from, int total, const MoveAt& moveAt) const {
+  double walkCost(Cell from, int total, const MoveAt& moveAt) const {
     const std::uint8_t* masks = layer_.moveMasks().data();
     Cell at = from;
+    double cost = 0.0;
     for (int k = 0; k < total; ++k) {
       const int d = moveAt(k);
-      if ((masks[map_.indexOf(at)] & (1u << d)) == 0) return false;
+      if ((masks[map_.indexOf(at)] & (1u << d)) == 0)
+        return std::numeric_limits<double>::infinity();
+      cost += costs_ ? costs_->moveCost(at, d) : kDirections[static_cast<std::size_t>(d)].cost;
       at = {at.x + kDirections[static_cast<std::size_t>(d)].dx,
             at.y + kDirections[static_cast<std::size_t>(d)].dy};
     }
-    return true;
+    return cost;
   }
 
   const GridMap& map_;
   const AgentLayer& layer_;
+  const CostField* costs_;
 };
 
 }  // namespace
@@ -165,6 +180,7 @@ PathResult HierarchicalAStar::findPath(Agent agent, Cell start, Cell goal,
   const auto finish = [&](PathStatus status) { return finishQuery(result, status, clock); };
   const AnnotatedGrid& grid = abstraction_.grid();
   if (const auto answer = screenEndpoints(grid, agent, start, goal)) return finish(*answer);
+  // A weighted graph's costs are its one agent's: any other is planned in the uniform model.
   if (!abstraction_.supports(agent)) {
     result = gridSearch_.findPath(agent, start, goal, path);
     result.metrics.gridExpanded = result.metrics.expanded;
@@ -198,7 +214,8 @@ PathResult HierarchicalAStar::findPath(Agent agent, Cell start, Cell goal,
         "HAA* smoothing must keep a path from start to goal of moves legal for the agent");
   }
 
-  result.cost = pathCost(cells);
+  const CostField* costs = abstraction_.costs();
+  result.cost = costs ? costs->pathCost(cells) : pathCost(cells);
   metrics.expanded = metrics.insertionExpanded + metrics.abstractExpanded +
                      metrics.refinementExpanded + metrics.gridExpanded;
   if (path) path->assign(cells.begin(), cells.end());
@@ -213,7 +230,7 @@ bool HierarchicalAStar::searchSameCluster(Agent agent, Cell start, Cell goal,
   if (cluster != abstraction_.clusterOf(goal)) return false;
   SearchLimits inCluster;
   inCluster.region = abstraction_.clusterBounds(cluster);
-  const PathResult local = gridSearch_.findPath(agent, start, goal, &scratch_->refined, inCluster);
+  const PathResult local = gridSearch(agent, start, goal, &scratch_->refined, inCluster);
   metrics.insertionExpanded += local.metrics.expanded;
   metrics.generated += local.metrics.generated;
   return local.found();
@@ -236,13 +253,13 @@ void HierarchicalAStar::insertEndpoints(const AgentLayer& layer, Cell start, Cel
     return std::span<const Cell>(s.clusterCells);
   };
   s.startSearch.run(map, layer, abstraction_.clusterBounds(startCluster), start,
-                    clusterCells(startCluster));
+                    clusterCells(startCluster), abstraction_.costs());
   for (std::uint32_t n : abstraction_.nodesInCluster(startCluster)) {
     const Cell c = abstraction_.nodeCell(n);
     if (s.startSearch.reached(c)) s.startLinks.push_back({n, s.startSearch.cost(c)});
   }
   s.goalSearch.run(map, layer, abstraction_.clusterBounds(goalCluster), goal,
-                   clusterCells(goalCluster));
+                   clusterCells(goalCluster), abstraction_.costs());
   for (std::uint32_t n : abstraction_.nodesInCluster(goalCluster)) {
     const Cell c = abstraction_.nodeCell(n);
     if (!s.goalSearch.reached(c)) continue;
@@ -260,7 +277,8 @@ bool HierarchicalAStar::searchAbstract(Agent agent, Cell start, Cell goal, Searc
   Scratch& s = *scratch_;
   const std::uint32_t startNode = abstraction_.nodeCount();
   const std::uint32_t goalNode = startNode + 1;
-  const auto heuristic = [&](Cell c) { return octileDistance(goal.x - c.x, goal.y - c.y); };
+  const double scale = abstraction_.costs() ? abstraction_.costs()->cheapest() : 1.0;
+  const auto heuristic = [&](Cell c) { return scale * octileDistance(goal.x - c.x, goal.y - c.y); };
   const std::uint32_t openStamp = s.generation * 2;
   const std::uint32_t closedStamp = openStamp + 1;
   const auto relax = [&](std::uint32_t from, std::uint32_t to, double cost,
@@ -342,8 +360,8 @@ bool HierarchicalAStar::refine(Agent agent, Cell start, SearchMetrics& metrics) 
         inCluster.region =
             abstraction_.clusterBounds(abstraction_.clusterOf(abstraction_.nodeCell(from)));
         std::vector<Cell>& piece = s.smoothed;
-        const PathResult r = gridSearch_.findPath(agent, abstraction_.nodeCell(from),
-                                                  abstraction_.nodeCell(to), &piece, inCluster);
+        const PathResult r = gridSearch(agent, abstraction_.nodeCell(from),
+                                        abstraction_.nodeCell(to), &piece, inCluster);
         metrics.refinementExpanded += r.metrics.expanded;
         metrics.generated += r.metrics.generated;
         WARPATH_INVARIANT(r.found(),
@@ -358,7 +376,7 @@ bool HierarchicalAStar::refine(Agent agent, Cell start, SearchMetrics& metrics) 
 
 // Smoothing keeps every step legal: (1) cut loops (a cell visited twice), then (2) greedily
 // replace stretches of the path by straight octile walks that are legal for the agent and
-// shorter, looking up to a few clusters ahead.
+// cheaper (shorter, or under costs faster), looking up to a few clusters ahead.
 void HierarchicalAStar::smooth(const AgentLayer& layer) {
   Scratch& s = *scratch_;
   const GridMap& map = abstraction_.grid().map();
@@ -392,13 +410,18 @@ void HierarchicalAStar::smooth(const AgentLayer& layer) {
   // (2) Straight shortcuts.
   const std::size_t n = cells.size();
   if (n < 3) return;
+  const CostField* costs = abstraction_.costs();
   s.prefixCost.assign(n, 0.0);
   for (std::size_t i = 1; i < n; ++i) {
-    const bool diagonal = cells[i].x != cells[i - 1].x && cells[i].y != cells[i - 1].y;
-    s.prefixCost[i] = s.prefixCost[i - 1] + (diagonal ? kSqrt2 : 1.0);
+    const int d = directionOf(cells[i].x - cells[i - 1].x, cells[i].y - cells[i - 1].y);
+    s.prefixCost[i] = s.prefixCost[i - 1] + (costs ? costs->moveCost(cells[i - 1], d)
+                                                   : kDirections[static_cast<std::size_t>(d)].cost);
   }
+  // Octile distance times the cheapest cost bounds every walk from below: most candidate
+  // shortcuts are rejected on it without walking them.
+  const double scale = costs ? costs->cheapest() : 1.0;
   const std::size_t lookahead = static_cast<std::size_t>(abstraction_.spec().clusterSize) * 3;
-  const StraightWalker walker(map, layer);
+  const StraightWalker walker(map, layer, costs);
   std::vector<Cell>& out = s.smoothed;
   out.clear();
   out.push_back(cells[0]);
@@ -413,9 +436,11 @@ void HierarchicalAStar::smooth(const AgentLayer& layer) {
                          cells[i].y - cells[i - 1].y != cells[i + 1].y - cells[i].y;
     const std::size_t farthest = turning ? std::min(n - 1, i + lookahead) : i + 1;
     for (std::size_t j = farthest; j >= i + 2; --j) {
-      const double direct = octileDistance(cells[j].x - cells[i].x, cells[j].y - cells[i].y);
-      if (direct >= s.prefixCost[j] - s.prefixCost[i] - 1e-9) continue;
-      if (walker.tryAppend(cells[i], cells[j], &out)) {
+      const double budget = s.prefixCost[j] - s.prefixCost[i] - 1e-9;
+      const double direct =
+          scale * octileDistance(cells[j].x - cells[i].x, cells[j].y - cells[i].y);
+      if (direct >= budget) continue;
+      if (walker.tryAppend(cells[i], cells[j], budget, &out)) {
         next = j;
         break;
       }
@@ -443,7 +468,9 @@ PathResult HybridPlanner::findPath(Agent agent, Cell start, Cell goal, std::vect
   if (std::sqrt(dx * dx + dy * dy) <= shortQueryDistance_) {
     SearchLimits budget;
     budget.maxExpanded = options_.tau;
-    PathResult quick = hierarchical_.gridSearch_.findPath(agent, start, goal, path, budget);
+    PathResult quick = hierarchical_.abstraction_.supports(agent)
+                           ? hierarchical_.gridSearch(agent, start, goal, path, budget)
+                           : hierarchical_.gridSearch_.findPath(agent, start, goal, path, budget);
     quick.metrics.gridExpanded = quick.metrics.expanded;
     quick.metrics.usedGridSearch = true;
     if (quick.status != PathStatus::BudgetExhausted) return quick;

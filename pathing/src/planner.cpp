@@ -48,8 +48,9 @@ using Impl = std::variant<AnnotatedAStar, HierarchicalAStar, HybridPlanner>;
 }  // namespace
 
 Planner::Planner(const AnnotatedGrid& grid, Algorithm algorithm,
-                 const ClusterAbstraction* abstraction, HybridOptions hybrid, HaaOptions haa)
-    : algorithm_(algorithm), impl_([&]() -> Impl {
+                 const ClusterAbstraction* abstraction, HybridOptions hybrid, HaaOptions haa,
+                 const CostField* costs)
+    : algorithm_(algorithm), costs_(costs), impl_([&]() -> Impl {
         limits::require(problemWith(grid, algorithm, abstraction, hybrid));
         switch (algorithm) {
           case Algorithm::HaaHigh:
@@ -64,6 +65,8 @@ Planner::Planner(const AnnotatedGrid& grid, Algorithm algorithm,
       }()) {}
 
 PathResult Planner::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path) {
+  if (auto* grid = std::get_if<AnnotatedAStar>(&impl_); grid && costs_)
+    return grid->findPath(agent, start, goal, path, *costs_);
   return std::visit([&](auto& planner) { return planner.findPath(agent, start, goal, path); },
                     impl_);
 }

@@ -15,6 +15,7 @@
 #include "pathing/map_generator.h"
 #include "pathing/random.h"
 #include "pathing/search.h"
+#include "pathing/terrain_costs.h"
 
 namespace warpath::testing {
 
@@ -54,10 +55,12 @@ inline std::string describeQuery(Agent agent, Cell start, Cell goal) {
 // Empty when `result` (with `path`) answers start -> goal as a complete planner must, given
 // AA*'s `optimum` for the same query: the same status; when found, a legal path from start to
 // goal whose cost is result.cost and at least the optimum (both within 1e-6); and metrics whose
-// phases, when split, add up to the total. Else what is wrong.
+// phases, when split, add up to the total. Else what is wrong. Costs are lengths, or with
+// `costs` (built for the agent) travel times.
 inline std::string completenessProblem(const pathing::AnnotatedGrid& grid, Agent agent, Cell start,
                                        Cell goal, const PathResult& optimum,
-                                       const PathResult& result, const std::vector<Cell>& path) {
+                                       const PathResult& result, const std::vector<Cell>& path,
+                                       const pathing::CostField* costs = nullptr) {
   std::ostringstream problem;
   if (result.status != optimum.status) {
     problem << "status " << toString(result.status) << ", AA* says " << toString(optimum.status);
@@ -81,8 +84,9 @@ inline std::string completenessProblem(const pathing::AnnotatedGrid& grid, Agent
     return illegal;
   }
   problem.precision(9);
-  if (std::abs(pathing::pathCost(path) - result.cost) > 1e-6) {
-    problem << "the path costs " << pathing::pathCost(path) << ", the result says " << result.cost;
+  const double walked = costs ? costs->pathCost(path) : pathing::pathCost(path);
+  if (std::abs(walked - result.cost) > 1e-6) {
+    problem << "the path costs " << walked << ", the result says " << result.cost;
     return problem.str();
   }
   if (result.cost < optimum.cost - 1e-6) {
@@ -92,25 +96,29 @@ inline std::string completenessProblem(const pathing::AnnotatedGrid& grid, Agent
   return {};
 }
 
-// One query of a completeness run, with AA*'s answer.
+// One query of a completeness run, with AA*'s answer (under `costs` when not null).
 struct CompletenessCase {
   Agent agent;
   pathing::Query query;
   PathResult optimum;
+  const pathing::CostField* costs = nullptr;
 };
 
 // For every agent: `anyCount` pairs of cells where it can stand (reachable or not),
 // `reachableCount` mutually reachable pairs and `randomCount` pairs of any cells (mostly
-// invalid ends), each answered by AA*. Same inputs => same cases.
-inline std::vector<CompletenessCase> drawCompletenessCases(const pathing::AnnotatedGrid& grid,
-                                                           const std::vector<Agent>& agents,
-                                                           std::uint64_t seed, int anyCount,
-                                                           int reachableCount, int randomCount) {
+// invalid ends), each answered by AA*. With `costs` (which must outlive the cases), every
+// agent moves by them (so pass only the agent they were built for), and AA* answers under them.
+// Same inputs => same cases.
+inline std::vector<CompletenessCase> drawCompletenessCases(
+    const pathing::AnnotatedGrid& grid, const std::vector<Agent>& agents, std::uint64_t seed,
+    int anyCount, int reachableCount, int randomCount, const pathing::CostField* costs = nullptr) {
   pathing::SplitMix64 rng(seed);
   pathing::AnnotatedAStar search(grid);
   std::vector<CompletenessCase> cases;
   const auto add = [&](Agent agent, pathing::Query q) {
-    cases.push_back({agent, q, search.findPath(agent, q.start, q.goal, nullptr)});
+    const PathResult optimum = costs ? search.findPath(agent, q.start, q.goal, nullptr, *costs)
+                                     : search.findPath(agent, q.start, q.goal, nullptr);
+    cases.push_back({agent, q, optimum, costs});
   };
   const pathing::GridMap& map = grid.map();
   for (const Agent& agent : agents) {
@@ -131,6 +139,9 @@ struct CompletenessTally {
   int found = 0;
   int notFound = 0;
   int failures = 0;
+  double excess = 0.0;  // sum over found queries of cost / optimum - 1
+
+  double meanError() const { return found > 0 ? excess / found : 0.0; }
 };
 
 // Runs every case through `planner` (anything with findPath(agent, start, goal, path)) and
@@ -143,8 +154,8 @@ void checkCompleteness(const pathing::AnnotatedGrid& grid,
   for (const CompletenessCase& c : cases) {
     path.clear();
     const PathResult result = planner.findPath(c.agent, c.query.start, c.query.goal, &path);
-    const std::string problem =
-        completenessProblem(grid, c.agent, c.query.start, c.query.goal, c.optimum, result, path);
+    const std::string problem = completenessProblem(grid, c.agent, c.query.start, c.query.goal,
+                                                    c.optimum, result, path, c.costs);
     if (!problem.empty()) {
       if (++tally.failures <= 8) {
         ADD_FAILURE() << label << ": " << describeQuery(c.agent, c.query.start, c.query.goal)
@@ -152,6 +163,7 @@ void checkCompleteness(const pathing::AnnotatedGrid& grid,
       }
     } else if (result.found()) {
       ++tally.found;
+      if (c.optimum.cost > 0.0) tally.excess += result.cost / c.optimum.cost - 1.0;
     } else {
       ++tally.notFound;
     }

@@ -18,12 +18,14 @@
 // (HierarchicalAStar) own their scratch memory.
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "pathing/annotated_grid.h"
 #include "pathing/enum_names.h"
+#include "pathing/terrain_costs.h"
 
 namespace warpath::pathing {
 
@@ -49,6 +51,13 @@ struct AbstractionSpec {
   AbstractionQuality quality = AbstractionQuality::High;
   // Keep every intra-edge's grid path for refinement (memory for speed; see stats()).
   bool cachePaths = true;
+  // Terrain costs (issue 13). When set, the graph serves one agent kind, moving by these
+  // costs: size maxAgentSize, capability capabilities[0] (the only one). Edge costs are then
+  // its travel times (CostField), an entrance is also cut where the cost of crossing it
+  // changes (so a border half swamp, half ground gets a transition on each), and dominance
+  // compares those costs. One graph per cost profile: a footprint's cost depends on its size.
+  // [Limit: exactly one capability, every terrain of which has a cost]
+  std::optional<TerrainCosts> costs = std::nullopt;
 };
 
 // Empty when the spec can be built, else what is wrong with it, naming the field, its limit and
@@ -61,7 +70,7 @@ struct AbstractEdge {
 
   std::uint32_t target = 0;      // node index
   std::uint32_t path = kNoPath;  // cached grid path (intra-edges with cachePaths), internal
-  double cost = 0.0;             // [Unit: cells]
+  double cost = 0.0;             // [Unit: cells, or the costs' unit (spec().costs)]
   Capability capability;         // terrains the edge's grid path needs
   std::uint8_t clearance = 0;    // [Unit: cells] largest agent size the path admits
   bool intra = false;            // false: one step across a cluster border
@@ -90,10 +99,13 @@ class ClusterAbstraction {
 
   const AnnotatedGrid& grid() const { return *grid_; }
   const AbstractionSpec& spec() const { return spec_; }
+  // The costs' field for the one agent a weighted graph serves (spec().costs); null when the
+  // graph is in the uniform model.
+  const CostField* costs() const { return costs_ ? &*costs_ : nullptr; }
   const AbstractionStats& stats() const { return stats_; }
 
   // True when the graph serves this agent: its capability is one the graph was built for and
-  // its size is at most maxAgentSize.
+  // its size is at most maxAgentSize (exactly maxAgentSize for a weighted graph).
   bool supports(Agent agent) const;
 
   int clusterCount() const { return clustersX_ * clustersY_; }
@@ -124,6 +136,7 @@ class ClusterAbstraction {
   const AnnotatedGrid* grid_ = nullptr;
   AbstractionSpec spec_;
   AbstractionStats stats_;
+  std::optional<CostField> costs_;
   int clustersX_ = 0;
   int clustersY_ = 0;
   std::vector<Cell> nodeCells_;

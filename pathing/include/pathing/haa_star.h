@@ -25,9 +25,12 @@ struct HaaOptions {
 // edges to grid cells (cached paths); (5) smooth. Each phase is one private member working on
 // the query object's scratch, so that the phases can later be sliced across ticks. Agents the
 // abstraction does not serve (capability not built, size above maxAgentSize) are answered by
-// AA* on the grid, flagged in metrics.usedGridSearch. Unreachable goals are answered at once
-// from the grid's connected components. Bad arguments (start or goal off the map or where the
-// agent cannot stand, size 0, empty capability) get InvalidStart / InvalidGoal, never a throw.
+// AA* on the grid (in the uniform model), flagged in metrics.usedGridSearch. A weighted graph
+// (AbstractionSpec::costs) plans every phase under its costs, and result.cost is the path's
+// cost in their unit; smoothing then only takes shortcuts that are cheaper. Unreachable goals are
+// answered at once from the grid's connected components. Bad arguments (start or goal off the map
+// or where the agent cannot stand, size 0, empty capability) get InvalidStart / InvalidGoal, never
+// a throw.
 class HierarchicalAStar {
  public:
   explicit HierarchicalAStar(const ClusterAbstraction& abstraction, HaaOptions options = {});
@@ -49,6 +52,9 @@ class HierarchicalAStar {
   bool searchAbstract(Agent agent, Cell start, Cell goal, SearchMetrics& metrics);
   bool refine(Agent agent, Cell start, SearchMetrics& metrics);
   void smooth(const AgentLayer& layer);
+  // AA* on the grid for an agent the graph serves: under the graph's costs when it has them.
+  PathResult gridSearch(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
+                        const SearchLimits& limits);
 
   const ClusterAbstraction& abstraction_;
   HaaOptions options_;

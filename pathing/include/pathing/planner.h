@@ -46,14 +46,18 @@ class Planner {
   // [Limit: abstraction non-null, on `grid`, with the quality abstractionQualityFor(algorithm)
   // unless AA* (where it is ignored); problemWith(hybrid).empty(). Else std::invalid_argument
   // with the message of problemWith(grid, algorithm, abstraction, hybrid).]
+  // Terrain costs: AA* plans under `costs` when given (built for the agents it is asked
+  // about, and it must outlive the planner); the hierarchical algorithms plan under their
+  // abstraction's (AbstractionSpec::costs) and ignore it.
   Planner(const AnnotatedGrid& grid, Algorithm algorithm, const ClusterAbstraction* abstraction,
-          HybridOptions hybrid = {}, HaaOptions haa = {});
+          HybridOptions hybrid = {}, HaaOptions haa = {}, const CostField* costs = nullptr);
 
   Algorithm algorithm() const { return algorithm_; }
   PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path);
 
  private:
   Algorithm algorithm_;
+  const CostField* costs_;
   std::variant<AnnotatedAStar, HierarchicalAStar, HybridPlanner> impl_;
 };
 
