@@ -36,19 +36,43 @@ std::string problemWith(const PathServiceSettings& settings) {
   }
   if (settings.corridor < 1 || settings.corridor > 64)
     return "corridor must be 1..64 (got " + std::to_string(settings.corridor) + ")";
-  if (settings.terrainCosts && settings.algorithm != Algorithm::AStar)
-    return "terrainCosts needs algorithm aa (weighted HAA* is not built yet)";
   return {};
 }
 
+namespace {
+
+double elapsedMilliseconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
+      .count();
+}
+
+// Two profiles plan alike when they agree on the terrains the map has.
+bool sameOnMap(const CostProfile& a, const CostProfile& b, Capability present) {
+  if (a.agent.size != b.agent.size) return false;
+  const auto cut = [&](const CostProfile& p) {
+    return Capability::fromMask(p.agent.capability.mask() & p.costs.capability().mask() &
+                                present.mask());
+  };
+  if (cut(a) != cut(b)) return false;
+  for (int slot = 0; slot < kTraversableTerrainSlots; ++slot) {
+    const auto i = static_cast<std::size_t>(slot);
+    if (cut(a).allows(static_cast<Terrain>(slot)) && a.costs.perCell[i] != b.costs.perCell[i])
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 PathService::PathService(const AnnotatedGrid& grid, const PathServiceSettings& settings,
                          std::vector<Capability> capabilities, int maxAgentSize,
-                         std::vector<CostField> costProfiles)
-    : settings_(settings), costProfiles_(std::move(costProfiles)) {
+                         std::vector<CostProfile> costProfiles)
+    : grid_(grid), settings_(settings) {
   if (std::string problem = problemWith(settings); !problem.empty())
     throw std::invalid_argument(problem);
   const auto began = std::chrono::steady_clock::now();
-  if (const auto quality = abstractionQualityFor(settings.algorithm)) {
+  const auto quality = abstractionQualityFor(settings.algorithm);
+  if (quality && !settings.terrainCosts) {
     AbstractionSpec spec;
     spec.clusterSize = settings.clusterSize;
     spec.maxAgentSize = maxAgentSize;
@@ -56,10 +80,59 @@ PathService::PathService(const AnnotatedGrid& grid, const PathServiceSettings& s
     spec.quality = *quality;
     abstraction_ = std::make_unique<ClusterAbstraction>(ClusterAbstraction::build(grid, spec));
   }
-  planner_.emplace(grid, settings.algorithm, abstraction_.get());
-  if (!costProfiles_.empty()) weighted_.emplace(grid);
-  metrics_.preprocessMilliseconds =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
+  // Requests without a profile plan in the uniform model (by AA* when no graph was built).
+  planner_.emplace(grid, abstraction_ ? settings.algorithm : Algorithm::AStar, abstraction_.get());
+  const Capability present = grid.map().terrainsPresent();
+  std::vector<CostProfile> distinct;
+  for (const CostProfile& profile : costProfiles) {
+    std::size_t k = 0;
+    while (k < distinct.size() && !sameOnMap(distinct[k], profile, present))
+      ++k;
+    if (k == distinct.size()) {
+      distinct.push_back(profile);
+      auto planner = std::make_unique<WeightedPlanner>();
+      planner->agent = {profile.agent.size,
+                        Capability::fromMask(profile.agent.capability.mask() &
+                                             profile.costs.capability().mask())};
+      planner->costs = profile.costs;
+      weighted_.push_back(std::move(planner));
+    }
+    distinctOf_.push_back(static_cast<int>(k));
+  }
+  metrics_.preprocessMilliseconds = elapsedMilliseconds(began);
+}
+
+PathService::WeightedPlanner& PathService::weightedPlanner(int costProfile) {
+  WeightedPlanner& w =
+      *weighted_[static_cast<std::size_t>(distinctOf_[static_cast<std::size_t>(costProfile)])];
+  if (w.planner) return w;
+  const auto began = std::chrono::steady_clock::now();
+  const auto quality = abstractionQualityFor(settings_.algorithm);
+  // A unit that can enter no terrain with a cost has no graph to build: AA* answers it
+  // (InvalidStart).
+  if (quality && !w.agent.capability.empty()) {
+    AbstractionSpec spec;
+    spec.clusterSize = settings_.clusterSize;
+    spec.maxAgentSize = w.agent.size;
+    spec.capabilities = {w.agent.capability};
+    spec.quality = *quality;
+    spec.costs = w.costs;
+    w.abstraction = std::make_unique<ClusterAbstraction>(ClusterAbstraction::build(grid_, spec));
+    w.planner.emplace(grid_, settings_.algorithm, w.abstraction.get());
+  } else {
+    w.field.emplace(grid_, w.agent, w.costs);
+    w.planner.emplace(grid_, Algorithm::AStar, nullptr, HybridOptions{}, HaaOptions{}, &*w.field);
+  }
+  metrics_.preprocessMilliseconds += elapsedMilliseconds(began);
+  return w;
+}
+
+const ClusterAbstraction* PathService::abstraction() const {
+  if (abstraction_) return abstraction_.get();
+  for (const auto& w : weighted_) {
+    if (w->abstraction) return w->abstraction.get();
+  }
+  return nullptr;
 }
 
 PathService::~PathService() = default;
@@ -92,12 +165,17 @@ std::uint64_t PathService::serve(std::vector<PathDelivery>& out) {
     } else {
       std::vector<Cell> cells;
       const bool weighted = request.costProfile >= 0 &&
-                            static_cast<std::size_t>(request.costProfile) < costProfiles_.size();
-      const PathResult result =
-          weighted
-              ? weighted_->findPath(request.agent, request.start, request.goal, &cells,
-                                    costProfiles_[static_cast<std::size_t>(request.costProfile)])
-              : planner_->findPath(request.agent, request.start, request.goal, &cells);
+                            static_cast<std::size_t>(request.costProfile) < distinctOf_.size();
+      PathResult result;
+      double seconds = -1.0;
+      if (weighted) {
+        // The profile's agent: the request's may differ on terrains the map does not have.
+        WeightedPlanner& w = weightedPlanner(request.costProfile);
+        result = w.planner->findPath(w.agent, request.start, request.goal, &cells);
+        seconds = result.cost;
+      } else {
+        result = planner_->findPath(request.agent, request.start, request.goal, &cells);
+      }
       ++metrics_.searches;
       metrics_.expanded += result.metrics.expanded;
       metrics_.microseconds += result.metrics.microseconds;
@@ -112,10 +190,11 @@ std::uint64_t PathService::serve(std::vector<PathDelivery>& out) {
       }
       SharedPath path;
       if (result.found()) path = std::make_shared<const PlannedPath>(planned(std::move(cells)));
-      hit = cache_.emplace(key, Answer{result.status, std::move(path)}).first;
+      hit = cache_.emplace(key, Answer{result.status, std::move(path), seconds}).first;
       cacheOrder_.push_back(key);
     }
-    out.push_back({request.unit, request.serial, hit->second.status, hit->second.path});
+    out.push_back(
+        {request.unit, request.serial, hit->second.status, hit->second.path, hit->second.seconds});
   }
   return spent;
 }

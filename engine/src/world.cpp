@@ -89,10 +89,10 @@ World::World(std::shared_ptr<const AnnotatedGrid> grid, std::vector<units::UnitT
   state_.goals = GoalBoard(grid_->map());
   state_.physics = std::make_unique<Physics>(grid_->map(), capabilities);
   // With terrain costs, one cost profile per catalogue type (index = type).
-  std::vector<CostField> costProfiles;
+  std::vector<CostProfile> costProfiles;
   if (settings_.pathing.terrainCosts) {
     for (const units::UnitType& type : catalogue_)
-      costProfiles.emplace_back(*grid_, type.agent(), type.terrainCosts());
+      costProfiles.push_back({type.agent(), type.terrainCosts()});
   }
   state_.paths =
       std::make_unique<PathService>(*grid_, settings_.pathing, capabilities,

@@ -7,6 +7,7 @@
 
 #include "engine/scenario.h"
 #include "engine/scenario_run.h"
+#include "pathing/planner.h"
 
 namespace warpath::engine {
 namespace {
@@ -44,22 +45,49 @@ TEST(TerrainCosts, InfantryWadeWhereTheWayRoundIsLonger) {
     EXPECT_TRUE(passes(s, seed)) << "seed " << seed;
 }
 
-TEST(TerrainCosts, NeedTheGridPlannerForNow) {
-  const std::string text =
-      "map: {rows: ['....', '....']}\n"
-      "catalogue: ../assets/units.yaml\n"
-      "duration: 1\n"
-      "pathing: {algo: hybrid, terrain_costs: true}\n"
-      "teams: [blue]\n"
-      "groups:\n"
-      "  - {team: blue, type: infantry, count: 1, spawn: {x: 0, y: 0, w: 1, h: 1},\n"
-      "     goal: {x: 3, y: 1, w: 1, h: 1}}\n";
-  const Result<Scenario> r =
-      parseScenario(text, std::string(WARPATH_SOURCE_DIR) + "/scenarios/inline.yaml");
-  ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.error().line, 4);
-  EXPECT_NE(r.error().message.find("terrain_costs: true needs algo: aa"), std::string::npos)
-      << r.error().describe();
+// Every planner plans under the costs: the hierarchical ones on a weighted graph per profile.
+TEST(TerrainCosts, EveryPlannerGoesRoundTheSwamp) {
+  Scenario s = load("swamp_detour.yaml");
+  for (pathing::Algorithm algorithm :
+       {pathing::Algorithm::Hybrid, pathing::Algorithm::HaaHigh, pathing::Algorithm::HaaLow}) {
+    s.settings.pathing.algorithm = algorithm;
+    for (std::uint64_t seed = 1; seed <= 2; ++seed)
+      EXPECT_TRUE(passes(s, seed)) << toString(algorithm) << " seed " << seed;
+  }
+}
+
+// A lone unit's travel time is its plan's cost (the goal: within 10 %), for every kind
+// of unit and planner, across a swamp some wade and some go round.
+TEST(TerrainCosts, ALoneUnitTakesThePlannedTime) {
+  for (const char* type : {"infantry", "jeep", "tank", "amphibious"}) {
+    for (const char* algo : {"aa", "hybrid", "haa-lq"}) {
+      const std::string text =
+          std::string("map: ../assets/maps/swamp.map\n") +
+          "catalogue: ../assets/units.yaml\n"
+          "duration: 120\n"
+          "combat: {enabled: false}\n"
+          "pathing: {algo: " +
+          algo +
+          ", terrain_costs: true}\n"
+          "teams: [blue]\n"
+          "groups:\n"
+          "  - {team: blue, type: " +
+          type +
+          ", count: 1,\n"
+          "     spawn: {x: 2, y: 22, w: 3, h: 3}, goal: {x: 56, y: 30, w: 3, h: 3}}\n";
+      const Result<Scenario> scenario =
+          parseScenario(text, std::string(WARPATH_SOURCE_DIR) + "/scenarios/inline.yaml");
+      ASSERT_TRUE(scenario.ok()) << scenario.error().describe();
+      ScenarioRun run(scenario.value(), 1);
+      while (!run.done())
+        run.step();
+      const std::vector<DelayStats>& delays = run.report().movement.delay;
+      ASSERT_EQ(delays.size(), 1u);
+      ASSERT_EQ(delays[0].arrived, 1) << type << " " << algo;
+      EXPECT_GT(delays[0].max, 0.9) << type << " " << algo;
+      EXPECT_LT(delays[0].max, 1.10) << type << " " << algo;
+    }
+  }
 }
 
 }  // namespace

@@ -45,8 +45,9 @@ struct PathServiceSettings {
   bool corridorSearch = true;
   int corridor = 4;  // [Unit: cells] [Limit: 1..64] the CPRA*(k) corridor's half-width k
   // Terrain costs (docs/terrain_costs.md): each unit type plans the fastest route for its own
-  // speeds (cost = 1 / speed per terrain) instead of the shortest in cells. Needs algorithm
-  // AStar until weighted HAA* lands; off by default, so scenarios plan as they always did.
+  // speeds (cost = 1 / speed per terrain) instead of the shortest in cells, with any algorithm
+  // (the hierarchical ones on a weighted graph per cost profile). Off by default, so scenarios
+  // plan as they always did.
   bool terrainCosts = false;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
@@ -60,11 +61,17 @@ struct PathRequest {
   int costProfile = -1;  // index into the service's cost profiles; -1: every cell costs 1
 };
 
+// What one kind of unit plans by under terrain costs: its agent and its cost per terrain.
+struct CostProfile {
+  pathing::Agent agent;
+  pathing::TerrainCosts costs;
+};
+
 // A found path: anchor cells from start to goal, and a digest of them computed once when the
 // path is planned, so that the state hash covers every unit's path without walking it each tick.
 struct PlannedPath {
   std::vector<pathing::Cell> cells;
-  std::vector<double> remaining;  // [Unit: cells] path cost from cells[i] to the end
+  std::vector<double> remaining;  // [Unit: cells] path length from cells[i] to the end
   std::uint64_t digest = 0;       // FNV-1a over the cells
 };
 PlannedPath planned(std::vector<pathing::Cell> cells);
@@ -75,6 +82,9 @@ struct PathDelivery {
   std::uint64_t serial = 0;
   pathing::PathStatus status = pathing::PathStatus::Unreachable;
   SharedPath path;  // set when found
+  // [Unit: s] the path's cost under its unit's terrain costs (its predicted travel time);
+  // negative when planned in the uniform model.
+  double seconds = -1.0;
 };
 
 struct PathServiceMetrics {
@@ -101,9 +111,13 @@ class PathService {
   // abstraction's spec is not usable (pathing::problemWith(AbstractionSpec): capabilities
   // empty, maxAgentSize outside 1..255); callers taking user input check problemWith first.
   // `costProfiles`: what requests with costProfile >= 0 plan by (used with terrainCosts).
+  // Profiles equal on the map's terrains share one planner; each planner (and, for the
+  // hierarchical algorithms, its weighted graph) is built when its first request is served,
+  // so only the kinds of unit on the map pay for one. With terrainCosts no uniform graph is
+  // built: every request carries a profile.
   PathService(const pathing::AnnotatedGrid& grid, const PathServiceSettings& settings,
               std::vector<pathing::Capability> capabilities, int maxAgentSize,
-              std::vector<pathing::CostField> costProfiles = {});
+              std::vector<CostProfile> costProfiles = {});
   ~PathService();
   PathService(const PathService&) = delete;
   PathService& operator=(const PathService&) = delete;
@@ -120,21 +134,35 @@ class PathService {
   const std::deque<PathRequest>& queue() const { return queue_; }
   const PathServiceMetrics& metrics() const { return metrics_; }
   const PathServiceSettings& settings() const { return settings_; }
-  // The HAA* graph the service plans on (for drawing); null when the algorithm needs none.
-  const pathing::ClusterAbstraction* abstraction() const { return abstraction_.get(); }
+  // The HAA* graph the service plans on (for drawing): the uniform one, or under terrain costs
+  // the first weighted one built; null when the algorithm needs none (or none is built yet).
+  const pathing::ClusterAbstraction* abstraction() const;
 
  private:
   using Key = std::tuple<int, std::uint8_t, int, int, int, int, int>;
   struct Answer {
     pathing::PathStatus status;
     SharedPath path;
+    double seconds;
   };
 
+  // The planner of one distinct cost profile, built on first use. Held by pointer: the
+  // planner refers to the field and the graph beside it.
+  struct WeightedPlanner {
+    pathing::Agent agent;  // the capability cut to the terrains that have a cost
+    pathing::TerrainCosts costs;
+    std::optional<pathing::CostField> field;  // AA* only
+    std::unique_ptr<pathing::ClusterAbstraction> abstraction;
+    std::optional<pathing::Planner> planner;
+  };
+  WeightedPlanner& weightedPlanner(int costProfile);
+
+  const pathing::AnnotatedGrid& grid_;
   PathServiceSettings settings_;
   std::unique_ptr<pathing::ClusterAbstraction> abstraction_;
   std::optional<pathing::Planner> planner_;
-  std::vector<pathing::CostField> costProfiles_;
-  std::optional<pathing::AnnotatedAStar> weighted_;
+  std::vector<int> distinctOf_;  // cost profile -> index in weighted_
+  std::vector<std::unique_ptr<WeightedPlanner>> weighted_;
   std::deque<PathRequest> queue_;
   std::map<Key, Answer> cache_;
   std::deque<Key> cacheOrder_;  // insertion order, for eviction

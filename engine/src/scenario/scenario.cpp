@@ -276,12 +276,7 @@ void applyPathing(const Checker& c, const raw::Pathing& in, PathServiceSettings&
   if (in.window) out.window = c.range(*in.window, "window", 1, kMaxCooperativeWindow);
   if (in.corridorSearch) out.corridorSearch = in.corridorSearch->value;
   if (in.corridor) out.corridor = c.range(*in.corridor, "corridor", 1, 64);
-  if (in.terrainCosts) {
-    out.terrainCosts = in.terrainCosts->value;
-    if (out.terrainCosts && out.algorithm != pathing::Algorithm::AStar)
-      c.fail(in.terrainCosts->mark,
-             "terrain_costs: true needs algo: aa (weighted HAA* is not built yet)");
-  }
+  if (in.terrainCosts) out.terrainCosts = in.terrainCosts->value;
 }
 
 void applyStuck(const Checker& c, const raw::Stuck& in, units::StuckRule& out) {

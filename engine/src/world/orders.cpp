@@ -267,7 +267,7 @@ std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
     if (delivery.status == PathStatus::Found) {
       // A new path: the old window goes (the unit holds where it stands until it gets one).
       if (unit.plan) releaseReservations(w, unit);
-      if (unit.plannedTicks < 0) unit.plannedTicks = freeFlowTicks(w, unit, delivery.path->cells);
+      if (unit.plannedTicks < 0) unit.plannedTicks = freeFlowTicks(w, unit, delivery);
       unit.path = delivery.path;
       // Cooperating units keep to the right half of passages wide enough for two (lanes).
       if (w.settings.pathing.cooperative) {
@@ -289,9 +289,12 @@ std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
   return spent;
 }
 
-std::int64_t freeFlowTicks(const Refs& w, const Unit& unit, const std::vector<Cell>& path) {
-  // Each move at the top speed on the terrain under the body's centre at its end, as steering
-  // drives it.
+std::int64_t freeFlowTicks(const Refs& w, const Unit& unit, const PathDelivery& delivery) {
+  // Under terrain costs the plan's cost is its travel time.
+  if (delivery.seconds >= 0.0) return std::llround(delivery.seconds * w.settings.tickRate);
+  // Else each move at the top speed on the terrain under the body's centre at its end, as
+  // steering drives it.
+  const std::vector<Cell>& path = delivery.path->cells;
   const units::UnitType& type = w.typeOf(unit);
   const int half = type.size / 2;
   double seconds = 0.0;

@@ -50,9 +50,10 @@ void requestPath(Refs& w, Unit& unit);
 // Serves the path service within its budget and hands each answer to its unit; returns the
 // expansions spent.
 std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch);
-// [Unit: ticks] The time a unit alone needs along `path` at its top speeds: what the report's
-// delays are measured against.
-std::int64_t freeFlowTicks(const Refs& w, const Unit& unit, const std::vector<pathing::Cell>& path);
+// [Unit: ticks] The time a unit alone needs along its delivered path (under terrain costs the
+// plan's cost, else each move at its top speed there): what the report's delays are measured
+// against.
+std::int64_t freeFlowTicks(const Refs& w, const Unit& unit, const PathDelivery& delivery);
 // Moves the unit to the nearest free goal cell of its area; false when there is none other.
 bool reassignGoal(Refs& w, Unit& unit);
 // hp reached 0: the unit leaves its order, the path service and (after its wreck) physics.

@@ -52,11 +52,35 @@ Vec2 limitPushing(const Refs& w, std::vector<std::uint32_t>& touching, const Uni
   return desired * (cap / speed);
 }
 
+// How fast the unit may go where it is: the speed on the terrain under its centre or, under
+// terrain costs, on the slowest terrain under its footprint (the speed its plan assumed, so
+// that a plan's cost is its travel time; docs/terrain_costs.md). Its top speed where it
+// stands on nothing it has a speed for (shoved half off its terrain).
+double speedHere(const Refs& w, const Unit& unit, const units::UnitType& type) {
+  const pathing::GridMap& map = w.map();
+  double speed = 0.0;
+  if (!w.settings.pathing.terrainCosts) {
+    const Cell under{static_cast<int>(std::floor(unit.position.x)),
+                     static_cast<int>(std::floor(unit.position.y))};
+    speed = map.contains(under) ? type.speedOn(map.at(under)) : 0.0;
+  } else {
+    const Cell anchor = units::centreToAnchor(unit.position, type.size);
+    speed = std::numeric_limits<double>::infinity();
+    for (int dy = 0; dy < type.size; ++dy) {
+      for (int dx = 0; dx < type.size; ++dx) {
+        const Cell c{anchor.x + dx, anchor.y + dy};
+        const double v = map.contains(c) ? type.speedOn(map.at(c)) : 0.0;
+        if (v > 0.0) speed = std::min(speed, v);
+      }
+    }
+  }
+  return speed > 0.0 && std::isfinite(speed) ? speed : type.maxSpeed();
+}
+
 }  // namespace
 
 void steerAll(Refs& w, std::vector<std::uint32_t>& touching) {
   const double dt = 1.0 / w.settings.tickRate;
-  const pathing::GridMap& map = w.map();
   const bool cooperative = w.settings.pathing.cooperative;
   double lightest = std::numeric_limits<double>::infinity();
   for (const units::UnitType& type : w.catalogue)
@@ -77,10 +101,7 @@ void steerAll(Refs& w, std::vector<std::uint32_t>& touching) {
       desired = r.desiredVelocity;
       toward = units::anchorToCentre(unit.goalCell, type.size) - unit.position;
     } else if (unit.state == UnitState::Moving && unit.path) {
-      const Cell under{static_cast<int>(std::floor(unit.position.x)),
-                       static_cast<int>(std::floor(unit.position.y))};
-      double speed = type.speedOn(map.at(under));
-      if (!(speed > 0.0)) speed = type.maxSpeed();
+      const double speed = speedHere(w, unit, type);
       const units::SteeringResult r = units::steer(unit.path->cells, unit.next, type.size,
                                                    unit.position, speed, w.settings.steering);
       // `next` also tells the stuck rule how far along its path the unit is.
