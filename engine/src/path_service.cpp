@@ -1,5 +1,6 @@
 #include "engine/path_service.h"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -125,6 +126,11 @@ PathService::WeightedPlanner& PathService::weightedPlanner(int costProfile) {
   }
   metrics_.preprocessMilliseconds += elapsedMilliseconds(began);
   return w;
+}
+
+std::size_t PathService::builtCostPlanners() const {
+  return static_cast<std::size_t>(std::count_if(
+      weighted_.begin(), weighted_.end(), [](const auto& w) { return w->planner.has_value(); }));
 }
 
 const ClusterAbstraction* PathService::abstraction() const {

@@ -276,6 +276,52 @@ TEST(PathService, BudgetSpreadsRequestsAndCacheAnswersRepeats) {
   EXPECT_EQ(service.metrics().searches, 2u);
 }
 
+// Under terrain costs each distinct profile gets one planner (a weighted graph for HAA*),
+// built when first asked: profiles that differ only on terrains the map lacks share it.
+TEST(PathService, CostProfilesEqualOnTheMapShareAPlanner) {
+  pathing::GridMap map(48, 32);
+  for (int y = 0; y < 24; ++y) {
+    for (int x = 16; x < 32; ++x)
+      map.set({x, y}, Terrain::Swamp);
+  }
+  auto grid = std::make_shared<const pathing::AnnotatedGrid>(std::move(map));
+  const pathing::Capability land = pathing::Capability::of({Terrain::Ground, Terrain::Swamp});
+  const pathing::Capability amphibious =
+      pathing::Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Water});
+  pathing::TerrainCosts wader;  // swamp barely slower than ground
+  wader.perCell[static_cast<std::size_t>(Terrain::Ground)] = 0.5;
+  wader.perCell[static_cast<std::size_t>(Terrain::Swamp)] = 0.6;
+  pathing::TerrainCosts swimmer = wader;  // the same, and swims: no water on this map
+  swimmer.perCell[static_cast<std::size_t>(Terrain::Water)] = 1.0;
+  pathing::TerrainCosts shy = wader;  // swamp four times slower
+  shy.perCell[static_cast<std::size_t>(Terrain::Swamp)] = 2.0;
+  PathServiceSettings settings;
+  settings.algorithm = pathing::Algorithm::HaaHigh;
+  settings.terrainCosts = true;
+  PathService service(*grid, settings, {land, amphibious}, 1,
+                      {{{1, land}, wader}, {{1, amphibious}, swimmer}, {{1, land}, shy}});
+  EXPECT_EQ(service.distinctCostProfiles(), 2u);
+  EXPECT_EQ(service.builtCostPlanners(), 0u);
+  EXPECT_EQ(service.abstraction(), nullptr);  // no uniform graph under costs
+  service.request({{0, 0}, 1, {1, land}, {2, 2}, {45, 2}, 0});
+  service.request({{1, 0}, 1, {1, amphibious}, {2, 2}, {45, 2}, 1});
+  std::vector<PathDelivery> out;
+  service.serve(out);
+  EXPECT_EQ(service.builtCostPlanners(), 1u);
+  ASSERT_NE(service.abstraction(), nullptr);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(out[0].path->cells, out[1].path->cells);
+  EXPECT_GT(out[0].seconds, 0.0);
+  service.request({{2, 0}, 1, {1, land}, {2, 2}, {45, 2}, 2});
+  service.serve(out);
+  EXPECT_EQ(service.builtCostPlanners(), 2u);
+  ASSERT_EQ(out.size(), 3u);
+  // The wader crosses the swamp; the swamp-shy unit goes round it, longer and faster for it.
+  EXPECT_GT(out[2].path->cells.size(), out[0].path->cells.size());
+  for (const pathing::Cell& c : out[2].path->cells)
+    EXPECT_EQ(grid->map().at(c), Terrain::Ground);
+}
+
 TEST(PathService, SettingsAreValidatedByTheConstructor) {
   auto grid = std::make_shared<const pathing::AnnotatedGrid>(pathing::GridMap(32, 32));
   const pathing::Capability ground = pathing::Capability::of({Terrain::Ground});

@@ -137,6 +137,10 @@ class PathService {
   // The HAA* graph the service plans on (for drawing): the uniform one, or under terrain costs
   // the first weighted one built; null when the algorithm needs none (or none is built yet).
   const pathing::ClusterAbstraction* abstraction() const;
+  // Cost profiles that plan differently on this map (equal ones merged), and how many of
+  // their planners are built so far.
+  std::size_t distinctCostProfiles() const { return weighted_.size(); }
+  std::size_t builtCostPlanners() const;
 
  private:
   using Key = std::tuple<int, std::uint8_t, int, int, int, int, int>;

@@ -56,7 +56,9 @@ struct SearchLimits {
 
 struct PathResult {
   PathStatus status = PathStatus::Unreachable;
-  double cost = 0.0;  // [Unit: cells] path length with diagonal steps counted as √2
+  // [Unit: cells] path length with diagonal steps counted as √2; under terrain costs
+  // (terrain_costs.h) the costs' unit instead: seconds for a unit type's 1 / speed
+  double cost = 0.0;
   SearchMetrics metrics;
 
   bool found() const { return status == PathStatus::Found; }
