@@ -6,6 +6,7 @@
 //   classes, seeded random queries (reachable and not) are answered by HAA* on the HQ and LQ
 //   graphs, smoothed and not, and by the hybrid planner; each finds a path exactly when AA*
 //   does, a legal one, never cheaper.
+// - The same under terrain costs, on a weighted graph per agent (issue 13).
 
 #include <gtest/gtest.h>
 
@@ -18,6 +19,7 @@
 #include "pathing/cluster_abstraction.h"
 #include "pathing/haa_star.h"
 #include "pathing/map_io.h"
+#include "pathing/terrain_costs.h"
 #include "support/completeness.h"
 
 namespace warpath::pathing {
@@ -123,6 +125,42 @@ TEST_P(MovingAiMap, HaaFindsAPathExactlyWhenAStarDoes) {
   EXPECT_EQ(tally.failures, 0) << "of " << cases.size() << " queries";
   // Every map has ground a size-1 unit can cross, so reachable pairs exist.
   EXPECT_GT(tally.found, 100);
+}
+
+// Under terrain costs (infantry speeds: 1.5 cells/s on ground, 0.8 in swamp, 1 in trees) a
+// weighted graph per agent finds a path exactly when weighted AA* does, never cheaper.
+TEST_P(MovingAiMap, WeightedHaaFindsAPathExactlyWhenWeightedAStarDoes) {
+  const MapCase& c = GetParam();
+  auto map = loadMap(c.map);
+  ASSERT_TRUE(map) << map.error().describe();
+  const AnnotatedGrid grid(std::move(map).value());
+  TerrainCosts costs;
+  costs.perCell[static_cast<std::size_t>(Terrain::Ground)] = 1.0 / 1.5;
+  costs.perCell[static_cast<std::size_t>(Terrain::Swamp)] = 1.0 / 0.8;
+  costs.perCell[static_cast<std::size_t>(Terrain::Trees)] = 1.0;
+  testing::CompletenessTally tally;
+  for (int size = 1; size <= 3; ++size) {
+    const Agent agent{size, costs.capability()};
+    const CostField field(grid, agent, costs);
+    const std::vector<testing::CompletenessCase> cases =
+        testing::drawCompletenessCases(grid, {agent}, 2013, 6, 24, 0, &field);
+    for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
+      const ClusterAbstraction abstraction =
+          ClusterAbstraction::build(grid, AbstractionSpec{.clusterSize = 16,
+                                                          .maxAgentSize = size,
+                                                          .capabilities = {agent.capability},
+                                                          .quality = quality,
+                                                          .costs = costs});
+      const std::string label = c.map.filename().string() + " size " + std::to_string(size) +
+                                (quality == AbstractionQuality::High ? " HQ" : " LQ");
+      HierarchicalAStar haa(abstraction);
+      testing::checkCompleteness(grid, cases, haa, label, tally);
+      HybridPlanner hybrid(abstraction);
+      testing::checkCompleteness(grid, cases, hybrid, label + " hybrid", tally);
+    }
+  }
+  EXPECT_EQ(tally.failures, 0);
+  EXPECT_GT(tally.found, 50);
 }
 
 INSTANTIATE_TEST_SUITE_P(Data, MovingAiMap, ::testing::ValuesIn(discoverCases()),

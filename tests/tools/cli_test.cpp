@@ -99,12 +99,54 @@ TEST(RtsCliTest, PathUnderTerrainCosts) {
   const auto json = nlohmann::json::parse(run.out);
   EXPECT_DOUBLE_EQ(json["length"].get<double>(), 16.0);
   EXPECT_EQ(json["agent"]["capability"], "ground");
-  expectBadInput("path " + fixture("small.map") + " --from 0,0 --to 5,3 --algo haa-hq --costs " +
-                     fixture("costs_ground_2.txt"),
-                 "only --algo aa plans under terrain costs");
   expectBadInput(
       "path " + fixture("small.map") + " --from 0,0 --to 5,3 --costs " + fixture("small.map"),
       "small.map:1: expected one map character then its cost");
+}
+
+TEST(RtsCliTest, PathUnderTerrainCostsWithEveryPlanner) {
+  // Ground at 2 a cell: every planner finds the ground route at twice its uniform length 8.
+  for (const std::string algo : {"haa-hq", "haa-lq", "hybrid"}) {
+    const CommandRun run =
+        rts("path " + fixture("small.map") + " --from 0,0 --to 5,3 --json --cluster-size 4 " +
+            "--algo " + algo + " --costs " + fixture("costs_ground_2.txt"));
+    ASSERT_EQ(run.exitCode, 0) << algo << ": " << run.err;
+    const auto json = nlohmann::json::parse(run.out);
+    EXPECT_DOUBLE_EQ(json["length"].get<double>(), 16.0) << algo;
+    EXPECT_GT(json["abstraction"]["abstract_nodes"].get<int>(), 0) << algo;
+  }
+  // Infantry's speeds on a map of every terrain: the hierarchical planners' paths cost at
+  // least AA*'s optimum, in the same unit; --unit infantry plans the same as its cost table.
+  for (const std::string size : {"1", "2"}) {
+    const std::string query = "path " + fixture("terrain.map") + " --size " + size +
+                              " --from 0,0 --to 46,38 --cluster-size 8 --json";
+    const std::string costs = " --costs " + fixture("costs_infantry.txt");
+    const CommandRun aa = rts(query + costs);
+    ASSERT_EQ(aa.exitCode, 0) << aa.err;
+    const double optimum = nlohmann::json::parse(aa.out)["length"].get<double>();
+    for (const std::string algo : {"haa-hq", "haa-lq", "hybrid"}) {
+      const CommandRun run = rts(query + costs + " --algo " + algo);
+      ASSERT_EQ(run.exitCode, 0) << algo << ": " << run.err;
+      const auto json = nlohmann::json::parse(run.out);
+      EXPECT_EQ(json["status"], "found");
+      EXPECT_EQ(json["costs"], (kFixtures / "costs_infantry.txt").string());
+      EXPECT_EQ(json["agent"]["capability"], "ground,swamp,trees");
+      EXPECT_EQ(json["path"].front(), nlohmann::json::array({0, 0}));
+      EXPECT_EQ(json["path"].back(), nlohmann::json::array({46, 38}));
+      EXPECT_GE(json["length"].get<double>(), optimum - 1e-9) << algo << " size " << size;
+      // Within the detours HAA* may take; the uniform length (about 1.5x) would be far above.
+      EXPECT_LT(json["length"].get<double>(), optimum * 1.25) << algo << " size " << size;
+      if (algo == "haa-hq") {
+        const CommandRun unit = rts(query + " --unit infantry --algo haa-hq");
+        ASSERT_EQ(unit.exitCode, 0) << unit.err;
+        const auto byUnit = nlohmann::json::parse(unit.out);
+        if (size == "1") {  // infantry is size 1
+          EXPECT_NEAR(byUnit["length"].get<double>(), json["length"].get<double>(), 1e-9);
+          EXPECT_EQ(byUnit["path"], json["path"]);
+        }
+      }
+    }
+  }
 }
 
 TEST(RtsCliTest, PathForACatalogueUnit) {
@@ -133,6 +175,45 @@ TEST(RtsCliTest, BenchScenUnderTerrainCosts) {
   EXPECT_EQ(json["optimal_matches"], 2);
   EXPECT_EQ(json["queries"], 2);
   EXPECT_EQ(rts(args).exitCode, 1);
+}
+
+TEST(RtsCliTest, BenchScenUnderTerrainCostsWithEveryPlanner) {
+  // The small fixture: every planner matches both weighted optima.
+  for (const std::string algo : {"aa", "haa-hq", "haa-lq", "hybrid"}) {
+    const CommandRun run =
+        rts("bench scen " + fixture("small.map") + " " + fixture("small_costs_ground_2.scen") +
+            " --json --check-optimal " + "--cluster-size 4 --algo " + algo + " --costs " +
+            fixture("costs_ground_2.txt"));
+    ASSERT_EQ(run.exitCode, 0) << algo << ": " << run.err;
+    const auto json = nlohmann::json::parse(run.out);
+    EXPECT_EQ(json["algo"], algo);
+    EXPECT_EQ(json["solved"], 2);
+    EXPECT_EQ(json["optimal_matches"], 2) << algo;
+  }
+  // Infantry's speeds on a map of every terrain (optima from weighted AA*): AA* matches every
+  // one; the hierarchical planners solve every query, never below the weighted optimum and
+  // close to it (against the uniform model they would be some 50% off).
+  const std::string args = "bench scen " + fixture("terrain.map") + " " +
+                           fixture("terrain_costs_infantry.scen") + " --json --cluster-size 8 " +
+                           "--costs " + fixture("costs_infantry.txt") + " --algo ";
+  const CommandRun aa = rts(args + "aa --check-optimal");
+  ASSERT_EQ(aa.exitCode, 0) << aa.err;
+  EXPECT_EQ(nlohmann::json::parse(aa.out)["optimal_matches"], 12);
+  for (const std::string algo : {"haa-hq", "haa-lq", "hybrid"}) {
+    const CommandRun run = rts(args + algo);
+    ASSERT_EQ(run.exitCode, 0) << algo << ": " << run.err;
+    const auto json = nlohmann::json::parse(run.out);
+    for (const char* key : kContractKeys)
+      EXPECT_TRUE(json.contains(key)) << key;
+    EXPECT_EQ(json["costs"], (kFixtures / "costs_infantry.txt").string());
+    EXPECT_EQ(json["queries"], 12);
+    EXPECT_EQ(json["solved"], 12) << algo;
+    EXPECT_GE(json["optimal_matches"].get<int>(), 3) << algo;
+    EXPECT_LE(json["optimal_matches"].get<int>(), 12) << algo;
+    EXPECT_GE(json["mean_suboptimality_pct"].get<double>(), 0.0) << algo;
+    EXPECT_LT(json["mean_suboptimality_pct"].get<double>(), 10.0) << algo;
+    EXPECT_GT(json["abstract_nodes"].get<int>(), 0) << algo;
+  }
 }
 
 TEST(RtsCliTest, PathWithoutRouteExitsOne) {
@@ -254,6 +335,50 @@ TEST(RtsCliTest, BenchRandomFindsNoCompletenessFailures) {
   }
 }
 
+TEST(RtsCliTest, BenchRandomUnderTerrainCosts) {
+  const auto run = [](const std::string& algo, const std::string& costs) {
+    const CommandRun r = rts("bench random " + fixture("terrain.map") +
+                             " --size 2 --capability water --queries 150 --seed 5 --algo " + algo +
+                             " --cluster-size 8 --json --costs " + fixture(costs));
+    EXPECT_EQ(r.exitCode, 0) << algo << " " << costs << ": " << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  for (const std::string algo : {"aa", "haa-hq", "haa-lq", "hybrid"}) {
+    const auto json = run(algo, "costs_ground_2.txt");
+    for (const char* key : kContractKeys)
+      EXPECT_TRUE(json.contains(key)) << key;
+    EXPECT_EQ(json["costs"], (kFixtures / "costs_ground_2.txt").string());
+    // The agent moves on the terrains with a cost, whatever --capability says.
+    EXPECT_EQ(json["agent"]["capability"], "ground");
+    EXPECT_EQ(json["completeness_failures"], 0);
+    EXPECT_EQ(json["illegal_paths"], 0);
+    EXPECT_EQ(json["cheaper_than_optimal"], 0);
+    EXPECT_GT(json["solved"].get<int>(), 50);
+    if (algo == "aa") {
+      EXPECT_EQ(json["optimal_matches"], json["solved"]);
+      continue;
+    }
+    EXPECT_GT(json["abstract_nodes"].get<int>(), 0);
+    // Costs twice as high: the same queries, paths and relative error, absolute errors twice
+    // as large.
+    const auto unit = run(algo, "costs_ground_1.txt");
+    EXPECT_EQ(json["solved"], unit["solved"]);
+    EXPECT_EQ(json["optimal_matches"], unit["optimal_matches"]);
+    EXPECT_NEAR(json["mean_suboptimality_pct"].get<double>(),
+                unit["mean_suboptimality_pct"].get<double>(), 1e-9);
+    if (algo == "haa-hq") {
+      EXPECT_GT(unit["max_abs_error"].get<double>(), 0.1);
+    }
+    EXPECT_NEAR(json["max_abs_error"].get<double>(), 2.0 * unit["max_abs_error"].get<double>(),
+                1e-9)
+        << algo;
+  }
+  const auto infantry = run("hybrid", "costs_infantry.txt");
+  EXPECT_EQ(infantry["agent"]["capability"], "ground,swamp,trees");
+  EXPECT_GE(infantry["mean_suboptimality_pct"].get<double>(), 0.0);
+  EXPECT_LT(infantry["mean_suboptimality_pct"].get<double>(), 10.0);
+}
+
 TEST(RtsCliTest, BenchRandomRejectsBadInput) {
   const std::string random = "bench random " + fixture("terrain.map");
   expectBadInput(random + " --algo astar", "--algo: unknown planner 'astar'");
@@ -290,6 +415,47 @@ TEST(RtsCliTest, BenchPaperPrintsItsTables) {
     EXPECT_GE(row["mean_error_pct"].get<double>(), 0.0);
     EXPECT_GT(row["grid_nodes"].get<int>(), 0);
   }
+}
+
+TEST(RtsCliTest, BenchPaperUnderTerrainCosts) {
+  const std::string paper =
+      "bench paper " + fixture("terrain.map") + " --queries 10 --percents 0,20 --cluster-sizes 8";
+  // Infantry prices ground and trees: every agent kind takes part, each on its own graph.
+  CommandRun run = rts(paper + " --costs " + fixture("costs_infantry.txt"));
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  auto json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["costs"], (kFixtures / "costs_infantry.txt").string());
+  EXPECT_EQ(json["capabilities"], nlohmann::json::array({"ground", "trees", "ground,trees"}));
+  ASSERT_EQ(json["rows"].size(), 4u);  // 2 shares x 1 cluster size x 2 qualities
+  for (const auto& row : json["rows"]) {
+    EXPECT_EQ(row["solved"], 10);
+    EXPECT_EQ(row["failures"], 0);
+    EXPECT_GT(row["graphs"].get<int>(), 1);
+    EXPECT_LE(row["graphs"].get<int>(), 6);
+    EXPECT_GE(row["mean_error_pct"].get<double>(), 0.0);
+  }
+  // Ground at 2 a cell prices {ground} only: those agents alone, errors against the weighted
+  // optimum (against the uniform one they would be 100%).
+  run = rts(paper + " --costs " + fixture("costs_ground_2.txt"));
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["capabilities"], nlohmann::json::array({"ground"}));
+  for (const auto& row : json["rows"]) {
+    EXPECT_EQ(row["solved"], 10);
+    EXPECT_EQ(row["failures"], 0);
+    EXPECT_LE(row["graphs"].get<int>(), 2);
+    EXPECT_GE(row["mean_error_pct"].get<double>(), 0.0);
+    EXPECT_LT(row["mean_error_pct"].get<double>(), 20.0);
+  }
+  run = rts(paper + " --markdown --costs " + fixture("costs_ground_2.txt"));
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("capability {ground}, start and goal"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("every agent moves by the terrain costs of " +
+                         (kFixtures / "costs_ground_2.txt").string()),
+            std::string::npos)
+      << run.out;
+  expectBadInput(paper + " --costs " + fixture("costs_water.txt"),
+                 "prices none of the experiment's capabilities");
 }
 
 TEST(RtsCliTest, BenchPaperRejectsBadInput) {

@@ -2,14 +2,19 @@
 // Each map is turned into derived maps with a share of its traversable cells made trees ("soft
 // obstacles"); on each, agents of sizes 1 and 2 with capability {ground}, {trees} or
 // {ground,trees} get random reachable queries, answered by AA* and by HAA* on the HQ and LQ
-// graphs of every cluster size. Rows: map × share × cluster size × quality.
+// graphs of every cluster size. Rows: map × share × cluster size × quality. With --costs every
+// agent moves by the costs (those whose capability they do not price are left out): the
+// optimum is weighted AA*, and HAA* uses one weighted graph per agent kind.
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <bit>
+#include <deque>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +23,7 @@
 #include "pathing/haa_star.h"
 #include "pathing/map_generator.h"
 #include "pathing/random.h"
+#include "pathing/terrain_costs.h"
 #include "rts/bench_support.h"
 #include "rts/cli_support.h"
 #include "rts/commands.h"
@@ -36,6 +42,7 @@ struct PaperBenchOptions {
   std::uint64_t seed = 1;
   bool noSmooth = false;
   bool markdown = false;
+  std::string costsFile;  // empty: the uniform model
 };
 
 const Capability kGround = Capability::of({Terrain::Ground});
@@ -43,12 +50,14 @@ const Capability kTrees = Capability::of({Terrain::Trees});
 const Capability kGroundTrees = Capability::of({Terrain::Ground, Terrain::Trees});
 constexpr int kMaxAgentSize = 2;
 
-// The agent kinds of the experiment: sizes 1 and 2, each capability.
-std::vector<Agent> experimentAgents() {
+// The agent kinds of the experiment: sizes 1 and 2, each capability; under costs, only the
+// capabilities whose every terrain has a cost (an agent moves by them on its own terrains).
+std::vector<Agent> experimentAgents(const std::optional<TerrainCosts>& costs) {
   std::vector<Agent> agents;
   for (int size = 1; size <= kMaxAgentSize; ++size) {
-    for (Capability c : {kGround, kTrees, kGroundTrees})
-      agents.push_back({size, c});
+    for (Capability c : {kGround, kTrees, kGroundTrees}) {
+      if (!costs || c.isSubsetOf(costs->capability())) agents.push_back({size, c});
+    }
   }
   return agents;
 }
@@ -77,21 +86,23 @@ AbstractionSpec experimentSpec(int clusterSize, AbstractionQuality quality) {
 }
 
 struct AgentQuery {
+  std::size_t kind;  // index in the experiment's agents
   Agent agent;
   Query query;
   PathResult optimal;
 };
 
-// `count` queries, each for an agent kind drawn at random among those with a reachable pair,
-// between two distinct mutually reachable cells.
-std::vector<AgentQuery> drawQueries(const AnnotatedGrid& grid, int count, std::uint64_t seed,
-                                    const std::string& mapName, int percent) {
-  std::vector<Agent> agents;
+// `count` queries, each for an agent kind drawn at random among those of `kinds` with a
+// reachable pair, between two distinct mutually reachable cells.
+std::vector<AgentQuery> drawQueries(const AnnotatedGrid& grid, const std::vector<Agent>& kinds,
+                                    int count, std::uint64_t seed, const std::string& mapName,
+                                    int percent) {
+  std::vector<std::size_t> agents;
   std::vector<QuerySampler> samplers;
-  for (const Agent& agent : experimentAgents()) {
-    QuerySampler sampler(grid, agent);
+  for (std::size_t k = 0; k < kinds.size(); ++k) {
+    QuerySampler sampler(grid, kinds[k]);
     if (!sampler.hasReachablePair()) continue;
-    agents.push_back(agent);
+    agents.push_back(k);
     samplers.push_back(std::move(sampler));
   }
   if (agents.empty()) {
@@ -103,8 +114,9 @@ std::vector<AgentQuery> drawQueries(const AnnotatedGrid& grid, int count, std::u
   SplitMix64 rng(~seed);  // a stream apart from the one that derived the map
   std::vector<AgentQuery> queries;
   for (int i = 0; i < count; ++i) {
-    const std::uint32_t kind = rng.below(static_cast<std::uint32_t>(agents.size()));
-    queries.push_back({agents[kind], samplers[kind].reachablePair(rng), {}});
+    const std::uint32_t drawn = rng.below(static_cast<std::uint32_t>(agents.size()));
+    queries.push_back(
+        {agents[drawn], kinds[agents[drawn]], samplers[drawn].reachablePair(rng), {}});
   }
   return queries;
 }
@@ -117,39 +129,81 @@ struct Failures {
   }
 };
 
-// One row: HAA* on one abstraction against the AA* answers of the same queries.
-nlohmann::json measureAbstraction(const AnnotatedGrid& grid, const std::vector<AgentQuery>& queries,
-                                  const ResultTally& optimalTally, AbstractionSpec spec,
-                                  const PaperBenchOptions& options, Failures& failures) {
-  const ClusterAbstraction abstraction = buildAbstractionOrThrow(grid, std::move(spec));
-  HierarchicalAStar search(abstraction, HaaOptions{.smooth = !options.noSmooth});
+// The experiment on one derived map: its agent kinds and, under costs, what they move by.
+struct Experiment {
+  std::vector<Agent> kinds;
+  std::optional<TerrainCosts> costs;
+};
+
+AbstractionStats& operator+=(AbstractionStats& sum, const AbstractionStats& more) {
+  sum.clusters += more.clusters;
+  sum.nodes += more.nodes;
+  sum.interEdges += more.interEdges;
+  sum.intraEdges += more.intraEdges;
+  sum.graphBytes += more.graphBytes;
+  sum.pathBytes += more.pathBytes;
+  sum.buildMilliseconds += more.buildMilliseconds;
+  return sum;
+}
+
+// One row: HAA* on the graphs of one cluster size and quality against the AA* answers of the
+// same queries. One graph serves every agent kind; under costs, one weighted graph per kind
+// that has queries (the row's graph figures are their sums).
+nlohmann::json measureAbstraction(const AnnotatedGrid& grid, const Experiment& experiment,
+                                  const std::vector<AgentQuery>& queries,
+                                  const ResultTally& optimalTally, int clusterSize,
+                                  AbstractionQuality quality, const PaperBenchOptions& options,
+                                  Failures& failures) {
+  std::vector<ClusterAbstraction> graphs;
+  std::vector<std::size_t> graphOfKind(experiment.kinds.size(), 0);
+  if (!experiment.costs) {
+    graphs.push_back(buildAbstractionOrThrow(grid, experimentSpec(clusterSize, quality)));
+  } else {
+    for (std::size_t k = 0; k < experiment.kinds.size(); ++k) {
+      if (std::none_of(queries.begin(), queries.end(),
+                       [&](const AgentQuery& q) { return q.kind == k; })) {
+        continue;
+      }
+      graphOfKind[k] = graphs.size();
+      graphs.push_back(buildAbstractionOrThrow(
+          grid, costAbstractionSpec(clusterSize, quality, experiment.kinds[k], *experiment.costs)));
+    }
+  }
+  std::deque<HierarchicalAStar> searches;  // HierarchicalAStar cannot move
+  AbstractionStats stats;
+  for (const ClusterAbstraction& graph : graphs) {
+    searches.emplace_back(graph, HaaOptions{.smooth = !options.noSmooth});
+    stats += graph.stats();
+  }
   ResultTally tally;
   std::vector<Cell> path;
   for (const AgentQuery& q : queries) {
+    const std::size_t g = graphOfKind[q.kind];
     path.clear();
-    const PathResult result = search.findPath(q.agent, q.query.start, q.query.goal, &path);
+    const PathResult result = searches[g].findPath(q.agent, q.query.start, q.query.goal, &path);
     tally.add(result, q.optimal.cost);
     std::string problem;
     if (!result.found()) {
       problem = fmt::format("HAA* says {} where AA* found a path", toString(result.status));
     } else {
-      problem = pathProblem(grid, q.agent, q.query.start, q.query.goal, result, path);
+      problem =
+          pathProblem(grid, q.agent, q.query.start, q.query.goal, result, path, graphs[g].costs());
       if (problem.empty() && result.cost < q.optimal.cost - 1e-6) {
         problem =
             fmt::format("cost {:.6f} is below the optimum {:.6f}", result.cost, q.optimal.cost);
       }
     }
     if (!problem.empty()) {
-      failures.add(fmt::format("cluster {} {}: size {} {} {},{} -> {},{}: {}",
-                               abstraction.spec().clusterSize,
-                               kAbstractionQualityNames.name(abstraction.spec().quality),
-                               q.agent.size, q.agent.capability.toString(), q.query.start.x,
-                               q.query.start.y, q.query.goal.x, q.query.goal.y, problem));
+      failures.add(fmt::format("cluster {} {}: size {} {} {},{} -> {},{}: {}", clusterSize,
+                               kAbstractionQualityNames.name(quality), q.agent.size,
+                               q.agent.capability.toString(), q.query.start.x, q.query.start.y,
+                               q.query.goal.x, q.query.goal.y, problem));
     }
   }
   nlohmann::json row;
-  writeAbstractionKeys(&abstraction, row);
-  row["build_ms"] = abstraction.stats().buildMilliseconds;
+  writeAbstractionKeys(stats, row);
+  row["graphs"] = graphs.size();
+  row["build_ms"] = stats.buildMilliseconds;
   row["queries"] = tally.queries();
   row["solved"] = tally.solved();
   row["mean_error_pct"] = tally.meanSuboptimalityPct();
@@ -168,7 +222,16 @@ double percentOf(const nlohmann::json& part, const nlohmann::json& whole) {
   return w > 0.0 ? 100.0 * part.get<double>() / w : 0.0;
 }
 
-void printMarkdown(const nlohmann::json& rows, const PaperBenchOptions& options) {
+void printMarkdown(const nlohmann::json& rows, const PaperBenchOptions& options,
+                   const std::vector<Agent>& kinds) {
+  // "{ground}, {trees} or {ground,trees}": the capabilities taking part (every size has them).
+  std::vector<std::string> names;
+  for (const Agent& agent : kinds) {
+    if (agent.size == 1) names.push_back("{" + agent.capability.toString() + "}");
+  }
+  std::string capabilities;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    capabilities += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
   fmt::print(
       "Abstract graph size (Table I). Grid graph: nodes = traversable cells; edges = legal "
       "undirected moves of a size-1 agent that may stand on every terrain of the map. Abstract "
@@ -191,10 +254,15 @@ void printMarkdown(const nlohmann::json& rows, const PaperBenchOptions& options)
   }
   fmt::print(
       "\nQueries against AA* ({} per map and share, seed {}; agents of size 1 or 2 with "
-      "capability {{ground}}, {{trees}} or {{ground,trees}}, start and goal mutually reachable; "
-      "HAA* {}). Error = (HAA* cost - AA* cost) / AA* cost; expanded = mean HAA* expansions (all "
-      "phases) / mean AA* expansions.\n\n",
-      options.queries, options.seed, options.noSmooth ? "unsmoothed" : "smoothed");
+      "capability {}, start and goal mutually reachable; HAA* {}{}). Error = (HAA* cost - AA* "
+      "cost) / AA* cost; expanded = mean HAA* expansions (all phases) / mean AA* "
+      "expansions.\n\n",
+      options.queries, options.seed, capabilities, options.noSmooth ? "unsmoothed" : "smoothed",
+      options.costsFile.empty()
+          ? ""
+          : fmt::format("; every agent moves by the terrain costs of {} and HAA* uses a "
+                        "weighted graph per agent kind (the graph columns above sum them)",
+                        options.costsFile));
   fmt::print(
       "| map | trees % | cluster | quality | mean error % | max error % | expanded vs AA* | "
       "HAA* µs | AA* µs | speed-up | failures |\n");
@@ -222,6 +290,15 @@ int runPaperBench(const PaperBenchOptions& options) {
     if (!problem.empty())
       throw BadInput{fmt::format("--cluster-sizes: {}: {}", clusterSize, problem)};
   }
+  Experiment experiment;
+  experiment.costs = loadCostsOption(options.costsFile);
+  experiment.kinds = experimentAgents(experiment.costs);
+  if (experiment.kinds.empty()) {
+    throw BadInput{fmt::format(
+        "--costs: {} prices none of the experiment's capabilities {{ground}}, {{trees}}, "
+        "{{ground,trees}} (it prices {})",
+        options.costsFile, experiment.costs->capability().toString())};
+  }
   std::vector<GridMap> maps;
   for (const std::string& file : options.mapFiles)
     maps.push_back(loadMapOrThrow(file));
@@ -234,11 +311,19 @@ int runPaperBench(const PaperBenchOptions& options) {
       const AnnotatedGrid grid(withSoftObstacles(maps[m], percent, Terrain::Trees, options.seed));
       const auto [gridNodes, gridEdges] = gridGraphSize(grid);
       std::vector<AgentQuery> queries =
-          drawQueries(grid, options.queries, options.seed, name, percent);
+          drawQueries(grid, experiment.kinds, options.queries, options.seed, name, percent);
+      // Under costs, the optimum is AA* under each agent kind's costs.
+      std::vector<CostField> fields;
+      if (experiment.costs) {
+        for (const Agent& kind : experiment.kinds)
+          fields.emplace_back(grid, kind, *experiment.costs);
+      }
       AnnotatedAStar optimal(grid);
       ResultTally optimalTally;
       for (AgentQuery& q : queries) {
-        q.optimal = optimal.findPath(q.agent, q.query.start, q.query.goal, nullptr);
+        q.optimal = fields.empty() ? optimal.findPath(q.agent, q.query.start, q.query.goal, nullptr)
+                                   : optimal.findPath(q.agent, q.query.start, q.query.goal, nullptr,
+                                                      fields[q.kind]);
         optimalTally.add(q.optimal, q.optimal.cost);
         // The sampler drew a reachable pair, so AA* must find it.
         if (!q.optimal.found())
@@ -247,8 +332,8 @@ int runPaperBench(const PaperBenchOptions& options) {
       for (int clusterSize : clusterSizes) {
         for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
           std::size_t failuresBefore = failures.count;
-          nlohmann::json row = measureAbstraction(
-              grid, queries, optimalTally, experimentSpec(clusterSize, quality), options, failures);
+          nlohmann::json row = measureAbstraction(grid, experiment, queries, optimalTally,
+                                                  clusterSize, quality, options, failures);
           row["map"] = name;
           row["soft_percent"] = percent;
           row["cluster_size"] = clusterSize;
@@ -264,12 +349,19 @@ int runPaperBench(const PaperBenchOptions& options) {
   }
 
   if (options.markdown) {
-    printMarkdown(rows, options);
+    printMarkdown(rows, options, experiment.kinds);
   } else {
-    const nlohmann::json out{{"seed", options.seed},
-                             {"queries", options.queries},
-                             {"smooth", !options.noSmooth},
-                             {"rows", rows}};
+    nlohmann::json capabilities = nlohmann::json::array();
+    for (const Agent& agent : experiment.kinds) {
+      if (agent.size == 1) capabilities.push_back(agent.capability.toString());
+    }
+    const nlohmann::json out{
+        {"seed", options.seed},
+        {"queries", options.queries},
+        {"smooth", !options.noSmooth},
+        {"costs", experiment.costs ? nlohmann::json(options.costsFile) : nlohmann::json(nullptr)},
+        {"capabilities", capabilities},
+        {"rows", rows}};
     fmt::print("{}\n", out.dump());
   }
   for (const std::string& example : failures.examples)
@@ -291,7 +383,10 @@ void registerBenchPaperCommand(CLI::App& bench, CommandRunner& run) {
       "into trees, random reachable queries for agents of size 1 or 2 with capability {ground}, "
       "{trees} or {ground,trees}, answered by AA* and by HAA* on the HQ and LQ graph of each "
       "cluster size; prints graph sizes, path error, expansions and time per row (JSON, or "
-      "Markdown tables).\n"
+      "Markdown tables). With --costs every agent moves by the costs: only the capabilities "
+      "among those three whose every terrain has a cost take part, the optimum is AA* under "
+      "the costs, and HAA* uses one weighted graph per agent kind (size x capability) with "
+      "queries, as a weighted graph serves one kind; a row's graph figures sum them.\n"
       "Exit status: 0 done, 1 HAA* missed a path or returned an illegal or too cheap one, "
       "2 bad input.",
       runPaperBench);
@@ -308,6 +403,7 @@ void registerBenchPaperCommand(CLI::App& bench, CommandRunner& run) {
       ->capture_default_str();
   cmd->add_flag("--no-smooth", options->noSmooth, "keep HAA*'s refined paths unsmoothed");
   cmd->add_flag("--markdown", options->markdown, "print Markdown tables instead of JSON");
+  addCostsOption(*cmd, options->costsFile);
 }
 
 }  // namespace warpath::tools

@@ -5,13 +5,15 @@
 #include <algorithm>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "pathing/aa_star.h"
 #include "pathing/annotated_grid.h"
 #include "pathing/map_generator.h"
+#include "pathing/planner.h"
 #include "pathing/random.h"
+#include "pathing/terrain_costs.h"
 #include "rts/bench_support.h"
 #include "rts/cli_support.h"
 #include "rts/commands.h"
@@ -29,6 +31,7 @@ struct RandomBenchOptions {
   std::uint64_t seed = 1;
   PlannerChoice planner;
   bool json = false;
+  std::string costsFile;  // empty: the uniform model
 };
 
 // The unit catalogue's capabilities (infantry; jeep and tank; amphibious), which the
@@ -41,7 +44,10 @@ const std::vector<Capability> kCatalogueCapabilities{
 
 int runRandomBench(const RandomBenchOptions& options) {
   const Algorithm algorithm = parseAlgorithm(options.planner.algo);
-  const Agent agent = parseAgent(options.agent);
+  Agent agent = parseAgent(options.agent);
+  // Under costs the agent moves on the terrains that have a cost, as in `rts path`.
+  const std::optional<TerrainCosts> costs = loadCostsOption(options.costsFile);
+  if (costs) agent.capability = costs->capability();
   const AnnotatedGrid grid(loadMapOrThrow(options.mapFile));
 
   const QuerySampler sampler(grid, agent);
@@ -54,14 +60,20 @@ int runRandomBench(const RandomBenchOptions& options) {
   for (Query& q : queries)
     q = sampler.anyPair(rng);
 
-  AbstractionNeeds needs{.capabilities = kCatalogueCapabilities,
-                         .maxAgentSize = std::max(3, agent.size)};
-  needs.capabilities.push_back(agent.capability);
-  const std::vector<Agent> annotate{agent};
-  const PreparedPlanner prepared =
-      preparePlanner(grid, algorithm, options.planner, annotate, std::move(needs));
+  // Uniform: the abstraction is shared as a service's would be. Under costs: a weighted graph
+  // serves one agent kind, so it is built for this agent alone.
+  const auto prepare = [&] {
+    if (costs) return prepareCostPlanner(grid, algorithm, options.planner, agent, *costs);
+    AbstractionNeeds needs{.capabilities = kCatalogueCapabilities,
+                           .maxAgentSize = std::max(3, agent.size)};
+    needs.capabilities.push_back(agent.capability);
+    const std::vector<Agent> annotate{agent};
+    return preparePlanner(grid, algorithm, options.planner, annotate, std::move(needs));
+  };
+  const PreparedPlanner prepared = prepare();
   Planner planner = prepared.makePlanner(grid);
-  AnnotatedAStar optimal(grid);
+  // The optimum: AA* under the same costs.
+  Planner optimal(grid, Algorithm::AStar, nullptr, {}, {}, prepared.costsOrNull());
 
   ResultTally tally;
   ResultTally reference;
@@ -86,7 +98,8 @@ int runRandomBench(const RandomBenchOptions& options) {
                             toString(best.status)));
     }
     if (!result.found()) continue;
-    if (std::string problem = pathProblem(grid, agent, q.start, q.goal, result, path);
+    if (std::string problem =
+            pathProblem(grid, agent, q.start, q.goal, result, path, prepared.costsOrNull());
         !problem.empty()) {
       ++illegalPaths;
       report(q, problem);
@@ -102,6 +115,7 @@ int runRandomBench(const RandomBenchOptions& options) {
   out["algo"] = std::string(toString(algorithm));
   out["agent"] = agentJson(agent);
   out["seed"] = options.seed;
+  out["costs"] = costs ? nlohmann::json(options.costsFile) : nlohmann::json(nullptr);
   if (prepared.abstraction) out["cluster_size"] = options.planner.clusterSize;
   if (algorithm == Algorithm::Hybrid) out["tau"] = options.planner.tau;
   tally.writeTo(out);
@@ -134,7 +148,10 @@ void registerBenchRandomCommand(CLI::App& bench, CommandRunner& run) {
       "Compare a planner with AA* (the optimum) on random queries for one agent: start and goal "
       "drawn uniformly (seeded) among the cells where the agent can stand, reachable or not. "
       "The hierarchical planners' abstraction serves the agent's capability and the unit "
-      "catalogue's, agents up to max(3, size).\n"
+      "catalogue's, agents up to max(3, size). With --costs the agent (--size) moves on the "
+      "terrains with a cost (--capability is ignored), the optimum is AA* under the costs, and "
+      "the hierarchical planners use a graph priced by the costs built for this agent alone "
+      "(a weighted graph serves one agent kind).\n"
       "Exit status: 0 done, 1 a completeness failure, an illegal path or a path cheaper than "
       "AA*'s, 2 bad input.",
       runRandomBench);
@@ -146,6 +163,7 @@ void registerBenchRandomCommand(CLI::App& bench, CommandRunner& run) {
   cmd->add_option("--seed", options->seed, "seed of the query generator")->capture_default_str();
   options->planner.algo = "haa-hq";  // comparing AA* with itself is the odd case here
   addPlannerOptions(*cmd, options->planner);
+  addCostsOption(*cmd, options->costsFile);
   cmd->add_flag("--json", options->json, "print one JSON object");
 }
 

@@ -82,14 +82,15 @@ void ResultTally::writeTo(nlohmann::json& out) const {
 }
 
 std::string pathProblem(const AnnotatedGrid& grid, Agent agent, Cell start, Cell goal,
-                        const PathResult& result, std::span<const Cell> path) {
+                        const PathResult& result, std::span<const Cell> path,
+                        const CostField* costs) {
   if (path.empty()) return "found, but the path is empty";
   if (!(path.front() == start) || !(path.back() == goal)) {
     return fmt::format("the path runs {},{} -> {},{}", path.front().x, path.front().y,
                        path.back().x, path.back().y);
   }
   if (std::string illegal = findIllegalStep(grid, agent, path); !illegal.empty()) return illegal;
-  const double walked = pathCost(path);
+  const double walked = costs ? costs->pathCost(path) : pathCost(path);
   if (std::abs(walked - result.cost) > 1e-6) {
     return fmt::format("the path costs {:.6f}, the result says {:.6f}", walked, result.cost);
   }

@@ -11,6 +11,7 @@
 
 #include "pathing/annotated_grid.h"
 #include "pathing/search.h"
+#include "pathing/terrain_costs.h"
 
 namespace warpath::tools {
 
@@ -61,10 +62,12 @@ class ResultTally {
 };
 
 // Empty when `path` is what a found `result` for start -> goal must carry: a legal path for
-// the agent from start to goal whose cost is result.cost (within 1e-6); else the problem.
+// the agent from start to goal whose cost is result.cost (within 1e-6), priced by `costs`
+// when given (else the uniform model); else the problem.
 std::string pathProblem(const pathing::AnnotatedGrid& grid, pathing::Agent agent,
                         pathing::Cell start, pathing::Cell goal, const pathing::PathResult& result,
-                        std::span<const pathing::Cell> path);
+                        std::span<const pathing::Cell> path,
+                        const pathing::CostField* costs = nullptr);
 
 // Prints one JSON line, or one "key value" line per key.
 void printReport(const nlohmann::json& out, bool json);

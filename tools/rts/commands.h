@@ -27,7 +27,8 @@ std::pair<CLI::App*, std::shared_ptr<Options>> addSubcommand(CLI::App& parent, C
 
 void registerPathCommand(CLI::App& app, CommandRunner& run);
 void registerBenchCommand(CLI::App& app, CommandRunner& run);
-// `rts bench random`, `rts bench paper` and `rts bench movement`, added to `bench` by registerBenchCommand.
+// `rts bench random`, `rts bench paper` and `rts bench movement`, added to `bench` by
+// registerBenchCommand.
 void registerBenchRandomCommand(CLI::App& bench, CommandRunner& run);
 void registerBenchPaperCommand(CLI::App& bench, CommandRunner& run);
 void registerBenchMovementCommand(CLI::App& bench, CommandRunner& run);

@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "engine/scenario.h"
-#include "pathing/aa_star.h"
 #include "pathing/annotated_grid.h"
 #include "pathing/map_io.h"
 #include "pathing/terrain.h"
@@ -85,14 +84,13 @@ std::string drawPath(const GridMap& map, Agent agent, const std::vector<Cell>& p
 int runPath(const PathOptions& options) {
   const Algorithm algorithm = parseAlgorithm(options.planner.algo);
   Agent agent = parseAgent(options.agent);
-  std::optional<TerrainCosts> costs = loadCostsOption(options.costsFile, algorithm);
+  std::optional<TerrainCosts> costs = loadCostsOption(options.costsFile);
   // The agent moves on the terrains that have a cost.
   if (costs) agent.capability = costs->capability();
   std::string costSource = options.costsFile;
   if (!options.unitType.empty()) {
     costSource = fmt::format("unit {} of {}", options.unitType, options.catalogueFile);
     std::tie(agent, costs) = unitAgent(options.catalogueFile, options.unitType);
-    requireCostPlanner(algorithm, "--unit");
   }
   const Cell from = parseCell(options.from, "--from");
   const Cell to = parseCell(options.to, "--to");
@@ -108,19 +106,19 @@ int runPath(const PathOptions& options) {
   }
 
   // Annotate (and build the abstraction) first, so the query's metrics measure the search
-  // alone. The abstraction serves this capability, for agents up to max(3, size).
+  // alone. The abstraction serves this capability, for agents up to max(3, size); under costs,
+  // this agent alone.
   std::vector<Agent> annotate;
   if (grid.canStand(agent, from)) annotate.push_back(agent);
   const PreparedPlanner prepared =
-      preparePlanner(grid, algorithm, options.planner, annotate,
-                     {.capabilities = {agent.capability}, .maxAgentSize = std::max(3, agent.size)});
+      costs ? prepareCostPlanner(grid, algorithm, options.planner, agent, *costs)
+            : preparePlanner(
+                  grid, algorithm, options.planner, annotate,
+                  {.capabilities = {agent.capability}, .maxAgentSize = std::max(3, agent.size)});
   const double annotateMs = prepared.preprocessMs;
   Planner planner = prepared.makePlanner(grid);
   std::vector<Cell> path;
-  std::optional<CostField> field;
-  if (costs) field.emplace(grid, agent, *costs);
-  const PathResult result = field ? AnnotatedAStar(grid).findPath(agent, from, to, &path, *field)
-                                  : planner.findPath(agent, from, to, &path);
+  const PathResult result = planner.findPath(agent, from, to, &path);
   const SearchMetrics& m = result.metrics;
   if (!options.png.empty()) {
     writePathPng(options.png, map, agent, path,
@@ -197,7 +195,9 @@ void registerPathCommand(CLI::App& app, CommandRunner& run) {
       app, run, "path",
       "Plan a path for one agent on a MovingAI .map and print it: the shortest with --algo aa, "
       "else the hierarchical planner's (abstraction for the agent's capability, sizes up to "
-      "max(3, size)).\n"
+      "max(3, size)). Under --costs or --unit every --algo plans under the costs and the length "
+      "is in their unit; the hierarchical planners' abstraction then serves that one agent (its "
+      "size and capability) and is priced by the costs.\n"
       "Exit status: 0 path found, 1 no path (unreachable, or the agent cannot stand at an "
       "end), 2 bad input.",
       runPath);
@@ -209,7 +209,7 @@ void registerPathCommand(CLI::App& app, CommandRunner& run) {
   CLI::Option* costs = addCostsOption(*cmd, options->costsFile);
   cmd->add_option("--unit", options->unitType,
                   "plan for a catalogue type: its size, capability and costs (1 / its speed on "
-                  "each terrain, seconds per cell); --algo aa only for now")
+                  "each terrain, seconds per cell); every --algo plans under them")
       ->excludes(costs);
   cmd->add_option("--catalogue", options->catalogueFile,
                   "unit catalogue for --unit (default: the bundled assets/units.yaml)")

@@ -33,21 +33,27 @@ CLI::Option* addCostsOption(CLI::App& cmd, std::string& file) {
       "--costs", file,
       "plan under terrain costs from a warthog cost table (one line per map "
       "character: the character, its cost; 0 impassable); the agent's capability is "
-      "the terrains with a cost; --algo aa only for now");
+      "the terrains with a cost, and every --algo plans under the costs (the hierarchical ones "
+      "on a graph built for that one agent)");
 }
 
-void requireCostPlanner(Algorithm algorithm, std::string_view option) {
-  if (algorithm == Algorithm::AStar) return;
-  throw BadInput{fmt::format("{}: only --algo aa plans under terrain costs so far (got --algo {})",
-                             option, toString(algorithm))};
-}
-
-std::optional<TerrainCosts> loadCostsOption(const std::string& file, Algorithm algorithm) {
+std::optional<TerrainCosts> loadCostsOption(const std::string& file) {
   if (file.empty()) return std::nullopt;
   Result<TerrainCosts> loaded = loadCostTable(file);
   if (!loaded) throw BadInput{loaded.error().describe()};
-  requireCostPlanner(algorithm, "--costs");
+  if (loaded.value().capability().empty())
+    throw BadInput{"--costs: " + file + " gives no terrain a cost (every cost is 0)"};
   return loaded.value();
+}
+
+AbstractionSpec costAbstractionSpec(int clusterSize, AbstractionQuality quality, Agent agent,
+                                    const TerrainCosts& costs) {
+  return {.clusterSize = clusterSize,
+          .maxAgentSize = agent.size,
+          .capabilities = {agent.capability},
+          .quality = quality,
+          .cachePaths = true,
+          .costs = costs};
 }
 
 nlohmann::json agentJson(Agent agent) {
@@ -90,9 +96,11 @@ ClusterAbstraction buildAbstractionOrThrow(const AnnotatedGrid& grid, Abstractio
   return ClusterAbstraction::build(grid, std::move(spec));
 }
 
-PreparedPlanner preparePlanner(const AnnotatedGrid& grid, Algorithm algorithm,
-                               const PlannerChoice& choice, std::span<const Agent> annotate,
-                               AbstractionNeeds needs) {
+namespace {
+
+// preparePlanner and prepareCostPlanner: the options, then `build` (timed) fills in the rest.
+template <typename Build>
+PreparedPlanner prepare(Algorithm algorithm, const PlannerChoice& choice, Build&& build) {
   PreparedPlanner prepared;
   prepared.algorithm = algorithm;
   prepared.hybrid.tau = choice.tau;
@@ -100,9 +108,22 @@ PreparedPlanner preparePlanner(const AnnotatedGrid& grid, Algorithm algorithm,
     throw BadInput{"--tau: " + problem};
   prepared.haa.smooth = !choice.noSmooth;
   const auto began = std::chrono::steady_clock::now();
-  for (const Agent& agent : annotate)
-    grid.layer(agent);
-  if (const auto quality = abstractionQualityFor(algorithm)) {
+  build(prepared);
+  prepared.preprocessMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
+  return prepared;
+}
+
+}  // namespace
+
+PreparedPlanner preparePlanner(const AnnotatedGrid& grid, Algorithm algorithm,
+                               const PlannerChoice& choice, std::span<const Agent> annotate,
+                               AbstractionNeeds needs) {
+  return prepare(algorithm, choice, [&](PreparedPlanner& prepared) {
+    for (const Agent& agent : annotate)
+      grid.layer(agent);
+    const auto quality = abstractionQualityFor(algorithm);
+    if (!quality) return;
     std::sort(needs.capabilities.begin(), needs.capabilities.end());
     needs.capabilities.erase(std::unique(needs.capabilities.begin(), needs.capabilities.end()),
                              needs.capabilities.end());
@@ -112,14 +133,28 @@ PreparedPlanner preparePlanner(const AnnotatedGrid& grid, Algorithm algorithm,
                                                       .capabilities = std::move(needs.capabilities),
                                                       .quality = *quality,
                                                       .cachePaths = true}));
-  }
-  prepared.preprocessMs =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
-  return prepared;
+  });
+}
+
+PreparedPlanner prepareCostPlanner(const AnnotatedGrid& grid, Algorithm algorithm,
+                                   const PlannerChoice& choice, Agent agent,
+                                   const TerrainCosts& costs) {
+  return prepare(algorithm, choice, [&](PreparedPlanner& prepared) {
+    grid.layer(agent);
+    if (const auto quality = abstractionQualityFor(algorithm)) {
+      prepared.abstraction.emplace(buildAbstractionOrThrow(
+          grid, costAbstractionSpec(choice.clusterSize, *quality, agent, costs)));
+    } else {
+      prepared.aaCosts.emplace(grid, agent, costs);
+    }
+  });
 }
 
 void writeAbstractionKeys(const ClusterAbstraction* abstraction, nlohmann::json& out) {
-  const AbstractionStats stats = abstraction ? abstraction->stats() : AbstractionStats{};
+  writeAbstractionKeys(abstraction ? abstraction->stats() : AbstractionStats{}, out);
+}
+
+void writeAbstractionKeys(const AbstractionStats& stats, nlohmann::json& out) {
   out["abstract_nodes"] = stats.nodes;
   out["abstract_edges"] = stats.interEdges + stats.intraEdges;
   out["abstract_inter_edges"] = stats.interEdges;

@@ -9,7 +9,6 @@
 #include <optional>
 #include <span>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "pathing/annotated_grid.h"
@@ -51,29 +50,41 @@ pathing::Algorithm parseAlgorithm(const std::string& name);
 
 // Adds --costs to `cmd`, bound to `file`.
 CLI::Option* addCostsOption(CLI::App& cmd, std::string& file);
-// Throws BadInput, naming `option`, when `algorithm` cannot plan under terrain costs (only AA*
-// does so far).
-void requireCostPlanner(pathing::Algorithm algorithm, std::string_view option);
-// The --costs table, or nullopt when `file` is empty; throws BadInput on a bad file, or when
-// `algorithm` cannot plan under costs (requireCostPlanner).
-std::optional<pathing::TerrainCosts> loadCostsOption(const std::string& file,
-                                                     pathing::Algorithm algorithm);
+// The --costs table, or nullopt when `file` is empty; throws BadInput on a bad file or a table
+// that gives no terrain a cost.
+std::optional<pathing::TerrainCosts> loadCostsOption(const std::string& file);
 
-// A planner ready for queries: the abstraction (none for AA*) and what preparing it cost.
-// Planners made from it refer to its abstraction, so it must stay where it is meanwhile.
+// The spec of a weighted abstraction (AbstractionSpec::costs): it serves `agent` alone (its
+// size and capability, which `costs` must price), moving by `costs`.
+pathing::AbstractionSpec costAbstractionSpec(int clusterSize, pathing::AbstractionQuality quality,
+                                             pathing::Agent agent,
+                                             const pathing::TerrainCosts& costs);
+
+// A planner ready for queries: the abstraction (none for AA*), the costs AA* plans under (none
+// in the uniform model, or for the hierarchical algorithms, whose abstraction holds its own)
+// and what preparing them cost. Planners made from it refer to its abstraction and costs, so
+// it must stay where it is meanwhile.
 struct PreparedPlanner {
   pathing::Algorithm algorithm = pathing::Algorithm::AStar;
   pathing::HybridOptions hybrid;
   pathing::HaaOptions haa;
   std::optional<pathing::ClusterAbstraction> abstraction;
-  double preprocessMs = 0.0;  // [Unit: ms] annotating the grid for the agents + abstraction
+  std::optional<pathing::CostField> aaCosts;
+  double preprocessMs = 0.0;  // [Unit: ms] annotating the grid + costs + abstraction
 
   const pathing::ClusterAbstraction* abstractionOrNull() const {
     return abstraction ? &*abstraction : nullptr;
   }
+  // The costs every query is planned under (the weighted abstraction's, or AA*'s); null in the
+  // uniform model.
+  const pathing::CostField* costsOrNull() const {
+    if (abstraction) return abstraction->costs();
+    return aaCosts ? &*aaCosts : nullptr;
+  }
   // One query object (one per thread).
   pathing::Planner makePlanner(const pathing::AnnotatedGrid& grid) const {
-    return pathing::Planner(grid, algorithm, abstractionOrNull(), hybrid, haa);
+    return pathing::Planner(grid, algorithm, abstractionOrNull(), hybrid, haa,
+                            aaCosts ? &*aaCosts : nullptr);
   }
 };
 
@@ -90,6 +101,14 @@ PreparedPlanner preparePlanner(const pathing::AnnotatedGrid& grid, pathing::Algo
                                const PlannerChoice& choice,
                                std::span<const pathing::Agent> annotate, AbstractionNeeds needs);
 
+// Under terrain costs: a planner for the one agent every query is for, moving by `costs`:
+// AA* under the agent's CostField, or the hierarchical algorithms on a weighted abstraction
+// (costAbstractionSpec) serving that agent alone. preprocessMs times the annotation, the
+// costs and the abstraction. Throws BadInput as preparePlanner does.
+PreparedPlanner prepareCostPlanner(const pathing::AnnotatedGrid& grid, pathing::Algorithm algorithm,
+                                   const PlannerChoice& choice, pathing::Agent agent,
+                                   const pathing::TerrainCosts& costs);
+
 // Throws BadInput naming the options when `spec` cannot be built.
 void checkSpecOrThrow(const pathing::AbstractionSpec& spec);
 
@@ -100,5 +119,7 @@ pathing::ClusterAbstraction buildAbstractionOrThrow(const pathing::AnnotatedGrid
 // abstract_nodes, abstract_edges (inter + intra), abstract_inter_edges, abstract_intra_edges,
 // abstraction_bytes, cached_path_bytes: zeros without an abstraction (AA* searches the grid).
 void writeAbstractionKeys(const pathing::ClusterAbstraction* abstraction, nlohmann::json& out);
+// The same keys for graph statistics (e.g. summed over several graphs).
+void writeAbstractionKeys(const pathing::AbstractionStats& stats, nlohmann::json& out);
 
 }  // namespace warpath::tools
