@@ -134,7 +134,7 @@ class StraightWalker {
         // integer, like a line drawn from a to b.
         return ((k + 1) * diagonals) / total != (k * diagonals) / total ? diagonal : straight;
       };
-      if (walkCost(a, total, moveAt) < budget) {
+      if (walkCost(a, total, moveAt, budget) < budget) {
         Cell at = a;
         for (int k = 0; k < total; ++k) {
           const Direction& dir = kDirections[static_cast<std::size_t>(moveAt(k))];
@@ -148,9 +148,10 @@ class StraightWalker {
   }
 
  private:
-  // The walk's cost, or infinity when a move of it is illegal for the agent.
+  // The walk's cost, or infinity when a move of it is illegal for the agent; stops early, with
+  // what it has summed, once that reaches `budget`.
   template <class MoveAt>
-  double walkCost(Cell from, int total, const MoveAt& moveAt) const {
+  double walkCost(Cell from, int total, const MoveAt& moveAt, double budget) const {
     const std::uint8_t* masks = layer_.moveMasks().data();
     Cell at = from;
     double cost = 0.0;
@@ -159,6 +160,7 @@ class StraightWalker {
       if ((masks[map_.indexOf(at)] & (1u << d)) == 0)
         return std::numeric_limits<double>::infinity();
       cost += costs_ ? costs_->moveCost(at, d) : kDirections[static_cast<std::size_t>(d)].cost;
+      if (cost >= budget) return cost;
       at = {at.x + kDirections[static_cast<std::size_t>(d)].dx,
             at.y + kDirections[static_cast<std::size_t>(d)].dy};
     }

@@ -70,18 +70,6 @@ CostField::CostField(const AnnotatedGrid& grid, Agent agent, const TerrainCosts&
   }
 }
 
-double CostField::moveCost(Cell from, int d) const {
-  const Direction& dir = kDirections[static_cast<std::size_t>(d)];
-  const auto at = [&](int x, int y) {
-    return anchor_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-                   static_cast<std::size_t>(x)];
-  };
-  const double a = at(from.x, from.y);
-  const double b = at(from.x + dir.dx, from.y + dir.dy);
-  if (!isDiagonal(d)) return 0.5 * (a + b);
-  return kSqrt2 * 0.25 * (a + b + at(from.x + dir.dx, from.y) + at(from.x, from.y + dir.dy));
-}
-
 double CostField::pathCost(std::span<const Cell> path) const {
   double total = 0.0;
   for (std::size_t i = 1; i < path.size(); ++i) {

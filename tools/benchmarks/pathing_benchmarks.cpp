@@ -10,6 +10,7 @@
 #include "pathing/haa_star.h"
 #include "pathing/map_generator.h"
 #include "pathing/random.h"
+#include "pathing/terrain_costs.h"
 
 namespace {
 
@@ -125,6 +126,89 @@ void BM_HierarchicalAStar(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_HierarchicalAStar)->Arg(1)->Arg(3)->Unit(benchmark::kMicrosecond);
+
+// Terrain costs (issue 13): the catalogue's infantry, 1 / (1.5, 0.8, 1.0) s per cell on ground,
+// swamp and trees.
+TerrainCosts infantryCosts() {
+  TerrainCosts costs;
+  costs.perCell[static_cast<std::size_t>(Terrain::Ground)] = 1.0 / 1.5;
+  costs.perCell[static_cast<std::size_t>(Terrain::Swamp)] = 1.0 / 0.8;
+  costs.perCell[static_cast<std::size_t>(Terrain::Trees)] = 1.0;
+  return costs;
+}
+
+AbstractionSpec weightedSpec(int size, AbstractionQuality quality) {
+  AbstractionSpec spec;
+  spec.maxAgentSize = size;
+  spec.capabilities = {kInfantry};
+  spec.quality = quality;
+  spec.costs = infantryCosts();
+  return spec;
+}
+
+// Weighted AA* on the long queries of BM_HierarchicalAStar: the baseline of the speed-up.
+void BM_WeightedAnnotatedAStar(benchmark::State& state) {
+  const int size = static_cast<int>(state.range(0));
+  const AnnotatedGrid grid(benchmarkMap(512));
+  const Agent agent{size, kInfantry};
+  const CostField costs(grid, agent, infantryCosts());
+  const std::vector<std::pair<Cell, Cell>> queries = standableQueries(grid, agent, 256);
+  AnnotatedAStar search(grid);
+  std::vector<Cell> path;
+  std::size_t next = 0;
+  for (auto _ : state) {
+    const auto& [s, g] = queries[next++ % queries.size()];
+    benchmark::DoNotOptimize(search.findPath(agent, s, g, &path, costs));
+  }
+}
+BENCHMARK(BM_WeightedAnnotatedAStar)->Arg(1)->Arg(3)->Unit(benchmark::kMicrosecond);
+
+// Weighted HAA* on the same queries, HQ (quality 0) and LQ (1); `error_pct` is the mean cost
+// above weighted AA*'s optimum over the query set.
+void BM_WeightedHierarchicalAStar(benchmark::State& state) {
+  const int size = static_cast<int>(state.range(0));
+  const auto quality = static_cast<AbstractionQuality>(state.range(1));
+  const AnnotatedGrid grid(benchmarkMap(512));
+  const Agent agent{size, kInfantry};
+  const ClusterAbstraction graph = ClusterAbstraction::build(grid, weightedSpec(size, quality));
+  const std::vector<std::pair<Cell, Cell>> queries = standableQueries(grid, agent, 256);
+  HierarchicalAStar search(graph);
+  AnnotatedAStar reference(grid);
+  double excess = 0.0;
+  int found = 0;
+  for (const auto& [s, g] : queries) {
+    const PathResult optimum = reference.findPath(agent, s, g, nullptr, *graph.costs());
+    const PathResult r = search.findPath(agent, s, g, nullptr);
+    if (!optimum.found() || !r.found()) continue;
+    excess += r.cost / optimum.cost - 1.0;
+    ++found;
+  }
+  std::vector<Cell> path;
+  std::size_t next = 0;
+  for (auto _ : state) {
+    const auto& [s, g] = queries[next++ % queries.size()];
+    benchmark::DoNotOptimize(search.findPath(agent, s, g, &path));
+  }
+  state.counters["error_pct"] = found > 0 ? 100.0 * excess / found : 0.0;
+  state.counters["nodes"] = static_cast<double>(graph.stats().nodes);
+}
+BENCHMARK(BM_WeightedHierarchicalAStar)
+    ->Args({1, static_cast<int>(AbstractionQuality::High)})
+    ->Args({1, static_cast<int>(AbstractionQuality::Low)})
+    ->Args({3, static_cast<int>(AbstractionQuality::High)})
+    ->Unit(benchmark::kMicrosecond);
+
+// Building one weighted graph (one agent kind; HQ).
+void BM_WeightedAbstractionBuild(benchmark::State& state) {
+  const AnnotatedGrid grid(benchmarkMap(512));
+  const AbstractionSpec spec =
+      weightedSpec(static_cast<int>(state.range(0)), AbstractionQuality::High);
+  ClusterAbstraction::build(grid, spec);  // warms the grid's caches
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(ClusterAbstraction::build(grid, spec));
+  }
+}
+BENCHMARK(BM_WeightedAbstractionBuild)->Arg(1)->Arg(3)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
