@@ -434,10 +434,16 @@ void HierarchicalAStar::smooth(const AgentLayer& layer) {
     // straight stretch they rarely gain, and trying them was most of a query's time on
     // winding paths (8room_000: long-query median 1080 -> 574 us, error unchanged; on the
     // game maps +/- 0.1 point of error, 10-40 % faster).
-    const bool turning = i == 0 || cells[i].x - cells[i - 1].x != cells[i + 1].x - cells[i].x ||
-                         cells[i].y - cells[i - 1].y != cells[i + 1].y - cells[i].y;
-    const std::size_t farthest = turning ? std::min(n - 1, i + lookahead) : i + 1;
+    const auto turnsAt = [&](std::size_t k) {
+      return k == 0 || k + 1 == n || cells[k].x - cells[k - 1].x != cells[k + 1].x - cells[k].x ||
+             cells[k].y - cells[k - 1].y != cells[k + 1].y - cells[k].y;
+    };
+    const std::size_t farthest = turnsAt(i) ? std::min(n - 1, i + lookahead) : i + 1;
     for (std::size_t j = farthest; j >= i + 2; --j) {
+      // Under costs shortcuts also end only where the path turns: a weighted path turns at
+      // most terrain edges, and walking every candidate in between was a third of a query's
+      // time on the patchwork map (docs/benchmarks.md).
+      if (costs && !turnsAt(j)) continue;
       const double budget = s.prefixCost[j] - s.prefixCost[i] - 1e-9;
       const double direct =
           scale * octileDistance(cells[j].x - cells[i].x, cells[j].y - cells[i].y);
