@@ -43,6 +43,18 @@ std::vector<std::pair<Cell, Cell>> standableQueries(const AnnotatedGrid& grid, A
   return queries;
 }
 
+// Times `find(start, goal, path)` over the queries, round and round.
+template <class Find>
+void timeQueries(benchmark::State& state, const std::vector<std::pair<Cell, Cell>>& queries,
+                 const Find& find) {
+  std::vector<Cell> path;
+  std::size_t next = 0;
+  for (auto _ : state) {
+    const auto& [s, g] = queries[next++ % queries.size()];
+    benchmark::DoNotOptimize(find(s, g, &path));
+  }
+}
+
 const Capability kInfantry = Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Trees});
 
 void BM_Clearance(benchmark::State& state) {
@@ -118,12 +130,9 @@ void BM_HierarchicalAStar(benchmark::State& state) {
   const Agent agent{size, kInfantry};
   const std::vector<std::pair<Cell, Cell>> queries = standableQueries(grid, agent, 256);
   HierarchicalAStar search(graph);
-  std::vector<Cell> path;
-  std::size_t next = 0;
-  for (auto _ : state) {
-    const auto& [s, g] = queries[next++ % queries.size()];
-    benchmark::DoNotOptimize(search.findPath(agent, s, g, &path));
-  }
+  timeQueries(state, queries, [&](Cell s, Cell g, std::vector<Cell>* path) {
+    return search.findPath(agent, s, g, path);
+  });
 }
 BENCHMARK(BM_HierarchicalAStar)->Arg(1)->Arg(3)->Unit(benchmark::kMicrosecond);
 
@@ -154,12 +163,9 @@ void BM_WeightedAnnotatedAStar(benchmark::State& state) {
   const CostField costs(grid, agent, infantryCosts());
   const std::vector<std::pair<Cell, Cell>> queries = standableQueries(grid, agent, 256);
   AnnotatedAStar search(grid);
-  std::vector<Cell> path;
-  std::size_t next = 0;
-  for (auto _ : state) {
-    const auto& [s, g] = queries[next++ % queries.size()];
-    benchmark::DoNotOptimize(search.findPath(agent, s, g, &path, costs));
-  }
+  timeQueries(state, queries, [&](Cell s, Cell g, std::vector<Cell>* path) {
+    return search.findPath(agent, s, g, path, costs);
+  });
 }
 BENCHMARK(BM_WeightedAnnotatedAStar)->Arg(1)->Arg(3)->Unit(benchmark::kMicrosecond);
 
@@ -183,12 +189,9 @@ void BM_WeightedHierarchicalAStar(benchmark::State& state) {
     excess += r.cost / optimum.cost - 1.0;
     ++found;
   }
-  std::vector<Cell> path;
-  std::size_t next = 0;
-  for (auto _ : state) {
-    const auto& [s, g] = queries[next++ % queries.size()];
-    benchmark::DoNotOptimize(search.findPath(agent, s, g, &path));
-  }
+  timeQueries(state, queries, [&](Cell s, Cell g, std::vector<Cell>* path) {
+    return search.findPath(agent, s, g, path);
+  });
   state.counters["error_pct"] = found > 0 ? 100.0 * excess / found : 0.0;
   state.counters["nodes"] = static_cast<double>(graph.stats().nodes);
 }
