@@ -54,10 +54,11 @@ bool sameOnMap(const CostProfile& a, const CostProfile& b, Capability present) {
     return Capability::fromMask(p.agent.capability.mask() & p.costs.capability().mask() &
                                 present.mask());
   };
-  if (cut(a) != cut(b)) return false;
+  const Capability terrains = cut(a);
+  if (terrains != cut(b)) return false;
   for (int slot = 0; slot < kTraversableTerrainSlots; ++slot) {
     const auto i = static_cast<std::size_t>(slot);
-    if (cut(a).allows(static_cast<Terrain>(slot)) && a.costs.perCell[i] != b.costs.perCell[i])
+    if (terrains.allows(static_cast<Terrain>(slot)) && a.costs.perCell[i] != b.costs.perCell[i])
       return false;
   }
   return true;
@@ -84,13 +85,12 @@ PathService::PathService(const AnnotatedGrid& grid, const PathServiceSettings& s
   // Requests without a profile plan in the uniform model (by AA* when no graph was built).
   planner_.emplace(grid, abstraction_ ? settings.algorithm : Algorithm::AStar, abstraction_.get());
   const Capability present = grid.map().terrainsPresent();
-  std::vector<CostProfile> distinct;
   for (const CostProfile& profile : costProfiles) {
     std::size_t k = 0;
-    while (k < distinct.size() && !sameOnMap(distinct[k], profile, present))
+    while (k < weighted_.size() &&
+           !sameOnMap({weighted_[k]->agent, weighted_[k]->costs}, profile, present))
       ++k;
-    if (k == distinct.size()) {
-      distinct.push_back(profile);
+    if (k == weighted_.size()) {
       auto planner = std::make_unique<WeightedPlanner>();
       planner->agent = {profile.agent.size,
                         Capability::fromMask(profile.agent.capability.mask() &
@@ -112,13 +112,8 @@ PathService::WeightedPlanner& PathService::weightedPlanner(int costProfile) {
   // A unit that can enter no terrain with a cost has no graph to build: AA* answers it
   // (InvalidStart).
   if (quality && !w.agent.capability.empty()) {
-    AbstractionSpec spec;
-    spec.clusterSize = settings_.clusterSize;
-    spec.maxAgentSize = w.agent.size;
-    spec.capabilities = {w.agent.capability};
-    spec.quality = *quality;
-    spec.costs = w.costs;
-    w.abstraction = std::make_unique<ClusterAbstraction>(ClusterAbstraction::build(grid_, spec));
+    w.abstraction = std::make_unique<ClusterAbstraction>(ClusterAbstraction::build(
+        grid_, weightedAbstractionSpec(w.agent, w.costs, settings_.clusterSize, *quality)));
     w.planner.emplace(grid_, settings_.algorithm, w.abstraction.get());
   } else {
     w.field.emplace(grid_, w.agent, w.costs);

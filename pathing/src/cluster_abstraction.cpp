@@ -36,6 +36,17 @@ std::string problemWith(const AbstractionSpec& spec) {
   return {};
 }
 
+AbstractionSpec weightedAbstractionSpec(Agent agent, const TerrainCosts& costs, int clusterSize,
+                                        AbstractionQuality quality) {
+  AbstractionSpec spec;
+  spec.clusterSize = clusterSize;
+  spec.maxAgentSize = agent.size;
+  spec.capabilities = {agent.capability};
+  spec.quality = quality;
+  spec.costs = costs;
+  return spec;
+}
+
 bool ClusterAbstraction::supports(Agent agent) const {
   const int smallest = costs_ ? spec_.maxAgentSize : 1;
   return agent.size >= smallest && agent.size <= spec_.maxAgentSize &&

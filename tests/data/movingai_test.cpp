@@ -146,11 +146,7 @@ TEST_P(MovingAiMap, WeightedHaaFindsAPathExactlyWhenWeightedAStarDoes) {
         testing::drawCompletenessCases(grid, {agent}, 2013, 6, 24, 0, &field);
     for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
       const ClusterAbstraction abstraction =
-          ClusterAbstraction::build(grid, AbstractionSpec{.clusterSize = 16,
-                                                          .maxAgentSize = size,
-                                                          .capabilities = {agent.capability},
-                                                          .quality = quality,
-                                                          .costs = costs});
+          ClusterAbstraction::build(grid, weightedAbstractionSpec(agent, costs, 16, quality));
       const std::string label = c.map.filename().string() + " size " + std::to_string(size) +
                                 (quality == AbstractionQuality::High ? " HQ" : " LQ");
       HierarchicalAStar haa(abstraction);

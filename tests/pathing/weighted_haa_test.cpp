@@ -60,16 +60,6 @@ GridMap randomMap(std::uint64_t seed, int width, int height, int maxPatch, int b
   return generateRandomMap(spec);
 }
 
-AbstractionSpec weightedSpec(Agent agent, const TerrainCosts& costs, int clusterSize,
-                             AbstractionQuality quality, bool cachePaths = true) {
-  return AbstractionSpec{.clusterSize = clusterSize,
-                         .maxAgentSize = agent.size,
-                         .capabilities = {agent.capability},
-                         .quality = quality,
-                         .cachePaths = cachePaths,
-                         .costs = costs};
-}
-
 TEST(WeightedHaaStar, CompleteLegalAndNeverCheaperThanWeightedAStar) {
   CompletenessTally high;
   CompletenessTally low;
@@ -86,8 +76,9 @@ TEST(WeightedHaaStar, CompleteLegalAndNeverCheaperThanWeightedAStar) {
           for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
             for (bool cachePaths : {true, false}) {
               if (!cachePaths && clusterSize != 8) continue;
-              const AbstractionSpec spec =
-                  weightedSpec(agent, profile.costs, clusterSize, quality, cachePaths);
+              AbstractionSpec spec =
+                  weightedAbstractionSpec(agent, profile.costs, clusterSize, quality);
+              spec.cachePaths = cachePaths;
               ASSERT_EQ(problemWith(spec), "");
               const ClusterAbstraction abstraction = ClusterAbstraction::build(grid, spec);
               ASSERT_TRUE(abstraction.supports(agent));
@@ -130,8 +121,8 @@ TEST(WeightedHaaStar, TransitionsAreChosenByCost) {
   const TerrainCosts costs = costsOf({{Terrain::Ground, 2.0}, {Terrain::Swamp, 0.25}});
   const Agent agent{1, costs.capability()};
   const CostField field(grid, agent, costs);
-  const ClusterAbstraction weighted =
-      ClusterAbstraction::build(grid, weightedSpec(agent, costs, 16, AbstractionQuality::High));
+  const ClusterAbstraction weighted = ClusterAbstraction::build(
+      grid, weightedAbstractionSpec(agent, costs, 16, AbstractionQuality::High));
   AnnotatedAStar astar(grid);
   const PathResult optimum = astar.findPath(agent, {2, 3}, {29, 3}, nullptr, field);
   ASSERT_TRUE(optimum.found());
@@ -145,7 +136,7 @@ TEST(WeightedHaaStar, TransitionsAreChosenByCost) {
   EXPECT_LT(r.cost, optimum.cost * 1.05);
 
   // The same graph in the uniform model has one transition per border and wades.
-  AbstractionSpec uniformSpec = weightedSpec(agent, costs, 16, AbstractionQuality::High);
+  AbstractionSpec uniformSpec = weightedAbstractionSpec(agent, costs, 16, AbstractionQuality::High);
   uniformSpec.costs.reset();
   const ClusterAbstraction uniform = ClusterAbstraction::build(grid, uniformSpec);
   EXPECT_GT(weighted.stats().nodes, uniform.stats().nodes);
@@ -173,8 +164,8 @@ TEST(WeightedHaaStar, ServesOnlyItsAgent) {
   const AnnotatedGrid grid(randomMap(5, 40, 40, 4, 10));
   const TerrainCosts costs = profiles()[0].costs;
   const Agent tank{2, costs.capability()};
-  const ClusterAbstraction abstraction =
-      ClusterAbstraction::build(grid, weightedSpec(tank, costs, 8, AbstractionQuality::High));
+  const ClusterAbstraction abstraction = ClusterAbstraction::build(
+      grid, weightedAbstractionSpec(tank, costs, 8, AbstractionQuality::High));
   EXPECT_TRUE(abstraction.supports(tank));
   EXPECT_FALSE(abstraction.supports({1, costs.capability()}));
   EXPECT_FALSE(abstraction.supports({3, costs.capability()}));

@@ -147,12 +147,7 @@ TerrainCosts infantryCosts() {
 }
 
 AbstractionSpec weightedSpec(int size, AbstractionQuality quality) {
-  AbstractionSpec spec;
-  spec.maxAgentSize = size;
-  spec.capabilities = {kInfantry};
-  spec.quality = quality;
-  spec.costs = infantryCosts();
-  return spec;
+  return weightedAbstractionSpec({size, kInfantry}, infantryCosts(), 16, quality);
 }
 
 // Weighted AA* on the long queries of BM_HierarchicalAStar: the baseline of the speed-up.

@@ -166,7 +166,8 @@ nlohmann::json measureAbstraction(const AnnotatedGrid& grid, const Experiment& e
       }
       graphOfKind[k] = graphs.size();
       graphs.push_back(buildAbstractionOrThrow(
-          grid, costAbstractionSpec(clusterSize, quality, experiment.kinds[k], *experiment.costs)));
+          grid,
+          weightedAbstractionSpec(experiment.kinds[k], *experiment.costs, clusterSize, quality)));
     }
   }
   std::deque<HierarchicalAStar> searches;  // HierarchicalAStar cannot move

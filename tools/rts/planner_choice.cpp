@@ -46,16 +46,6 @@ std::optional<TerrainCosts> loadCostsOption(const std::string& file) {
   return loaded.value();
 }
 
-AbstractionSpec costAbstractionSpec(int clusterSize, AbstractionQuality quality, Agent agent,
-                                    const TerrainCosts& costs) {
-  return {.clusterSize = clusterSize,
-          .maxAgentSize = agent.size,
-          .capabilities = {agent.capability},
-          .quality = quality,
-          .cachePaths = true,
-          .costs = costs};
-}
-
 nlohmann::json agentJson(Agent agent) {
   return {{"size", agent.size}, {"capability", agent.capability.toString()}};
 }
@@ -143,7 +133,7 @@ PreparedPlanner prepareCostPlanner(const AnnotatedGrid& grid, Algorithm algorith
     grid.layer(agent);
     if (const auto quality = abstractionQualityFor(algorithm)) {
       prepared.abstraction.emplace(buildAbstractionOrThrow(
-          grid, costAbstractionSpec(choice.clusterSize, *quality, agent, costs)));
+          grid, weightedAbstractionSpec(agent, costs, choice.clusterSize, *quality)));
     } else {
       prepared.aaCosts.emplace(grid, agent, costs);
     }

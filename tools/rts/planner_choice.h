@@ -54,12 +54,6 @@ CLI::Option* addCostsOption(CLI::App& cmd, std::string& file);
 // that gives no terrain a cost.
 std::optional<pathing::TerrainCosts> loadCostsOption(const std::string& file);
 
-// The spec of a weighted abstraction (AbstractionSpec::costs): it serves `agent` alone (its
-// size and capability, which `costs` must price), moving by `costs`.
-pathing::AbstractionSpec costAbstractionSpec(int clusterSize, pathing::AbstractionQuality quality,
-                                             pathing::Agent agent,
-                                             const pathing::TerrainCosts& costs);
-
 // A planner ready for queries: the abstraction (none for AA*), the costs AA* plans under (none
 // in the uniform model, or for the hierarchical algorithms, whose abstraction holds its own)
 // and what preparing them cost. Planners made from it refer to its abstraction and costs, so
@@ -103,8 +97,8 @@ PreparedPlanner preparePlanner(const pathing::AnnotatedGrid& grid, pathing::Algo
 
 // Under terrain costs: a planner for the one agent every query is for, moving by `costs`:
 // AA* under the agent's CostField, or the hierarchical algorithms on a weighted abstraction
-// (costAbstractionSpec) serving that agent alone. preprocessMs times the annotation, the
-// costs and the abstraction. Throws BadInput as preparePlanner does.
+// (pathing::weightedAbstractionSpec) serving that agent alone. preprocessMs times the annotation,
+// the costs and the abstraction. Throws BadInput as preparePlanner does.
 PreparedPlanner prepareCostPlanner(const pathing::AnnotatedGrid& grid, pathing::Algorithm algorithm,
                                    const PlannerChoice& choice, pathing::Agent agent,
                                    const pathing::TerrainCosts& costs);

@@ -60,6 +60,11 @@ struct AbstractionSpec {
   std::optional<TerrainCosts> costs = std::nullopt;
 };
 
+// The spec of a weighted graph (AbstractionSpec::costs): it serves `agent` alone (its size and
+// capability, every terrain of which `costs` must price), moving by `costs`.
+AbstractionSpec weightedAbstractionSpec(Agent agent, const TerrainCosts& costs, int clusterSize,
+                                        AbstractionQuality quality);
+
 // Empty when the spec can be built, else what is wrong with it, naming the field, its limit and
 // the value (e.g. "clusterSize must be 2..4096 (got 1)"). build() throws std::invalid_argument
 // with this message, so callers taking user input check it first.
