@@ -12,6 +12,7 @@
 #include "engine/scenario.h"
 #include "engine/scenario_run.h"
 #include "support/battle_field.h"
+#include "support/run_out.h"
 
 namespace warpath::engine {
 namespace {
@@ -32,10 +33,7 @@ Scenario load(const std::string& text) {
   return r.ok() ? std::move(r).value() : Scenario{};
 }
 
-void runOut(ScenarioRun& run) {
-  while (!run.done())
-    run.step();
-}
+using testing::runOut;
 
 const BattleStats* statsOf(const Report& r, const std::string& team, const std::string& type) {
   for (const BattleStats& s : r.battle) {

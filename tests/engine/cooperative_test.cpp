@@ -10,6 +10,7 @@
 #include "engine/scenario.h"
 #include "engine/scenario_run.h"
 #include "engine/state_description.h"
+#include "support/run_out.h"
 
 namespace warpath::engine {
 namespace {
@@ -21,12 +22,7 @@ Scenario parse(const std::string& text) {
   return std::move(r).value();
 }
 
-Report runToEnd(const Scenario& s, std::uint64_t seed) {
-  ScenarioRun run(s, seed);
-  while (!run.done())
-    run.step();
-  return run.report();
-}
+using testing::runToEnd;
 
 // A 1-cell door in a wall, two infantry on each side swapping sides.
 const std::string kDoor =

@@ -18,6 +18,7 @@
 #include "engine/scenario_run.h"
 #include "support/battle_field.h"
 #include "support/rts_process.h"
+#include "support/run_out.h"
 #include "support/scratch_dir.h"
 
 namespace {
@@ -400,8 +401,7 @@ TEST_F(Replays, RecordingDoesNotChangeTheRun) {
   Result<Scenario> plain = loadScenario(scenario());
   ASSERT_TRUE(plain.ok());
   ScenarioRun run(plain.value());
-  while (!run.done())
-    run.step();
+  warpath::testing::runOut(run);
   EXPECT_EQ(run.stateHash(), finalHash_);
 }
 

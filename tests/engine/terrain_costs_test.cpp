@@ -8,6 +8,7 @@
 #include "engine/scenario.h"
 #include "engine/scenario_run.h"
 #include "pathing/planner.h"
+#include "support/run_out.h"
 
 namespace warpath::engine {
 namespace {
@@ -19,10 +20,7 @@ Scenario load(const std::string& name) {
 }
 
 bool passes(const Scenario& s, std::uint64_t seed) {
-  ScenarioRun run(s, seed);
-  while (!run.done())
-    run.step();
-  return run.report().passed();
+  return testing::runToEnd(s, seed).passed();
 }
 
 // Infantry go round a swamp when that is faster and meet the time bounds at every seed;
@@ -78,10 +76,8 @@ TEST(TerrainCosts, ALoneUnitTakesThePlannedTime) {
       const Result<Scenario> scenario =
           parseScenario(text, std::string(WARPATH_SOURCE_DIR) + "/scenarios/inline.yaml");
       ASSERT_TRUE(scenario.ok()) << scenario.error().describe();
-      ScenarioRun run(scenario.value(), 1);
-      while (!run.done())
-        run.step();
-      const std::vector<DelayStats>& delays = run.report().movement.delay;
+      const Report report = testing::runToEnd(scenario.value(), 1);
+      const std::vector<DelayStats>& delays = report.movement.delay;
       ASSERT_EQ(delays.size(), 1u);
       ASSERT_EQ(delays[0].arrived, 1) << type << " " << algo;
       EXPECT_GT(delays[0].max, 0.9) << type << " " << algo;
