@@ -138,6 +138,39 @@ const ClusterAbstraction* PathService::abstraction() const {
 
 PathService::~PathService() = default;
 
+void PathService::changeTerrain(const TerrainChange& change) {
+  if (!change.changed) return;
+  const auto began = std::chrono::steady_clock::now();
+  ++metrics_.terrainChanges;
+  if (abstraction_) abstraction_->repair(change);
+  for (const auto& w : weighted_) {
+    if (w->abstraction) w->abstraction->repair(change);
+    if (w->field) w->field->update(grid_, change.area);
+  }
+  // A path that crosses the change (its footprints grown by the agent's size) may no longer be
+  // legal, and a failed answer may now succeed; answers elsewhere stay legal (a shortcut the
+  // change opened is not looked for).
+  const CellRect area = change.area;
+  const auto touched = [&](const Key& key, const Answer& answer) {
+    if (!answer.path) return true;
+    const int size = std::get<0>(key);
+    for (const Cell& c : answer.path->cells) {
+      if (c.x + size > area.x && c.x < area.x + area.width && c.y + size > area.y &&
+          c.y < area.y + area.height)
+        return true;
+    }
+    return false;
+  };
+  std::erase_if(cacheOrder_, [&](const Key& key) {
+    const auto it = cache_.find(key);
+    if (it == cache_.end() || !touched(key, it->second)) return false;
+    cache_.erase(it);
+    ++metrics_.cacheDropped;
+    return true;
+  });
+  metrics_.repairMilliseconds += elapsedMilliseconds(began);
+}
+
 void PathService::request(const PathRequest& request) {
   queue_.push_back(request);
   ++metrics_.requests;

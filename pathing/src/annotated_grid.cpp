@@ -1,62 +1,95 @@
 #include "pathing/annotated_grid.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <sstream>
+#include <stdexcept>
 
 #include "pathing/moves.h"
 
 namespace warpath::pathing {
 
+namespace {
+
+// Bit d set when an agent of `size` anchored at (x, y) may step in direction d: it stands at
+// both ends and, on a diagonal, beside it (no corner cutting).
+std::uint8_t movesFrom(const ClearanceField& clearance, int size, int x, int y) {
+  const auto stands = [&](int cx, int cy) { return clearance.at({cx, cy}) >= size; };
+  if (!stands(x, y)) return 0;
+  std::uint8_t mask = 0;
+  for (int d = 0; d < kDirectionCount; ++d) {
+    const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+    if (!stands(x + dir.dx, y + dir.dy)) continue;
+    if (isDiagonal(d)) {
+      const Direction& a = kDirections[static_cast<std::size_t>(dir.cardinalA)];
+      const Direction& b = kDirections[static_cast<std::size_t>(dir.cardinalB)];
+      if (!stands(x + a.dx, y + a.dy) || !stands(x + b.dx, y + b.dy)) continue;
+    }
+    mask = static_cast<std::uint8_t>(mask | (1u << d));
+  }
+  return mask;
+}
+
+}  // namespace
+
 AgentLayer AgentLayer::compute(const GridMap& map, const ClearanceField& clearance, Agent agent) {
   AgentLayer layer;
-  const int w = map.width();
-  const int h = map.height();
   layer.moveMasks_.assign(map.cellCount(), 0);
-  layer.components_.assign(map.cellCount(), 0);
-  const auto stands = [&](int x, int y) { return clearance.at({x, y}) >= agent.size; };
+  for (int y = 0; y < map.height(); ++y) {
+    for (int x = 0; x < map.width(); ++x)
+      layer.moveMasks_[map.indexOf({x, y})] = movesFrom(clearance, agent.size, x, y);
+  }
+  layer.labelComponents(map, clearance, agent);
+  return layer;
+}
 
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      if (!stands(x, y)) continue;
-      std::uint8_t mask = 0;
-      for (int d = 0; d < kDirectionCount; ++d) {
-        const Direction& dir = kDirections[static_cast<std::size_t>(d)];
-        if (!stands(x + dir.dx, y + dir.dy)) continue;
-        if (isDiagonal(d)) {
-          const Direction& a = kDirections[static_cast<std::size_t>(dir.cardinalA)];
-          const Direction& b = kDirections[static_cast<std::size_t>(dir.cardinalB)];
-          if (!stands(x + a.dx, y + a.dy) || !stands(x + b.dx, y + b.dy)) continue;
-        }
-        mask = static_cast<std::uint8_t>(mask | (1u << d));
-      }
-      layer.moveMasks_[map.indexOf({x, y})] = mask;
+void AgentLayer::update(const GridMap& map, const ClearanceField& clearance, Agent agent,
+                        CellRect changed) {
+  if (changed.width <= 0 || changed.height <= 0) return;
+  // A cell's moves depend on the cells around it.
+  const int x0 = std::max(0, changed.x - 1);
+  const int y0 = std::max(0, changed.y - 1);
+  const int x1 = std::min(map.width(), changed.x + changed.width + 1);
+  const int y1 = std::min(map.height(), changed.y + changed.height + 1);
+  bool differs = false;
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      std::uint8_t& mask = moveMasks_[map.indexOf({x, y})];
+      const std::uint8_t now = movesFrom(clearance, agent.size, x, y);
+      differs = differs || now != mask;
+      mask = now;
     }
   }
+  if (differs) labelComponents(map, clearance, agent);
+}
 
+void AgentLayer::labelComponents(const GridMap& map, const ClearanceField& clearance, Agent agent) {
   // Moves are symmetric, so a flood fill over the cardinal moves alone labels components
   // (a legal diagonal implies both cardinal detours are legal).
+  const int w = map.width();
+  components_.assign(map.cellCount(), 0);
+  componentCount_ = 0;
   std::vector<std::uint32_t> stack;
-  for (std::uint32_t seed = 0; seed < layer.components_.size(); ++seed) {
-    if (layer.components_[seed] != 0 || !stands(map.cellAt(seed).x, map.cellAt(seed).y)) continue;
-    const std::uint32_t id = ++layer.componentCount_;
-    layer.components_[seed] = id;
+  for (std::uint32_t seed = 0; seed < components_.size(); ++seed) {
+    if (components_[seed] != 0 || clearance.values()[seed] < agent.size) continue;
+    const std::uint32_t id = ++componentCount_;
+    components_[seed] = id;
     stack.push_back(seed);
     while (!stack.empty()) {
       const std::uint32_t cell = stack.back();
       stack.pop_back();
-      const std::uint8_t mask = layer.moveMasks_[cell];
+      const std::uint8_t mask = moveMasks_[cell];
       for (int d = 0; d < 4; ++d) {
         if ((mask & (1u << d)) == 0) continue;
         const Direction& dir = kDirections[static_cast<std::size_t>(d)];
         const std::uint32_t next =
             static_cast<std::uint32_t>(static_cast<std::int64_t>(cell) + dir.dy * w + dir.dx);
-        if (layer.components_[next] != 0) continue;
-        layer.components_[next] = id;
+        if (components_[next] != 0) continue;
+        components_[next] = id;
         stack.push_back(next);
       }
     }
   }
-  return layer;
 }
 
 AnnotatedGrid::AnnotatedGrid(GridMap map) : map_(std::move(map)) {}
@@ -74,6 +107,91 @@ const AgentLayer& AnnotatedGrid::layer(Agent agent) const {
   auto& slot = layers_[agent];
   if (!slot) slot = std::make_unique<AgentLayer>(AgentLayer::compute(map_, field, agent));
   return *slot;
+}
+
+CellRect AnnotatedGrid::clip(CellRect area) const {
+  const int x0 = std::max(0, area.x);
+  const int y0 = std::max(0, area.y);
+  const int x1 = std::min(map_.width(), area.x + std::max(0, area.width));
+  const int y1 = std::min(map_.height(), area.y + std::max(0, area.height));
+  if (x1 <= x0 || y1 <= y0) return {x0, y0, 0, 0};
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
+TerrainChange AnnotatedGrid::setTerrain(CellRect area, Terrain terrain) {
+  area = clip(area);
+  bool changed = false;
+  for (int y = area.y; y < area.y + area.height; ++y) {
+    for (int x = area.x; x < area.x + area.width; ++x) {
+      const Cell c{x, y};
+      const std::size_t i = map_.indexOf(c);
+      if (!obstacles_.empty() && obstacles_[i] > 0) {
+        underneath_[i] = terrain;
+      } else if (map_.at(c) != terrain) {
+        map_.set(c, terrain);
+        changed = true;
+      }
+    }
+  }
+  if (changed) refresh(area);
+  return {area, changed};
+}
+
+TerrainChange AnnotatedGrid::placeObstacle(CellRect area) {
+  area = clip(area);
+  if (obstacles_.empty()) {
+    obstacles_.assign(map_.cellCount(), 0);
+    underneath_.assign(map_.cellCount(), Terrain::Blocked);
+  }
+  bool changed = false;
+  for (int y = area.y; y < area.y + area.height; ++y) {
+    for (int x = area.x; x < area.x + area.width; ++x) {
+      const Cell c{x, y};
+      const std::size_t i = map_.indexOf(c);
+      if (obstacles_[i]++ > 0) continue;
+      underneath_[i] = map_.at(c);
+      if (map_.at(c) != Terrain::Blocked) {
+        map_.set(c, Terrain::Blocked);
+        changed = true;
+      }
+    }
+  }
+  if (changed) refresh(area);
+  return {area, changed};
+}
+
+TerrainChange AnnotatedGrid::clearObstacle(CellRect area) {
+  area = clip(area);
+  for (int y = area.y; y < area.y + area.height; ++y) {
+    for (int x = area.x; x < area.x + area.width; ++x) {
+      if (obstacles_.empty() || obstacles_[map_.indexOf({x, y})] == 0)
+        throw std::invalid_argument("clearObstacle: no obstacle stands on (" + std::to_string(x) +
+                                    "," + std::to_string(y) + ")");
+    }
+  }
+  bool changed = false;
+  for (int y = area.y; y < area.y + area.height; ++y) {
+    for (int x = area.x; x < area.x + area.width; ++x) {
+      const Cell c{x, y};
+      const std::size_t i = map_.indexOf(c);
+      if (--obstacles_[i] > 0 || underneath_[i] == map_.at(c)) continue;
+      map_.set(c, underneath_[i]);
+      changed = true;
+    }
+  }
+  if (changed) refresh(area);
+  return {area, changed};
+}
+
+void AnnotatedGrid::refresh(CellRect area) {
+  ++revision_;
+  std::lock_guard lock(mutex_);
+  for (auto& [capability, field] : clearances_) {
+    const CellRect changed = field->update(map_, area);
+    for (auto& [agent, layer] : layers_) {
+      if (agent.capability == capability) layer->update(map_, *field, agent, changed);
+    }
+  }
 }
 
 std::size_t AnnotatedGrid::cacheBytes() const {

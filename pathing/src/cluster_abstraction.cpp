@@ -680,4 +680,16 @@ ClusterAbstraction ClusterAbstraction::build(const AnnotatedGrid& grid, Abstract
   return AbstractionBuilder(grid, std::move(spec)).build();
 }
 
+RepairStats ClusterAbstraction::repair(const TerrainChange& change) {
+  const auto began = std::chrono::steady_clock::now();
+  RepairStats stats;
+  if (!change.changed) return stats;
+  *this = AbstractionBuilder(*grid_, spec_).build();
+  stats.rebuilt = true;
+  stats.clusters = clusterCount();
+  stats.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
+  return stats;
+}
+
 }  // namespace warpath::pathing

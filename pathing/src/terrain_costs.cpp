@@ -35,36 +35,44 @@ Capability TerrainCosts::capability() const {
 }
 
 CostField::CostField(const AnnotatedGrid& grid, Agent agent, const TerrainCosts& costs)
-    : width_(grid.map().width()), anchor_(grid.map().cellCount(), kNoCost), cheapest_(kNoCost) {
+    : agent_(agent),
+      costs_(costs),
+      width_(grid.map().width()),
+      anchor_(grid.map().cellCount(), kNoCost),
+      cheapest_(kNoCost) {
+  fill(grid, {0, 0, grid.map().width(), grid.map().height()});
+}
+
+void CostField::update(const AnnotatedGrid& grid, CellRect area) {
+  // An anchor's footprint reaches size - 1 cells right and down of it.
+  const int reach = std::max(1, agent_.size) - 1;
+  fill(grid, {area.x - reach, area.y - reach, area.width + reach, area.height + reach});
+}
+
+void CostField::fill(const AnnotatedGrid& grid, CellRect region) {
   const GridMap& map = grid.map();
-  const int w = map.width();
-  const int h = map.height();
-  const int s = std::max(1, agent.size);
-  // Per cell, then the slowest over each footprint: a sliding maximum along rows, then along
-  // columns (s is small, so a direct scan of s cells each way).
-  std::vector<double> cell(map.cellCount(), kNoCost);
-  for (std::uint32_t i = 0; i < map.cellCount(); ++i) {
-    const Terrain t = map.at(map.cellAt(i));
-    if (!isTraversable(t)) continue;
-    const double c = costs.perCell[static_cast<std::size_t>(t)];
-    if (hasCost(c)) cell[i] = c;
-  }
-  std::vector<double> rowMax(map.cellCount(), kNoCost);
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x + s <= w; ++x) {
+  const int x0 = std::max(0, region.x);
+  const int y0 = std::max(0, region.y);
+  const int x1 = std::min(map.width(), region.x + region.width);
+  const int y1 = std::min(map.height(), region.y + region.height);
+  const int s = std::max(1, agent_.size);
+  const auto cellCost = [&](int x, int y) {
+    const Terrain t = map.at({x, y});
+    const double c = isTraversable(t) ? costs_.perCell[static_cast<std::size_t>(t)] : kNoCost;
+    return hasCost(c) ? c : kNoCost;
+  };
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      double& anchor = anchor_[map.indexOf({x, y})];
+      anchor = kNoCost;
+      if (!grid.canStand(agent_, {x, y})) continue;
+      // The slowest terrain under the footprint (s is small: a direct scan).
       double worst = 0.0;
-      for (int k = 0; k < s; ++k)
-        worst = std::max(worst, cell[map.indexOf({x + k, y})]);
-      rowMax[map.indexOf({x, y})] = worst;
-    }
-  }
-  for (int y = 0; y + s <= h; ++y) {
-    for (int x = 0; x + s <= w; ++x) {
-      if (!grid.canStand(agent, {x, y})) continue;
-      double worst = 0.0;
-      for (int k = 0; k < s; ++k)
-        worst = std::max(worst, rowMax[map.indexOf({x, y + k})]);
-      anchor_[map.indexOf({x, y})] = worst;
+      for (int dy = 0; dy < s; ++dy) {
+        for (int dx = 0; dx < s; ++dx)
+          worst = std::max(worst, cellCost(x + dx, y + dy));
+      }
+      anchor = worst;
       cheapest_ = std::min(cheapest_, worst);
     }
   }

@@ -2,9 +2,9 @@
 // The one path service every unit asks. Requests queue in arrival order and are served in
 // that order, a tick at a time, until the tick's budget of node expansions is spent (the
 // request that crosses the budget finishes; a tick always serves at least one). Budgets count
-// expansions, never wall time, so the simulation stays deterministic. Terrain never changes
-// during a run, so answers are cached by (agent, start, goal): identical requests within a tick
-// are coalesced and repeated ones later are free.
+// expansions, never wall time, so the simulation stays deterministic. Answers are cached by
+// (agent, start, goal): identical requests within a tick are coalesced and repeated ones later
+// are free, until a change of terrain touches them (changeTerrain).
 
 #include <cstdint>
 #include <deque>
@@ -97,9 +97,14 @@ struct PathServiceMetrics {
   std::size_t maxQueue = 0;
   double microseconds = 0.0;  // wall time of the searches: measurement only
   double preprocessMilliseconds = 0.0;
+  std::uint64_t terrainChanges = 0;
+  std::uint64_t cacheDropped = 0;   // answers dropped because a change touched them
+  double repairMilliseconds = 0.0;  // wall time of graph repairs: measurement only
   bool operator==(const PathServiceMetrics& o) const {  // wall-clock fields excluded
-    return std::tie(requests, cacheHits, searches, found, failed, expanded, maxQueue) ==
-           std::tie(o.requests, o.cacheHits, o.searches, o.found, o.failed, o.expanded, o.maxQueue);
+    return std::tie(requests, cacheHits, searches, found, failed, expanded, maxQueue,
+                    terrainChanges, cacheDropped) ==
+           std::tie(o.requests, o.cacheHits, o.searches, o.found, o.failed, o.expanded, o.maxQueue,
+                    o.terrainChanges, o.cacheDropped);
   }
 };
 
@@ -121,6 +126,12 @@ class PathService {
   ~PathService();
   PathService(const PathService&) = delete;
   PathService& operator=(const PathService&) = delete;
+
+  // The grid's terrain changed (AnnotatedGrid::setTerrain or an obstacle): repairs every graph
+  // and cost field built on it, and drops the cached answers the change touches (paths that
+  // cross the changed cells, and every failed answer, which may now succeed). Requests queued
+  // are served on the changed map.
+  void changeTerrain(const pathing::TerrainChange& change);
 
   void request(const PathRequest& request);
   // Drops the unit's queued requests (it died): its searches are not run.

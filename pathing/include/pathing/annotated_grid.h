@@ -31,6 +31,9 @@ struct Agent {
 class AgentLayer {
  public:
   static AgentLayer compute(const GridMap& map, const ClearanceField& clearance, Agent agent);
+  // After the clearance changed inside `changed` (ClearanceField::update): the moves of the
+  // cells there and next to it, and the components.
+  void update(const GridMap& map, const ClearanceField& clearance, Agent agent, CellRect changed);
 
   // Bit d set when the agent anchored at the cell may step in direction d (see moves.h).
   std::span<const std::uint8_t> moveMasks() const { return moveMasks_; }
@@ -39,9 +42,17 @@ class AgentLayer {
   std::uint32_t componentCount() const { return componentCount_; }
 
  private:
+  void labelComponents(const GridMap& map, const ClearanceField& clearance, Agent agent);
+
   std::vector<std::uint8_t> moveMasks_;
   std::vector<std::uint32_t> components_;
   std::uint32_t componentCount_ = 0;
+};
+
+// What a change of terrain touched (AnnotatedGrid::setTerrain, placeObstacle, clearObstacle).
+struct TerrainChange {
+  CellRect area;         // the cells changed, clipped to the map
+  bool changed = false;  // false when no cell's terrain differs (nothing to repair)
 };
 
 class AnnotatedGrid {
@@ -63,11 +74,35 @@ class AnnotatedGrid {
   // Bytes held by the caches (clearances and agent layers) so far.
   std::size_t cacheBytes() const;
 
+  // Terrain that changes during a run (docs/terrain_changes.md). Each call repairs the cached
+  // clearances and agent layers for the cells it changed; graphs and services built on the
+  // grid are repaired by their owners with the returned change (ClusterAbstraction::repair).
+  // Not safe while another thread queries the grid: the owner applies changes between queries.
+  //
+  // Sets every cell of `area` (clipped to the map) to `terrain`. Under an obstacle the terrain
+  // underneath is set, and shows when the last obstacle there is cleared.
+  TerrainChange setTerrain(CellRect area, Terrain terrain);
+  // An obstacle (a wreck) over `area`: its cells are blocked while it stands, and keep the
+  // terrain underneath. Obstacles may overlap; each clearObstacle removes one.
+  TerrainChange placeObstacle(CellRect area);
+  // [Limit: an obstacle placed over `area` before; else std::invalid_argument]
+  TerrainChange clearObstacle(CellRect area);
+  // Counts the changes made (calls that changed a cell), from 0.
+  std::uint64_t revision() const { return revision_; }
+
  private:
+  CellRect clip(CellRect area) const;
+  // Repairs the caches after the cells of `area` changed.
+  void refresh(CellRect area);
+
   GridMap map_;
+  // Obstacles standing on each cell, and the terrain under them (allocated at the first one).
+  std::vector<std::uint16_t> obstacles_;
+  std::vector<Terrain> underneath_;
+  std::uint64_t revision_ = 0;
   mutable std::mutex mutex_;
-  mutable std::map<Capability, std::unique_ptr<const ClearanceField>> clearances_;
-  mutable std::map<Agent, std::unique_ptr<const AgentLayer>> layers_;
+  mutable std::map<Capability, std::unique_ptr<ClearanceField>> clearances_;
+  mutable std::map<Agent, std::unique_ptr<AgentLayer>> layers_;
 };
 
 // What a query can be answered without searching: InvalidStart / InvalidGoal when the agent

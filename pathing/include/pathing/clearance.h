@@ -19,6 +19,11 @@ class ClearanceField {
   // filled from the bottom-right corner; cells beyond the map count as 0.
   static ClearanceField compute(const GridMap& map, Capability capability);
 
+  // After the terrain of the cells in `area` changed: recomputes the cells whose clearance can
+  // depend on them (up and left of the area, as far as values change). Returns the bounding
+  // box of the cells whose value changed (width 0 when none).
+  CellRect update(const GridMap& map, CellRect area);
+
   Capability capability() const { return capability_; }
   int width() const { return width_; }
   int height() const { return height_; }

@@ -96,6 +96,14 @@ struct AbstractionStats {
   double buildMilliseconds = 0.0;
 };
 
+// What one repair did (ClusterAbstraction::repair).
+struct RepairStats {
+  int clusters = 0;         // clusters whose intra-edges were found again
+  int borders = 0;          // borders whose entrances were found again
+  bool rebuilt = false;     // the whole graph was built again (a terrain new to a capability)
+  double milliseconds = 0;  // wall time: measurement only
+};
+
 class ClusterAbstraction {
  public:
   // [Limit: problemWith(spec).empty(), else std::invalid_argument] The grid must outlive the
@@ -108,6 +116,14 @@ class ClusterAbstraction {
   // graph is in the uniform model.
   const CostField* costs() const { return costs_ ? &*costs_ : nullptr; }
   const AbstractionStats& stats() const { return stats_; }
+
+  // After the grid's terrain changed (AnnotatedGrid::setTerrain and the obstacle calls, which
+  // repaired the grid's caches first): repairs the graph cluster by cluster, finding again
+  // the entrances of the borders and the intra-edges of the clusters the change can reach
+  // (the changed cells grown by the largest agent's size), and the costs under them. The
+  // graph stays complete: a path exists in it exactly when AA* finds one on the changed map.
+  // Not safe while a query runs on the graph.
+  RepairStats repair(const TerrainChange& change);
 
   // True when the graph serves this agent: its capability is one the graph was built for and
   // its size is at most maxAgentSize (exactly maxAgentSize for a weighted graph).

@@ -34,6 +34,11 @@ class CostField {
  public:
   CostField(const AnnotatedGrid& grid, Agent agent, const TerrainCosts& costs);
 
+  // After the terrain of `area` changed (AnnotatedGrid::setTerrain): the anchors whose
+  // footprint covers a changed cell. The cheapest cost only falls (a lower one stays a lower
+  // bound, so the heuristic stays admissible).
+  void update(const AnnotatedGrid& grid, CellRect area);
+
   double at(std::uint32_t anchorIndex) const { return anchor_[anchorIndex]; }
   // The cheapest anchor cost on the map: octile distance times it is an admissible heuristic.
   double cheapest() const { return cheapest_; }
@@ -56,6 +61,11 @@ class CostField {
   double pathCost(std::span<const Cell> path) const;
 
  private:
+  // Fills the anchors of `region` (clipped to the map).
+  void fill(const AnnotatedGrid& grid, CellRect region);
+
+  Agent agent_;
+  TerrainCosts costs_;
   int width_;
   std::vector<double> anchor_;
   double cheapest_;
