@@ -54,10 +54,12 @@ void AgentLayer::update(const GridMap& map, const ClearanceField& clearance, Age
   bool differs = false;
   for (int y = y0; y < y1; ++y) {
     for (int x = x0; x < x1; ++x) {
-      std::uint8_t& mask = moveMasks_[map.indexOf({x, y})];
+      const std::uint32_t i = map.indexOf({x, y});
       const std::uint8_t now = movesFrom(clearance, agent.size, x, y);
-      differs = differs || now != mask;
-      mask = now;
+      // A cell where the agent now stands alone, or no longer does, changes components too.
+      const bool stands = clearance.values()[i] >= agent.size;
+      differs = differs || now != moveMasks_[i] || stands != (components_[i] != 0);
+      moveMasks_[i] = now;
     }
   }
   if (differs) labelComponents(map, clearance, agent);
