@@ -17,6 +17,7 @@
 #include "pathing/map_generator.h"
 #include "pathing/random.h"
 #include "pathing/terrain_costs.h"
+#include "random_grid.h"
 #include "support/completeness.h"
 
 namespace warpath::pathing {
@@ -29,16 +30,7 @@ using testing::CompletenessTally;
 using testing::drawCompletenessCases;
 
 GridMap randomMap(std::uint64_t seed, int width, int height, int maxPatch) {
-  RandomMapSpec spec;
-  spec.width = width;
-  spec.height = height;
-  spec.seed = seed;
-  spec.blockedPercent = 12;
-  spec.swampPercent = 15;
-  spec.treesPercent = 10;
-  spec.waterPercent = 12;
-  spec.maxPatch = maxPatch;
-  return generateRandomMap(spec);
+  return randomTerrainMap(seed, width, height, maxPatch, 12);
 }
 
 constexpr Terrain kTerrains[] = {Terrain::Ground, Terrain::Swamp, Terrain::Trees, Terrain::Water,

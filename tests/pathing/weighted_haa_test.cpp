@@ -15,6 +15,7 @@
 #include "pathing/map_generator.h"
 #include "pathing/planner.h"
 #include "pathing/terrain_costs.h"
+#include "random_grid.h"
 #include "support/completeness.h"
 
 namespace warpath::pathing {
@@ -48,16 +49,7 @@ std::vector<Profile> profiles() {
 }
 
 GridMap randomMap(std::uint64_t seed, int width, int height, int maxPatch, int blocked) {
-  RandomMapSpec spec;
-  spec.width = width;
-  spec.height = height;
-  spec.seed = seed;
-  spec.blockedPercent = blocked;
-  spec.swampPercent = 20;
-  spec.treesPercent = 12;
-  spec.waterPercent = 12;
-  spec.maxPatch = maxPatch;
-  return generateRandomMap(spec);
+  return randomTerrainMap(seed, width, height, maxPatch, blocked);
 }
 
 TEST(WeightedHaaStar, CompleteLegalAndNeverCheaperThanWeightedAStar) {
