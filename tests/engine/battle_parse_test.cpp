@@ -506,14 +506,15 @@ TEST(BattleParse, SetTerrainActions) {
   const Scenario plain = load(battle(""));
   EXPECT_FALSE(plain.settings.terrainChanges);  // runs share the scenario's grid
   EXPECT_TRUE(plain.settings.combat.wrecksBlock);
-  const Scenario s = load(battle("combat: {wrecks_block: false}\n"
-                                 "triggers:\n"
-                                 "  - when: {at: 5}\n"
-                                 "    do:\n"
-                                 "      - {set_terrain: {area: {x: 8, y: 4, w: 2, h: 2}, "
-                                 "terrain: ground}}\n"
-                                 "      - {set_terrain: {area: {x: 0, y: 9, w: 20, h: 1}, "
-                                 "terrain: blocked}}\n"));
+  const Scenario s =
+      load(battle("combat: {wrecks_block: false}\n"
+                  "triggers:\n"
+                  "  - when: {at: 5}\n"
+                  "    do:\n"
+                  "      - {set_terrain: {area: {x: 8, y: 4, w: 2, h: 2}, "
+                  "terrain: ground}}\n"
+                  "      - {set_terrain: {area: {x: 0, y: 9, w: 20, h: 1}, "
+                  "terrain: blocked}}\n"));
   EXPECT_FALSE(s.settings.combat.wrecksBlock);
   EXPECT_TRUE(s.settings.terrainChanges);  // each run gets a grid of its own
   ASSERT_EQ(s.triggers.size(), 1u);
@@ -527,11 +528,12 @@ TEST(BattleParse, SetTerrainActions) {
 
 TEST(BattleParse, SetTerrainErrors) {
   const auto action = [](const std::string& body) {
-    return battle("triggers:\n"
-                  "  - when: {at: 5}\n"
-                  "    do:\n"
-                  "      - " +
-                  body + "\n");
+    return battle(
+        "triggers:\n"
+        "  - when: {at: 5}\n"
+        "    do:\n"
+        "      - " +
+        body + "\n");
   };
   expectError(action("{set_terrain: {area: {x: 1, y: 1, w: 2, h: 2}, terrain: lava}}"),
               "unknown terrain 'lava' (ground, swamp, trees, water, blocked)", "lava");

@@ -32,14 +32,12 @@ TEST(EngineEnumNames, TablesRoundTrip) {
   testing::expectRoundTrip(kTriggerKindNames,
                            {TriggerKind::At, TriggerKind::Arrived, TriggerKind::TeamBelow,
                             TriggerKind::Enters, TriggerKind::Dies});
-  testing::expectRoundTrip(kActionKindNames,
-                           {ActionKind::Order, ActionKind::Reinforce, ActionKind::EndBattle,
-                            ActionKind::SetTerrain});
+  testing::expectRoundTrip(kActionKindNames, {ActionKind::Order, ActionKind::Reinforce,
+                                              ActionKind::EndBattle, ActionKind::SetTerrain});
   testing::expectRoundTrip(kVictoryKindNames,
                            {VictoryKind::Eliminate, VictoryKind::HoldArea, VictoryKind::Exit});
-  testing::expectRoundTrip(kIssuedKindNames,
-                           {IssuedKind::Order, IssuedKind::Reinforce, IssuedKind::EndBattle,
-                            IssuedKind::SetTerrain});
+  testing::expectRoundTrip(kIssuedKindNames, {IssuedKind::Order, IssuedKind::Reinforce,
+                                              IssuedKind::EndBattle, IssuedKind::SetTerrain});
   testing::expectRoundTrip(kReplayEndNames,
                            {ReplayEnd::Complete, ReplayEnd::Stopped, ReplayEnd::Interrupted});
 }

@@ -244,7 +244,7 @@ struct MovementStats {
 enum class TerrainEditKind : std::uint8_t { SetTerrain, PlaceObstacle, ClearObstacle };
 struct TerrainEdit {
   TerrainEditKind kind = TerrainEditKind::SetTerrain;
-  pathing::CellRect area;                           // inside the map
+  pathing::CellRect area;                               // inside the map
   pathing::Terrain terrain = pathing::Terrain::Ground;  // SetTerrain
   bool operator==(const TerrainEdit&) const = default;
 };

@@ -381,9 +381,9 @@ raw::Stuck stuck(const Reader& r, const YAML::Node& node) {
 }
 
 raw::Combat combat(const Reader& r, const YAML::Node& node) {
-  r.checkKeys(node, "combat",
-              {"enabled", "wreck_seconds", "wrecks_block", "sight_through_trees", "scan_every",
-               "armour"});
+  r.checkKeys(
+      node, "combat",
+      {"enabled", "wreck_seconds", "wrecks_block", "sight_through_trees", "scan_every", "armour"});
   raw::Combat c;
   c.enabled = r.maybeBoolean(node, "enabled", "combat enabled");
   c.wreckSeconds = r.maybeNumber(node, "wreck_seconds", "wreck_seconds");

@@ -181,9 +181,9 @@ struct Condition {
 // An entry of a trigger's `do:`.
 struct Action {
   ActionKind kind = ActionKind::Order;
-  OrderAction order;        // Order
-  Field<std::string> name;  // Reinforce: the group; EndBattle: the team or `none`
-  Area area;                 // SetTerrain
+  OrderAction order;                // Order
+  Field<std::string> name;          // Reinforce: the group; EndBattle: the team or `none`
+  Area area;                        // SetTerrain
   Field<pathing::Terrain> terrain;  // SetTerrain
 };
 
