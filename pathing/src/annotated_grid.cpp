@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -43,8 +44,19 @@ AgentLayer AgentLayer::compute(const GridMap& map, const ClearanceField& clearan
   return layer;
 }
 
+// What a components update works in: the cells its searches reached (stamped, with the
+// group that reached them), and the groups.
+struct AgentLayer::Scratch {
+  std::vector<std::uint32_t> stamp;  // per cell: == epoch when reached
+  std::vector<std::uint32_t> group;  // per cell: the group that reached it
+  std::uint32_t epoch = 0;
+  std::vector<std::uint32_t> parent;                // union-find over groups
+  std::vector<std::vector<std::uint32_t>> reached;  // per root: cells, in the order reached
+  std::vector<std::size_t> head;                    // per root: next of `reached` to expand
+};
+
 void AgentLayer::update(const GridMap& map, const ClearanceField& clearance, Agent agent,
-                        CellRect changed) {
+                        CellRect changed, Scratch& scratch) {
   if (changed.width <= 0 || changed.height <= 0) return;
   // A cell's moves depend on the cells around it.
   const int x0 = std::max(0, changed.x - 1);
@@ -54,13 +66,176 @@ void AgentLayer::update(const GridMap& map, const ClearanceField& clearance, Age
   bool differs = false;
   for (int y = y0; y < y1; ++y) {
     for (int x = x0; x < x1; ++x) {
-      std::uint8_t& mask = moveMasks_[map.indexOf({x, y})];
+      const std::uint32_t i = map.indexOf({x, y});
       const std::uint8_t now = movesFrom(clearance, agent.size, x, y);
-      differs = differs || now != mask;
-      mask = now;
+      // A cell where the agent now stands alone, or no longer does, changes components too.
+      const bool stands = clearance.values()[i] >= agent.size;
+      differs = differs || now != moveMasks_[i] || stands != (components_[i] != 0);
+      moveMasks_[i] = now;
     }
   }
-  if (differs) labelComponents(map, clearance, agent);
+  if (differs) relabel(map, clearance, agent, {x0, y0, x1 - x0, y1 - y0}, scratch);
+}
+
+void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Agent agent,
+                         CellRect region, Scratch& s) {
+  // Connectivity changed only through the cells of `region`. Searches start from every cell
+  // there and next to it where the agent stands, one group each, and advance a cell per group
+  // in turn; groups that meet merge. A group that runs out of cells holds a whole component
+  // and gets a new id; once at most one group is still searching, the rest is the component of
+  // every id that group met (merged under the largest). A change in the open thus costs about
+  // its own area, and a split costs the smaller side.
+  const int w = map.width();
+  if (s.stamp.size() != components_.size()) {
+    s.stamp.assign(components_.size(), 0);
+    s.group.assign(components_.size(), 0);
+    s.epoch = 0;
+  }
+  if (++s.epoch == 0) {
+    std::fill(s.stamp.begin(), s.stamp.end(), 0);
+    s.epoch = 1;
+  }
+  s.parent.clear();
+  s.reached.clear();
+  s.head.clear();
+  const auto root = [&](std::uint32_t g) {
+    while (s.parent[g] != g)
+      g = s.parent[g] = s.parent[s.parent[g]];
+    return g;
+  };
+  const auto stands = [&](std::uint32_t cell) { return clearance.values()[cell] >= agent.size; };
+  const int gx0 = std::max(0, region.x - 1);
+  const int gy0 = std::max(0, region.y - 1);
+  const int gx1 = std::min(map.width(), region.x + region.width + 1);
+  const int gy1 = std::min(map.height(), region.y + region.height + 1);
+  for (int y = gy0; y < gy1; ++y) {
+    for (int x = gx0; x < gx1; ++x) {
+      const std::uint32_t cell = map.indexOf({x, y});
+      if (!stands(cell)) {
+        if (components_[cell] != 0 && components_[cell] < sizes_.size())
+          --sizes_[components_[cell]];
+        components_[cell] = 0;
+        continue;
+      }
+      const auto g = static_cast<std::uint32_t>(s.parent.size());
+      s.parent.push_back(g);
+      s.reached.push_back({cell});
+      s.head.push_back(0);
+      s.stamp[cell] = s.epoch;
+      s.group[cell] = g;
+    }
+  }
+  std::vector<std::uint32_t> live(s.parent.size());
+  std::iota(live.begin(), live.end(), 0u);
+  std::vector<std::uint32_t> done;  // roots that ran out of cells
+  while (live.size() > 1) {
+    std::vector<std::uint32_t> next;
+    for (std::uint32_t g : live) {
+      if (root(g) != g) continue;  // merged into another this round
+      if (s.head[g] == s.reached[g].size()) {
+        done.push_back(g);
+        continue;
+      }
+      const std::uint32_t cell = s.reached[g][s.head[g]++];
+      const std::uint8_t mask = moveMasks_[cell];
+      for (int d = 0; d < 4; ++d) {
+        if ((mask & (1u << d)) == 0) continue;
+        const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+        const auto neighbour =
+            static_cast<std::uint32_t>(static_cast<std::int64_t>(cell) + dir.dy * w + dir.dx);
+        if (s.stamp[neighbour] != s.epoch) {
+          s.stamp[neighbour] = s.epoch;
+          s.group[neighbour] = g;
+          s.reached[g].push_back(neighbour);
+          continue;
+        }
+        const std::uint32_t other = root(s.group[neighbour]);
+        if (other == g) continue;
+        // Merge the smaller into the larger; the survivor keeps searching from where each was.
+        std::uint32_t keep = g;
+        std::uint32_t gone = other;
+        if (s.reached[keep].size() < s.reached[gone].size()) std::swap(keep, gone);
+        s.parent[gone] = keep;
+        std::vector<std::uint32_t>& into = s.reached[keep];
+        std::vector<std::uint32_t>& from = s.reached[gone];
+        // Cells not yet expanded go to the end of the survivor's list; expanded ones need not.
+        std::vector<std::uint32_t> pending(into.begin() + static_cast<std::ptrdiff_t>(s.head[keep]),
+                                           into.end());
+        into.resize(s.head[keep]);
+        into.insert(into.end(), from.begin(),
+                    from.begin() + static_cast<std::ptrdiff_t>(s.head[gone]));
+        s.head[keep] = into.size();
+        into.insert(into.end(), pending.begin(), pending.end());
+        into.insert(into.end(), from.begin() + static_cast<std::ptrdiff_t>(s.head[gone]),
+                    from.end());
+        from.clear();
+        from.shrink_to_fit();
+        g = keep;
+      }
+      next.push_back(g);
+    }
+    std::sort(next.begin(), next.end());
+    next.erase(std::unique(next.begin(), next.end()), next.end());
+    std::erase_if(next, [&](std::uint32_t g) { return root(g) != g; });
+    live = std::move(next);
+  }
+  // Groups that ran out hold whole components: new ids.
+  for (std::uint32_t g : done) {
+    if (root(g) != g) continue;
+    const std::uint32_t id = ++componentCount_;
+    sizes_.resize(componentCount_ + 1, 0);
+    for (std::uint32_t cell : s.reached[g]) {
+      const std::uint32_t old = components_[cell];
+      if (old != 0 && old < sizes_.size() && sizes_[old] > 0) --sizes_[old];
+      components_[cell] = id;
+    }
+    sizes_[id] = static_cast<std::uint32_t>(s.reached[g].size());
+  }
+  if (live.empty()) return;
+  // The last group: every id it met is one component now, under the largest of them.
+  const std::uint32_t last = root(live.front());
+  std::vector<std::uint32_t> met;
+  for (std::uint32_t cell : s.reached[last]) {
+    if (components_[cell] != 0) met.push_back(components_[cell]);
+  }
+  std::sort(met.begin(), met.end());
+  met.erase(std::unique(met.begin(), met.end()), met.end());
+  std::uint32_t keep = 0;
+  for (std::uint32_t id : met) {
+    if (keep == 0 || sizes_[id] > sizes_[keep]) keep = id;
+  }
+  if (keep == 0) {
+    keep = ++componentCount_;
+    sizes_.resize(componentCount_ + 1, 0);
+  }
+  std::vector<std::uint32_t> stack;
+  for (std::uint32_t id : met) {
+    if (id == keep) continue;
+    // Every cell of `id` left is joined to the last group's cells: flood it from them.
+    for (std::uint32_t cell : s.reached[last]) {
+      if (components_[cell] == id) stack.push_back(cell);
+    }
+    while (!stack.empty()) {
+      const std::uint32_t cell = stack.back();
+      stack.pop_back();
+      if (components_[cell] != id) continue;
+      components_[cell] = keep;
+      ++sizes_[keep];
+      const std::uint8_t mask = moveMasks_[cell];
+      for (int d = 0; d < 4; ++d) {
+        if ((mask & (1u << d)) == 0) continue;
+        const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+        const auto next =
+            static_cast<std::uint32_t>(static_cast<std::int64_t>(cell) + dir.dy * w + dir.dx);
+        if (components_[next] == id) stack.push_back(next);
+      }
+    }
+    sizes_[id] = 0;
+  }
+  for (std::uint32_t cell : s.reached[last]) {
+    if (components_[cell] == 0) ++sizes_[keep];
+    components_[cell] = keep;
+  }
 }
 
 void AgentLayer::labelComponents(const GridMap& map, const ClearanceField& clearance, Agent agent) {
@@ -69,15 +244,18 @@ void AgentLayer::labelComponents(const GridMap& map, const ClearanceField& clear
   const int w = map.width();
   components_.assign(map.cellCount(), 0);
   componentCount_ = 0;
+  sizes_.assign(1, 0);
   std::vector<std::uint32_t> stack;
   for (std::uint32_t seed = 0; seed < components_.size(); ++seed) {
     if (components_[seed] != 0 || clearance.values()[seed] < agent.size) continue;
     const std::uint32_t id = ++componentCount_;
     components_[seed] = id;
+    sizes_.push_back(0);
     stack.push_back(seed);
     while (!stack.empty()) {
       const std::uint32_t cell = stack.back();
       stack.pop_back();
+      ++sizes_[id];
       const std::uint8_t mask = moveMasks_[cell];
       for (int d = 0; d < 4; ++d) {
         if ((mask & (1u << d)) == 0) continue;
@@ -93,6 +271,7 @@ void AgentLayer::labelComponents(const GridMap& map, const ClearanceField& clear
 }
 
 AnnotatedGrid::AnnotatedGrid(GridMap map) : map_(std::move(map)) {}
+AnnotatedGrid::~AnnotatedGrid() = default;
 
 const ClearanceField& AnnotatedGrid::clearance(Capability capability) const {
   std::lock_guard lock(mutex_);
@@ -188,8 +367,9 @@ void AnnotatedGrid::refresh(CellRect area) {
   std::lock_guard lock(mutex_);
   for (auto& [capability, field] : clearances_) {
     const CellRect changed = field->update(map_, area);
+    if (!scratch_) scratch_ = std::make_unique<AgentLayer::Scratch>();
     for (auto& [agent, layer] : layers_) {
-      if (agent.capability == capability) layer->update(map_, *field, agent, changed);
+      if (agent.capability == capability) layer->update(map_, *field, agent, changed, *scratch_);
     }
   }
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <map>
 #include <numeric>
 
 #include "cluster_dijkstra.h"
@@ -70,8 +71,9 @@ void ClusterAbstraction::appendEdgeCells(std::uint32_t from, const AbstractEdge&
     out->push_back(nodeCells_[edge.target]);
     return;
   }
-  const auto first = pathSteps_.begin() + pathBegin_[edge.path];
-  const auto last = pathSteps_.begin() + pathBegin_[edge.path + 1];
+  const ClusterPaths& paths = paths_[static_cast<std::size_t>(clusterOf(nodeCells_[from]))];
+  const auto first = paths.steps.begin() + paths.begin[edge.path];
+  const auto last = paths.steps.begin() + paths.begin[edge.path + 1];
   Cell at = nodeCells_[from];
   const auto step = [&](int d) {
     at.x += kDirections[static_cast<std::size_t>(d)].dx;
@@ -91,33 +93,40 @@ void ClusterAbstraction::appendEdgeCells(std::uint32_t from, const AbstractEdge&
 // intra-edges per (capability, size), then dominance pruning, then the compact graph.
 class AbstractionBuilder {
  public:
+  // Builds a new graph (build()).
   AbstractionBuilder(const AnnotatedGrid& grid, AbstractionSpec spec)
       : grid_(grid),
         map_(grid.map()),
         maxSize_(spec.maxAgentSize),
-        minSize_(spec.costs ? spec.maxAgentSize : 1) {
-    out_.grid_ = &grid;
-    out_.spec_ = std::move(spec);
-    if (out_.spec_.costs) {
-      out_.costs_.emplace(grid, Agent{maxSize_, out_.spec_.capabilities[0]}, *out_.spec_.costs);
-      costs_ = &*out_.costs_;
+        minSize_(spec.costs ? spec.maxAgentSize : 1),
+        g_(out_) {
+    g_.grid_ = &grid;
+    g_.spec_ = std::move(spec);
+    if (g_.spec_.costs) {
+      g_.costs_.emplace(grid, Agent{maxSize_, g_.spec_.capabilities[0]}, *g_.spec_.costs);
     }
-    const int b = out_.spec_.clusterSize;
-    out_.clustersX_ = (map_.width() + b - 1) / b;
-    out_.clustersY_ = (map_.height() + b - 1) / b;
+    const int b = g_.spec_.clusterSize;
+    g_.clustersX_ = (map_.width() + b - 1) / b;
+    g_.clustersY_ = (map_.height() + b - 1) / b;
     // Terrains absent from the map lie on no path, so capabilities equal on the map's
     // terrains share one clearance field and one set of edges, annotated with the smaller
     // (effective) capability, which every agent of the larger one may use.
     const Capability present = map_.terrainsPresent();
-    for (Capability c : out_.spec_.capabilities) {
-      const Capability effective = Capability::fromMask(c.mask() & present.mask());
-      if (effective.empty() ||
-          std::find(capabilities_.begin(), capabilities_.end(), effective) != capabilities_.end())
-        continue;
-      capabilities_.push_back(effective);
-      fields_.push_back(&grid.clearance(effective));
-    }
+    for (Capability c : g_.spec_.capabilities)
+      g_.effective_.push_back(Capability::fromMask(c.mask() & present.mask()));
+    useEffectiveCapabilities();
     nodeOf_.assign(map_.cellCount(), kNone);
+  }
+
+  // Repairs `existing` in place (repair()).
+  explicit AbstractionBuilder(ClusterAbstraction& existing)
+      : grid_(existing.grid()),
+        map_(existing.grid().map()),
+        maxSize_(existing.spec_.maxAgentSize),
+        minSize_(existing.spec_.costs ? existing.spec_.maxAgentSize : 1),
+        g_(existing),
+        repairing_(true) {
+    useEffectiveCapabilities();
   }
 
   ClusterAbstraction build() {
@@ -125,7 +134,7 @@ class AbstractionBuilder {
     findTransitions();
     findIntraEdges();
     pruneSamePairDominance();
-    if (out_.spec_.quality == AbstractionQuality::Low) {
+    if (g_.spec_.quality == AbstractionQuality::Low) {
       pruneDominatedCrossings();
       pruneIntraCircuits();
     }
@@ -133,13 +142,179 @@ class AbstractionBuilder {
 #if WARPATH_INVARIANTS_ON
     checkGraph();
 #endif
-    out_.stats_.buildMilliseconds =
+    g_.stats_.buildMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
     return std::move(out_);
   }
 
+  // Repairs g_ after the terrain of `area` changed (the grid's caches and g_'s costs already
+  // repaired). The cells whose truncated clearance, moves or anchor costs can differ lie in
+  // the area grown up and left by the largest size (clearance looks right and down) and by
+  // one more each way (moves look at neighbours); the clusters holding such cells find their
+  // intra-edges again, the borders whose two strips hold any find their entrances again, and
+  // so do the clusters beside those borders (their transitions change).
+  void repair(CellRect area, RepairStats& stats) {
+    const CellRect reach = clipped({area.x - maxSize_, area.y - maxSize_, area.width + maxSize_ + 1,
+                                    area.height + maxSize_ + 1});
+    const int clusters = g_.clusterCount();
+    std::vector<bool> redo(static_cast<std::size_t>(clusters), false);
+    std::vector<std::pair<int, bool>> borders;  // (cluster, east)
+    const int b = g_.spec_.clusterSize;
+    const int cx0 = reach.x / b;
+    const int cy0 = reach.y / b;
+    const int cx1 = (reach.x + reach.width - 1) / b;
+    const int cy1 = (reach.y + reach.height - 1) / b;
+    // Borders west of or above the reached clusters count too: their strips may hold a cell.
+    for (int cy = std::max(0, cy0 - 1); cy <= cy1; ++cy) {
+      for (int cx = std::max(0, cx0 - 1); cx <= cx1; ++cx) {
+        const int k = cy * g_.clustersX_ + cx;
+        const CellRect r = g_.clusterBounds(k);
+        if (cx >= cx0 && cy >= cy0) redo[static_cast<std::size_t>(k)] = true;
+        if (cx + 1 < g_.clustersX_ && overlaps(reach, {r.x + b - 1, r.y, 2, r.height})) {
+          borders.push_back({k, true});
+          redo[static_cast<std::size_t>(k)] = redo[static_cast<std::size_t>(k + 1)] = true;
+        }
+        if (cy + 1 < g_.clustersY_ && overlaps(reach, {r.x, r.y + b - 1, r.width, 2})) {
+          borders.push_back({k, false});
+          redo[static_cast<std::size_t>(k)] = redo[static_cast<std::size_t>(k + g_.clustersX_)] =
+              true;
+        }
+      }
+    }
+    // Take out the old crossings of those borders and the old intra-edges of those clusters.
+    for (const auto& [k, east] : borders) {
+      const CellRect r = g_.clusterBounds(k);
+      for (std::uint32_t n : g_.nodesInCluster(k)) {
+        const Cell c = g_.nodeCells_[n];
+        if (east ? c.x != r.x + b - 1 : c.y != r.y + b - 1) continue;
+        const Cell across = east ? Cell{c.x + 1, c.y} : Cell{c.x, c.y + 1};
+        dropEdges(n, [&](const AbstractEdge& e) {
+          return !e.intra && g_.nodeCells_[e.target] == across;
+        });
+      }
+    }
+    for (int k = 0; k < clusters; ++k) {
+      if (!redo[static_cast<std::size_t>(k)]) continue;
+      for (std::uint32_t n : g_.nodesInCluster(k))
+        dropEdges(n, [](const AbstractEdge& e) { return e.intra; });
+      g_.paths_[static_cast<std::size_t>(k)] = {};
+      ++stats.clusters;
+    }
+    // Nodes still crossing a border stay: they join the clusters' new intra-edges.
+    for (int k = 0; k < clusters; ++k) {
+      if (!redo[static_cast<std::size_t>(k)]) continue;
+      for (std::uint32_t n : g_.nodesInCluster(k)) {
+        if (g_.edges_[n].empty()) continue;
+        const std::uint32_t local = nodeAt(g_.nodeCells_[n]);
+        persisting_.resize(nodeCells_.size(), false);
+        persisting_[local] = true;
+      }
+    }
+    for (const auto& [k, east] : borders)
+      scanBorder(k, east);
+    stats.borders = static_cast<int>(borders.size());
+    persisting_.resize(nodeCells_.size(), false);
+    findIntraEdges();
+    pruneSamePairDominance();
+    if (g_.spec_.quality == AbstractionQuality::Low) {
+      pruneDominatedCrossings();
+      pruneIntraCircuits();
+    }
+    // Builder nodes to graph nodes: the one already at the cell, else a free id, else a new one.
+    std::vector<bool> live(nodeCells_.size(), false);
+    for (const Candidate& e : candidates_) {
+      if (!e.removed) live[e.a] = live[e.b] = true;
+    }
+    std::map<std::uint32_t, std::uint32_t> existing;  // cell index -> graph node
+    for (int k = 0; k < clusters; ++k) {
+      if (!redo[static_cast<std::size_t>(k)]) continue;
+      for (std::uint32_t n : g_.nodesInCluster(k))
+        existing.emplace(map_.indexOf(g_.nodeCells_[n]), n);
+    }
+    std::vector<std::uint32_t> id(nodeCells_.size(), kNone);
+    for (std::uint32_t local = 0; local < nodeCells_.size(); ++local) {
+      if (!live[local] && !persisting_[local]) continue;
+      const auto it = existing.find(map_.indexOf(nodeCells_[local]));
+      if (it != existing.end()) {
+        id[local] = it->second;
+      } else if (!g_.freeNodes_.empty()) {
+        id[local] = g_.freeNodes_.back();
+        g_.freeNodes_.pop_back();
+        g_.nodeCells_[id[local]] = nodeCells_[local];
+      } else {
+        id[local] = static_cast<std::uint32_t>(g_.nodeCells_.size());
+        g_.nodeCells_.push_back(nodeCells_[local]);
+        g_.edges_.emplace_back();
+      }
+    }
+    addEdges(id);
+    // The clusters' node lists again; nodes left without edges are freed.
+    for (int k = 0; k < clusters; ++k) {
+      if (!redo[static_cast<std::size_t>(k)]) continue;
+      std::vector<std::uint32_t>& nodes = g_.clusterNodes_[static_cast<std::size_t>(k)];
+      for (std::uint32_t local = 0; local < nodeCells_.size(); ++local) {
+        if (id[local] != kNone && g_.clusterOf(nodeCells_[local]) == k &&
+            std::find(nodes.begin(), nodes.end(), id[local]) == nodes.end())
+          nodes.push_back(id[local]);
+      }
+      std::erase_if(nodes, [&](std::uint32_t n) {
+        if (!g_.edges_[n].empty()) return false;
+        g_.nodeCells_[n] = {-1, -1};
+        g_.freeNodes_.push_back(n);
+        return true;
+      });
+      std::sort(nodes.begin(), nodes.end(), [&](std::uint32_t l, std::uint32_t r) {
+        return map_.indexOf(g_.nodeCells_[l]) < map_.indexOf(g_.nodeCells_[r]);
+      });
+    }
+    // Free ids are reused lowest first.
+    std::sort(g_.freeNodes_.begin(), g_.freeNodes_.end(), std::greater<>());
+    updateStats();
+#if WARPATH_INVARIANTS_ON
+    checkGraph();
+#endif
+  }
+
  private:
   static constexpr std::uint32_t kNone = UINT32_MAX;
+
+  CellRect clipped(CellRect r) const {
+    const int x0 = std::max(0, r.x);
+    const int y0 = std::max(0, r.y);
+    const int x1 = std::min(map_.width(), r.x + r.width);
+    const int y1 = std::min(map_.height(), r.y + r.height);
+    return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
+  }
+
+  static bool overlaps(CellRect a, CellRect b) {
+    return a.x < b.x + b.width && b.x < a.x + a.width && a.y < b.y + b.height &&
+           b.y < a.y + a.height;
+  }
+
+  // Removes node n's edges that match, and their reverses at the other end.
+  template <class Match>
+  void dropEdges(std::uint32_t n, Match match) {
+    std::vector<AbstractEdge>& edges = g_.edges_[n];
+    for (const AbstractEdge& e : edges) {
+      if (!match(e)) continue;
+      std::erase_if(g_.edges_[e.target], [&](const AbstractEdge& back) {
+        return back.target == n && back.intra == e.intra && back.cost == e.cost &&
+               back.capability == e.capability && back.clearance == e.clearance;
+      });
+    }
+    std::erase_if(edges, match);
+  }
+
+  void useEffectiveCapabilities() {
+    if (g_.costs_) costs_ = &*g_.costs_;
+    for (Capability effective : g_.effective_) {
+      if (effective.empty() ||
+          std::find(capabilities_.begin(), capabilities_.end(), effective) != capabilities_.end())
+        continue;
+      capabilities_.push_back(effective);
+      fields_.push_back(&grid_.clearance(effective));
+    }
+  }
   // Shorter runs of one crossing cost stay part of their neighbour's entrance. Measured with
   // infantry costs (docs/benchmarks.md): splitting at every change gave 9,600 nodes on the
   // 512² patchwork map and 2.2 % HQ error; 6 cells, 8,000 nodes, the same error and 20 % faster
@@ -180,7 +355,10 @@ class AbstractionBuilder {
   }
 
   std::uint32_t nodeAt(Cell cell) {
-    std::uint32_t& id = nodeOf_[map_.indexOf(cell)];
+    // A repair sees a few dozen nodes: a map from cell to node instead of a whole-map array.
+    std::uint32_t& id = repairing_
+                            ? repairNodeOf_.try_emplace(map_.indexOf(cell), kNone).first->second
+                            : nodeOf_[map_.indexOf(cell)];
     if (id == kNone) {
       id = static_cast<std::uint32_t>(nodeCells_.size());
       nodeCells_.push_back(cell);
@@ -253,7 +431,7 @@ class AbstractionBuilder {
           }
         }
         addInterEdge(first[chosen], second[chosen], ci, best);
-        if (costs_ && out_.spec_.quality == AbstractionQuality::High && i - begin >= kEndsRun) {
+        if (costs_ && g_.spec_.quality == AbstractionQuality::High && i - begin >= kEndsRun) {
           addInterEdge(first[begin], second[begin], ci, best);
           addInterEdge(first[i - 1], second[i - 1], ci, best);
         }
@@ -262,42 +440,40 @@ class AbstractionBuilder {
   }
 
   void findTransitions() {
-    const int b = out_.spec_.clusterSize;
-    std::vector<Cell> first;
-    std::vector<Cell> second;
-    for (int cy = 0; cy < out_.clustersY_; ++cy) {
-      for (int cx = 0; cx < out_.clustersX_; ++cx) {
-        const CellRect r = out_.clusterBounds(cy * out_.clustersX_ + cx);
-        if (cx + 1 < out_.clustersX_) {  // vertical border with the east neighbour
-          first.clear();
-          second.clear();
-          for (int y = r.y; y < r.y + r.height; ++y) {
-            first.push_back({r.x + b - 1, y});
-            second.push_back({r.x + b, y});
-          }
-          scanBorder(first, second);
-        }
-        if (cy + 1 < out_.clustersY_) {  // horizontal border with the south neighbour
-          first.clear();
-          second.clear();
-          for (int x = r.x; x < r.x + r.width; ++x) {
-            first.push_back({x, r.y + b - 1});
-            second.push_back({x, r.y + b});
-          }
-          scanBorder(first, second);
-        }
+    for (int k = 0; k < g_.clusterCount(); ++k) {
+      if (k % g_.clustersX_ + 1 < g_.clustersX_) scanBorder(k, true);
+      if (k / g_.clustersX_ + 1 < g_.clustersY_) scanBorder(k, false);
+    }
+  }
+
+  // The border of cluster k with its east (or south) neighbour.
+  void scanBorder(int k, bool east) {
+    const int b = g_.spec_.clusterSize;
+    const CellRect r = g_.clusterBounds(k);
+    first_.clear();
+    second_.clear();
+    if (east) {
+      for (int y = r.y; y < r.y + r.height; ++y) {
+        first_.push_back({r.x + b - 1, y});
+        second_.push_back({r.x + b, y});
+      }
+    } else {
+      for (int x = r.x; x < r.x + r.width; ++x) {
+        first_.push_back({x, r.y + b - 1});
+        second_.push_back({x, r.y + b});
       }
     }
+    scanBorder(first_, second_);
   }
 
   // For every cluster, capability and size: one Dijkstra per transition reaches all the
   // others. A size-s search whose paths to every higher-numbered node also admit size s+1
   // answers the size-(s+1) search too (those paths stay optimal), so it is skipped.
   void findIntraEdges() {
-    const int clusters = out_.clusterCount();
+    const int clusters = g_.clusterCount();
     std::vector<std::vector<std::uint32_t>> members(static_cast<std::size_t>(clusters));
     for (std::uint32_t n = 0; n < nodeCells_.size(); ++n)
-      members[static_cast<std::size_t>(out_.clusterOf(nodeCells_[n]))].push_back(n);
+      members[static_cast<std::size_t>(g_.clusterOf(nodeCells_[n]))].push_back(n);
 
     ClusterDijkstra dijkstra;
     std::vector<Cell> targets;
@@ -306,7 +482,7 @@ class AbstractionBuilder {
     for (int k = 0; k < clusters; ++k) {
       const std::vector<std::uint32_t>& nodes = members[static_cast<std::size_t>(k)];
       if (nodes.size() < 2) continue;
-      const CellRect region = out_.clusterBounds(k);
+      const CellRect region = g_.clusterBounds(k);
       for (std::size_t ci = 0; ci < fields_.size(); ++ci) {
         const Capability capability = capabilities_[ci];
         // coveredTo[i]: sizes up to this are already answered for sources nodes[i].
@@ -384,7 +560,7 @@ class AbstractionBuilder {
   // greater cost (strong dominance, HQ), or at any cost (weak dominance, LQ). Of edges that
   // dominate each other, the cheapest (then the first built) stays.
   void pruneSamePairDominance() {
-    const bool weak = out_.spec_.quality == AbstractionQuality::Low;
+    const bool weak = g_.spec_.quality == AbstractionQuality::Low;
     std::vector<std::uint32_t> order(candidates_.size());
     std::iota(order.begin(), order.end(), 0u);
     std::sort(order.begin(), order.end(), [&](std::uint32_t l, std::uint32_t r) {
@@ -426,7 +602,7 @@ class AbstractionBuilder {
   void pruneDominatedCrossings() {
     // Weak dominance alone would accept any detour; between rooms whose doors lie a cluster
     // apart that made LQ paths 6 % longer on 8room_000 (1 % with this bound, measured).
-    const double maxDetour = out_.spec_.clusterSize * (costs_ ? costs_->cheapest() : 1.0);
+    const double maxDetour = g_.spec_.clusterSize * (costs_ ? costs_->cheapest() : 1.0);
     rebuildAdjacency();
     for (std::uint32_t id = 0; id < candidates_.size(); ++id) {
       Candidate& e = candidates_[id];
@@ -449,7 +625,10 @@ class AbstractionBuilder {
       if (dominated) e.removed = true;
     }
     // Transitions without a crossing left serve no agent: drop them and their edges.
+    // A repair's nodes that keep crossings of borders it did not scan again stay too.
     std::vector<bool> keeps(nodeCells_.size(), false);
+    for (std::uint32_t n = 0; n < persisting_.size(); ++n)
+      keeps[n] = persisting_[n];
     for (const Candidate& e : candidates_) {
       if (!e.removed && !e.intra) keeps[e.a] = keeps[e.b] = true;
     }
@@ -515,8 +694,8 @@ class AbstractionBuilder {
     }
   }
 
-  // The compact graph: live nodes renumbered cluster by cluster, edges in CSR form (each
-  // undirected edge stored once per endpoint), and the cached paths that live edges use.
+  // The graph: live nodes renumbered cluster by cluster, each node's edges (each undirected
+  // edge stored once per endpoint), and the cached paths that live edges use.
   void assemble() {
     std::vector<bool> live(nodeCells_.size(), false);
     for (const Candidate& e : candidates_) {
@@ -527,8 +706,8 @@ class AbstractionBuilder {
       if (live[n]) order.push_back(n);
     }
     std::stable_sort(order.begin(), order.end(), [&](std::uint32_t l, std::uint32_t r) {
-      const int cl = out_.clusterOf(nodeCells_[l]);
-      const int cr = out_.clusterOf(nodeCells_[r]);
+      const int cl = g_.clusterOf(nodeCells_[l]);
+      const int cr = g_.clusterOf(nodeCells_[r]);
       if (cl != cr) return cl < cr;
       return map_.indexOf(nodeCells_[l]) < map_.indexOf(nodeCells_[r]);
     });
@@ -537,71 +716,74 @@ class AbstractionBuilder {
       newId[order[i]] = i;
 
     const std::size_t nodeCount = order.size();
-    out_.nodeCells_.resize(nodeCount);
+    g_.nodeCells_.resize(nodeCount);
     for (std::uint32_t i = 0; i < nodeCount; ++i)
-      out_.nodeCells_[i] = nodeCells_[order[i]];
-
-    out_.clusterNodeBegin_.assign(static_cast<std::size_t>(out_.clusterCount()) + 1, 0);
+      g_.nodeCells_[i] = nodeCells_[order[i]];
+    g_.clusterNodes_.assign(static_cast<std::size_t>(g_.clusterCount()), {});
     for (std::uint32_t i = 0; i < nodeCount; ++i)
-      ++out_.clusterNodeBegin_[static_cast<std::size_t>(out_.clusterOf(out_.nodeCells_[i])) + 1];
-    std::partial_sum(out_.clusterNodeBegin_.begin(), out_.clusterNodeBegin_.end(),
-                     out_.clusterNodeBegin_.begin());
-    out_.clusterNodes_.resize(nodeCount);
-    std::iota(out_.clusterNodes_.begin(), out_.clusterNodes_.end(), 0u);
+      g_.clusterNodes_[static_cast<std::size_t>(g_.clusterOf(g_.nodeCells_[i]))].push_back(i);
+    g_.edges_.assign(nodeCount, {});
+    g_.paths_.assign(static_cast<std::size_t>(g_.clusterCount()), {});
+    addEdges(newId);
+    updateStats();
+  }
 
-    std::vector<std::uint32_t> degree(nodeCount + 1, 0);
-    for (const Candidate& e : candidates_) {
-      if (e.removed) continue;
-      ++degree[newId[e.a] + 1];
-      ++degree[newId[e.b] + 1];
-      if (e.intra) {
-        ++out_.stats_.intraEdges;
-      } else {
-        ++out_.stats_.interEdges;
-      }
-    }
-    std::partial_sum(degree.begin(), degree.end(), degree.begin());
-    out_.edgeBegin_ = degree;
-    out_.edges_.resize(degree.back());
-    std::vector<std::uint32_t> fill(degree.begin(), degree.end() - 1);
-
-    const bool cachePaths = out_.spec_.cachePaths;
+  // Adds the live candidates to the graph, each undirected edge once per endpoint in candidate
+  // order, with their cached paths in their cluster's. `id` maps builder nodes to graph nodes.
+  void addEdges(const std::vector<std::uint32_t>& id) {
+    const bool cachePaths = g_.spec_.cachePaths;
     for (const Candidate& e : candidates_) {
       if (e.removed) continue;
       std::uint32_t path = AbstractEdge::kNoPath;
       if (e.intra && cachePaths) {
-        path = static_cast<std::uint32_t>(out_.pathBegin_.size());
-        out_.pathBegin_.push_back(static_cast<std::uint32_t>(out_.pathSteps_.size()));
+        ClusterAbstraction::ClusterPaths& paths =
+            g_.paths_[static_cast<std::size_t>(g_.clusterOf(nodeCells_[e.a]))];
+        path = static_cast<std::uint32_t>(paths.begin.size() - 1);
         const auto first = pathSteps_.begin() + pathBegin_[e.path];
         const auto last = e.path + 1 < pathBegin_.size()
                               ? pathSteps_.begin() + pathBegin_[e.path + 1]
                               : pathSteps_.end();
-        out_.pathSteps_.insert(out_.pathSteps_.end(), first, last);
+        paths.steps.insert(paths.steps.end(), first, last);
+        paths.begin.push_back(static_cast<std::uint32_t>(paths.steps.size()));
       }
       AbstractEdge forward;
-      forward.target = newId[e.b];
+      forward.target = id[e.b];
       forward.path = path;
       forward.cost = e.cost;
       forward.capability = e.capability;
       forward.clearance = e.clearance;
       forward.intra = e.intra;
       AbstractEdge backward = forward;
-      backward.target = newId[e.a];
+      backward.target = id[e.a];
       backward.reversed = true;
-      out_.edges_[fill[newId[e.a]]++] = forward;
-      out_.edges_[fill[newId[e.b]]++] = backward;
+      g_.edges_[id[e.a]].push_back(forward);
+      g_.edges_[id[e.b]].push_back(backward);
     }
-    if (cachePaths) out_.pathBegin_.push_back(static_cast<std::uint32_t>(out_.pathSteps_.size()));
+  }
 
-    AbstractionStats& stats = out_.stats_;
-    stats.clusters = out_.clusterCount();
-    stats.nodes = nodeCount;
-    stats.graphBytes = out_.nodeCells_.size() * sizeof(Cell) +
-                       out_.edgeBegin_.size() * sizeof(std::uint32_t) +
-                       out_.edges_.size() * sizeof(AbstractEdge) +
-                       out_.clusterNodeBegin_.size() * sizeof(std::uint32_t) +
-                       out_.clusterNodes_.size() * sizeof(std::uint32_t);
-    stats.pathBytes = out_.pathBegin_.size() * sizeof(std::uint32_t) + out_.pathSteps_.size();
+  // Counts and sizes of the whole graph.
+  void updateStats() {
+    AbstractionStats& stats = g_.stats_;
+    stats.clusters = g_.clusterCount();
+    stats.nodes = 0;
+    stats.interEdges = 0;
+    stats.intraEdges = 0;
+    std::size_t edgeCount = 0;
+    for (const std::vector<AbstractEdge>& edges : g_.edges_) {
+      if (!edges.empty()) ++stats.nodes;
+      edgeCount += edges.size();
+      for (const AbstractEdge& e : edges)
+        ++(e.intra ? stats.intraEdges : stats.interEdges);
+    }
+    stats.interEdges /= 2;  // each undirected edge is held by both ends
+    stats.intraEdges /= 2;
+    stats.graphBytes = g_.nodeCells_.size() * (sizeof(Cell) + sizeof(std::vector<AbstractEdge>)) +
+                       edgeCount * sizeof(AbstractEdge) +
+                       g_.clusterNodes_.size() * sizeof(std::vector<std::uint32_t>) +
+                       stats.nodes * sizeof(std::uint32_t);
+    stats.pathBytes = 0;
+    for (const ClusterAbstraction::ClusterPaths& paths : g_.paths_)
+      stats.pathBytes += (paths.begin.size() - 1) * sizeof(std::uint32_t) + paths.steps.size();
   }
 
   // Debug and sanitizer builds: the assembled graph is what queries rely on. Every node lies
@@ -663,8 +845,14 @@ class AbstractionBuilder {
   const GridMap& map_;
   int maxSize_;
   int minSize_;                       // smallest agent served: 1, or maxSize_ in a weighted graph
-  const CostField* costs_ = nullptr;  // the weighted graph's agent's costs, in out_
-  ClusterAbstraction out_;
+  const CostField* costs_ = nullptr;  // the weighted graph's agent's costs, in g_
+  ClusterAbstraction out_;            // what build() returns
+  ClusterAbstraction& g_;             // the graph built or repaired: out_, or the one repaired
+  bool repairing_ = false;
+  std::map<std::uint32_t, std::uint32_t> repairNodeOf_;  // cell index -> node, when repairing
+  std::vector<bool> persisting_;  // repair: builder nodes that keep crossings not scanned again
+  std::vector<Cell> first_;       // scratch of scanBorder
+  std::vector<Cell> second_;
   std::vector<Capability> capabilities_;  // effective capabilities, built
   std::vector<const ClearanceField*> fields_;
   std::vector<std::uint32_t> nodeOf_;
@@ -684,9 +872,25 @@ RepairStats ClusterAbstraction::repair(const TerrainChange& change) {
   const auto began = std::chrono::steady_clock::now();
   RepairStats stats;
   if (!change.changed) return stats;
-  *this = AbstractionBuilder(*grid_, spec_).build();
-  stats.rebuilt = true;
-  stats.clusters = clusterCount();
+  // Edges are annotated with the terrains each capability had on the map; a terrain new to
+  // one would need edges the graph has no field for: build it whole.
+  const GridMap& map = grid_->map();
+  std::uint8_t added = 0;
+  for (int y = change.area.y; y < change.area.y + change.area.height; ++y) {
+    for (int x = change.area.x; x < change.area.x + change.area.width; ++x)
+      added |= Capability::of({map.at({x, y})}).mask();
+  }
+  bool newTerrain = false;
+  for (std::size_t i = 0; i < effective_.size(); ++i)
+    newTerrain = newTerrain || (spec_.capabilities[i].mask() & added & ~effective_[i].mask()) != 0;
+  if (newTerrain) {
+    *this = AbstractionBuilder(*grid_, spec_).build();
+    stats.rebuilt = true;
+    stats.clusters = clusterCount();
+  } else {
+    if (costs_) costs_->update(*grid_, change.area);
+    AbstractionBuilder(*this).repair(change.area, stats);
+  }
   stats.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
   return stats;

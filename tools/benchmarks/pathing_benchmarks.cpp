@@ -208,6 +208,51 @@ void BM_WeightedAbstractionBuild(benchmark::State& state) {
 }
 BENCHMARK(BM_WeightedAbstractionBuild)->Arg(1)->Arg(3)->Unit(benchmark::kMillisecond);
 
+// Terrain that changes (issue 14): one change of a k×k square (range 0) on the 512² map, HQ (0)
+// or LQ (1) graph of the catalogue (range 1), and what it costs to repair: the grid's caches
+// (clearance, agent layers of sizes 1-3 of the three capabilities) and the graph. Iterations
+// alternate placing an obstacle and clearing it at a spot that moves each pair, so the map
+// returns to what it was. Compare with BM_AbstractionBuild (a whole build of the same graph).
+void BM_TerrainRepair(benchmark::State& state) {
+  const int side = static_cast<int>(state.range(0));
+  const auto quality = static_cast<AbstractionQuality>(state.range(1));
+  AnnotatedGrid grid(benchmarkMap(512));
+  ClusterAbstraction graph = ClusterAbstraction::build(grid, catalogueSpec(16, quality));
+  SplitMix64 rng(14);
+  CellRect area{};
+  bool placed = false;
+  double clusters = 0;
+  for (auto _ : state) {
+    if (!placed) area = {rng.between(0, 511 - side), rng.between(0, 511 - side), side, side};
+    const TerrainChange change = placed ? grid.clearObstacle(area) : grid.placeObstacle(area);
+    placed = !placed;
+    clusters += graph.repair(change).clusters;
+  }
+  state.counters["nodes"] = static_cast<double>(graph.stats().nodes);
+  state.counters["clusters"] = benchmark::Counter(clusters, benchmark::Counter::kAvgIterations);
+}
+BENCHMARK(BM_TerrainRepair)
+    ->ArgsProduct({{1, 4, 16, 64, 128},
+                   {static_cast<int>(AbstractionQuality::High),
+                    static_cast<int>(AbstractionQuality::Low)}})
+    ->Unit(benchmark::kMicrosecond);
+
+// The grid's share of BM_TerrainRepair: clearance and agent layers alone.
+void BM_GridRepair(benchmark::State& state) {
+  const int side = static_cast<int>(state.range(0));
+  AnnotatedGrid grid(benchmarkMap(512));
+  (void)ClusterAbstraction::build(grid, catalogueSpec(16, AbstractionQuality::High));
+  SplitMix64 rng(14);
+  CellRect area{};
+  bool placed = false;
+  for (auto _ : state) {
+    if (!placed) area = {rng.between(0, 511 - side), rng.between(0, 511 - side), side, side};
+    benchmark::DoNotOptimize(placed ? grid.clearObstacle(area) : grid.placeObstacle(area));
+    placed = !placed;
+  }
+}
+BENCHMARK(BM_GridRepair)->Arg(16)->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();

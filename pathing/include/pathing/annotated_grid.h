@@ -32,21 +32,28 @@ class AgentLayer {
  public:
   static AgentLayer compute(const GridMap& map, const ClearanceField& clearance, Agent agent);
   // After the clearance changed inside `changed` (ClearanceField::update): the moves of the
-  // cells there and next to it, and the components.
-  void update(const GridMap& map, const ClearanceField& clearance, Agent agent, CellRect changed);
+  // cells there and next to it, and the components where they changed. `scratch` is the
+  // caller's, reused between updates.
+  struct Scratch;
+  void update(const GridMap& map, const ClearanceField& clearance, Agent agent, CellRect changed,
+              Scratch& scratch);
 
   // Bit d set when the agent anchored at the cell may step in direction d (see moves.h).
   std::span<const std::uint8_t> moveMasks() const { return moveMasks_; }
   // 0 where the agent cannot stand; otherwise equal ids <=> mutually reachable.
+  // After updates, ids need not be consecutive: some in 1..componentCount() may label no cell.
   std::span<const std::uint32_t> components() const { return components_; }
   std::uint32_t componentCount() const { return componentCount_; }
 
  private:
   void labelComponents(const GridMap& map, const ClearanceField& clearance, Agent agent);
+  void relabel(const GridMap& map, const ClearanceField& clearance, Agent agent, CellRect region,
+               Scratch& scratch);
 
   std::vector<std::uint8_t> moveMasks_;
   std::vector<std::uint32_t> components_;
   std::uint32_t componentCount_ = 0;
+  std::vector<std::uint32_t> sizes_;  // cells per component id (an estimate after updates)
 };
 
 // What a change of terrain touched (AnnotatedGrid::setTerrain, placeObstacle, clearObstacle).
@@ -58,6 +65,7 @@ struct TerrainChange {
 class AnnotatedGrid {
  public:
   explicit AnnotatedGrid(GridMap map);
+  ~AnnotatedGrid();
   AnnotatedGrid(const AnnotatedGrid&) = delete;
   AnnotatedGrid& operator=(const AnnotatedGrid&) = delete;
 
@@ -96,6 +104,7 @@ class AnnotatedGrid {
   void refresh(CellRect area);
 
   GridMap map_;
+  std::unique_ptr<AgentLayer::Scratch> scratch_;  // for layer updates
   // Obstacles standing on each cell, and the terrain under them (allocated at the first one).
   std::vector<std::uint16_t> obstacles_;
   std::vector<Terrain> underneath_;

@@ -135,14 +135,13 @@ class ClusterAbstraction {
   }
   CellRect clusterBounds(int cluster) const;
 
+  // Node ids run below nodeCount(); after a repair some ids may be free (listed in no cluster,
+  // with no edges) until a later repair reuses them.
   std::uint32_t nodeCount() const { return static_cast<std::uint32_t>(nodeCells_.size()); }
   Cell nodeCell(std::uint32_t node) const { return nodeCells_[node]; }
-  std::span<const AbstractEdge> edgesOf(std::uint32_t node) const {
-    return {edges_.data() + edgeBegin_[node], edges_.data() + edgeBegin_[node + 1]};
-  }
+  std::span<const AbstractEdge> edgesOf(std::uint32_t node) const { return edges_[node]; }
   std::span<const std::uint32_t> nodesInCluster(int cluster) const {
-    return {clusterNodes_.data() + clusterNodeBegin_[static_cast<std::size_t>(cluster)],
-            clusterNodes_.data() + clusterNodeBegin_[static_cast<std::size_t>(cluster) + 1]};
+    return clusterNodes_[static_cast<std::size_t>(cluster)];
   }
 
   // Appends the grid cells of `edge`, taken from node `from`, excluding `from`'s cell and
@@ -154,19 +153,28 @@ class ClusterAbstraction {
   friend class AbstractionBuilder;
   ClusterAbstraction() = default;
 
+  // The cached grid paths of one cluster's intra-edges: path p's moves (moves.h), source to
+  // target, are steps[begin[p]] up to steps[begin[p + 1]]. Per cluster, so that a repair
+  // replaces a cluster's paths without touching the others.
+  struct ClusterPaths {
+    std::vector<std::uint32_t> begin{0};
+    std::vector<std::uint8_t> steps;
+  };
+
   const AnnotatedGrid* grid_ = nullptr;
   AbstractionSpec spec_;
   AbstractionStats stats_;
   std::optional<CostField> costs_;
   int clustersX_ = 0;
   int clustersY_ = 0;
-  std::vector<Cell> nodeCells_;
-  std::vector<std::uint32_t> edgeBegin_;  // CSR: edges of node n in [edgeBegin_[n], [n+1])
-  std::vector<AbstractEdge> edges_;
-  std::vector<std::uint32_t> clusterNodeBegin_;
-  std::vector<std::uint32_t> clusterNodes_;
-  std::vector<std::uint32_t> pathBegin_;  // cached path p: directions [pathBegin_[p], [p+1])
-  std::vector<std::uint8_t> pathSteps_;   // move directions (moves.h), source to target
+  // Per spec capability, the terrains of it the map had when the graph was built: edges are
+  // annotated with these (a terrain new to one needs a whole build).
+  std::vector<Capability> effective_;
+  std::vector<Cell> nodeCells_;                           // a free id's cell is {-1, -1}
+  std::vector<std::vector<AbstractEdge>> edges_;          // per node, in the order built
+  std::vector<std::vector<std::uint32_t>> clusterNodes_;  // per cluster, by cell index
+  std::vector<ClusterPaths> paths_;                       // per cluster
+  std::vector<std::uint32_t> freeNodes_;                  // ids a repair left unused
 };
 
 }  // namespace warpath::pathing

@@ -1,0 +1,238 @@
+// Terrain that changes (issue 14): after any sequence of changes, the grid's repaired caches
+// equal those computed from scratch on the changed map, and repaired HAA* graphs (HQ and LQ,
+// uniform and weighted) find a path exactly when AA* on the changed map does, every step
+// legal, never cheaper.
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <span>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "pathing/aa_star.h"
+#include "pathing/cluster_abstraction.h"
+#include "pathing/haa_star.h"
+#include "pathing/map_generator.h"
+#include "pathing/random.h"
+#include "pathing/terrain_costs.h"
+#include "support/completeness.h"
+
+namespace warpath::pathing {
+namespace {
+
+using testing::checkCompleteness;
+using testing::completenessAgents;
+using testing::completenessCapabilities;
+using testing::CompletenessTally;
+using testing::drawCompletenessCases;
+
+GridMap randomMap(std::uint64_t seed, int width, int height, int maxPatch) {
+  RandomMapSpec spec;
+  spec.width = width;
+  spec.height = height;
+  spec.seed = seed;
+  spec.blockedPercent = 12;
+  spec.swampPercent = 15;
+  spec.treesPercent = 10;
+  spec.waterPercent = 12;
+  spec.maxPatch = maxPatch;
+  return generateRandomMap(spec);
+}
+
+constexpr Terrain kTerrains[] = {Terrain::Ground, Terrain::Swamp, Terrain::Trees, Terrain::Water,
+                                 Terrain::Blocked};
+
+// A random change: a rectangle up to `maxSide` a side, partly off the map at times, set to a
+// random terrain; or an obstacle placed, or one placed earlier cleared.
+struct RandomChanges {
+  SplitMix64 rng;
+  int maxSide;
+  std::vector<CellRect> obstacles;
+
+  TerrainChange apply(AnnotatedGrid& grid) {
+    const GridMap& map = grid.map();
+    const int kind = rng.between(0, 9);
+    if (kind == 0 && !obstacles.empty()) {
+      const CellRect area = obstacles.back();
+      obstacles.pop_back();
+      return grid.clearObstacle(area);
+    }
+    const CellRect area{rng.between(-2, map.width() - 1), rng.between(-2, map.height() - 1),
+                        rng.between(1, maxSide), rng.between(1, maxSide)};
+    if (kind == 1) {
+      obstacles.push_back(area);
+      return grid.placeObstacle(area);
+    }
+    return grid.setTerrain(area, kTerrains[rng.between(0, 4)]);
+  }
+};
+
+// Component ids may differ after updates; the cells they group may not.
+bool samePartition(std::span<const std::uint32_t> a, std::span<const std::uint32_t> b) {
+  if (a.size() != b.size()) return false;
+  std::map<std::uint32_t, std::uint32_t> aToB;
+  std::map<std::uint32_t, std::uint32_t> bToA;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if ((a[i] == 0) != (b[i] == 0)) return false;
+    if (a[i] == 0) continue;
+    if (aToB.try_emplace(a[i], b[i]).first->second != b[i]) return false;
+    if (bToA.try_emplace(b[i], a[i]).first->second != a[i]) return false;
+  }
+  return true;
+}
+
+std::string cell(Cell c) {
+  return std::to_string(c.x) + "," + std::to_string(c.y);
+}
+
+TEST(TerrainChange, RepairedCachesEqualFreshOnes) {
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    AnnotatedGrid grid(randomMap(seed, 40 + 5 * static_cast<int>(seed), 37, 6));
+    // Fill the caches first, so that every change repairs them.
+    for (const Agent& agent : completenessAgents())
+      (void)grid.layer(agent);
+    RandomChanges changes{SplitMix64(seed), 9, {}};
+    for (int step = 0; step < 40; ++step) {
+      const std::uint64_t before = grid.revision();
+      const TerrainChange change = changes.apply(grid);
+      EXPECT_EQ(grid.revision(), before + (change.changed ? 1 : 0));
+      const AnnotatedGrid fresh(grid.map());
+      for (const Capability capability : completenessCapabilities()) {
+        const auto repaired = grid.clearance(capability).values();
+        const auto truth = fresh.clearance(capability).values();
+        ASSERT_TRUE(std::equal(repaired.begin(), repaired.end(), truth.begin(), truth.end()))
+            << "seed " << seed << " step " << step << " clearance " << capability.toString();
+      }
+      for (const Agent& agent : completenessAgents()) {
+        const AgentLayer& repaired = grid.layer(agent);
+        const AgentLayer& truth = fresh.layer(agent);
+        ASSERT_TRUE(std::ranges::equal(repaired.moveMasks(), truth.moveMasks()))
+            << "seed " << seed << " step " << step << " moves";
+        ASSERT_TRUE(samePartition(repaired.components(), truth.components()))
+            << "seed " << seed << " step " << step << " components";
+      }
+    }
+  }
+}
+
+TEST(TerrainChange, ObstaclesKeepTheTerrainUnderneath) {
+  GridMap map(12, 8);
+  map.set({4, 4}, Terrain::Swamp);
+  AnnotatedGrid grid(map);
+  const Agent tank{2, Capability::of({Terrain::Ground})};
+  EXPECT_TRUE(grid.canStand(tank, {2, 2}));
+  EXPECT_TRUE(grid.placeObstacle({3, 3, 2, 2}).changed);
+  EXPECT_TRUE(grid.placeObstacle({4, 3, 2, 2}).changed);  // overlaps the first
+  EXPECT_EQ(grid.map().at({4, 4}), Terrain::Blocked);
+  EXPECT_FALSE(grid.canStand(tank, {2, 2}));
+  // Terrain set under an obstacle shows once the obstacle is gone.
+  EXPECT_FALSE(grid.setTerrain({5, 3, 1, 1}, Terrain::Water).changed);
+  EXPECT_TRUE(grid.clearObstacle({3, 3, 2, 2}).changed);
+  EXPECT_EQ(grid.map().at({3, 3}), Terrain::Ground);
+  EXPECT_EQ(grid.map().at({4, 4}), Terrain::Blocked);  // the second still stands there
+  EXPECT_TRUE(grid.clearObstacle({4, 3, 2, 2}).changed);
+  EXPECT_EQ(grid.map().at({4, 4}), Terrain::Swamp);
+  EXPECT_EQ(grid.map().at({5, 3}), Terrain::Water);
+  EXPECT_THROW((void)grid.clearObstacle({4, 3, 1, 1}), std::invalid_argument);
+  // Nothing changes off the map.
+  const TerrainChange off = grid.setTerrain({20, 20, 3, 3}, Terrain::Blocked);
+  EXPECT_FALSE(off.changed);
+  EXPECT_EQ(off.area.width * off.area.height, 0);
+}
+
+TEST(TerrainChange, CostFieldUpdateEqualsAFreshField) {
+  TerrainCosts costs;
+  costs.perCell[static_cast<std::size_t>(Terrain::Ground)] = 1.0 / 1.5;
+  costs.perCell[static_cast<std::size_t>(Terrain::Swamp)] = 1.0 / 0.8;
+  costs.perCell[static_cast<std::size_t>(Terrain::Trees)] = 1.0;
+  AnnotatedGrid grid(randomMap(9, 48, 40, 5));
+  for (int size = 1; size <= 3; ++size) {
+    const Agent agent{size, costs.capability()};
+    CostField field(grid, agent, costs);
+    RandomChanges changes{SplitMix64(static_cast<std::uint64_t>(size) * 31), 7, {}};
+    for (int step = 0; step < 25; ++step) {
+      const TerrainChange change = changes.apply(grid);
+      if (change.changed) field.update(grid, change.area);
+      const CostField fresh(grid, agent, costs);
+      for (std::uint32_t i = 0; i < grid.map().cellCount(); ++i)
+        ASSERT_EQ(field.at(i), fresh.at(i))
+            << "size " << size << " step " << step << " anchor " << cell(grid.map().cellAt(i));
+      EXPECT_LE(field.cheapest(), fresh.cheapest());
+    }
+  }
+}
+
+// The property of issue 14: repaired graphs stay complete and sound on the changed map.
+TEST(TerrainChange, RepairedGraphsFindAPathExactlyWhenAStarDoes) {
+  CompletenessTally tally;
+  int repairs = 0;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
+      AnnotatedGrid grid(randomMap(seed * 13, 50 + 6 * static_cast<int>(seed), 44, 5));
+      AbstractionSpec spec;
+      spec.clusterSize = 8 + 4 * static_cast<int>(seed % 2);
+      spec.maxAgentSize = 3;
+      spec.capabilities = completenessCapabilities();
+      spec.quality = quality;
+      spec.cachePaths = seed != 2;
+      ClusterAbstraction abstraction = ClusterAbstraction::build(grid, spec);
+      HierarchicalAStar haa(abstraction);
+      RandomChanges changes{SplitMix64(seed * 101), 10, {}};
+      for (int step = 0; step < 12; ++step) {
+        const TerrainChange change = changes.apply(grid);
+        abstraction.repair(change);
+        repairs += change.changed ? 1 : 0;
+        // AA* on a grid built afresh from the changed map is the truth.
+        const AnnotatedGrid fresh(grid.map());
+        const auto cases = drawCompletenessCases(
+            fresh, completenessAgents(), seed * 1000 + static_cast<std::uint64_t>(step), 1, 3, 1);
+        std::ostringstream label;
+        label << "seed " << seed << " " << kAbstractionQualityNames.name(quality) << " step "
+              << step << " after " << change.area.width << "x" << change.area.height << " at "
+              << cell({change.area.x, change.area.y});
+        checkCompleteness(fresh, cases, haa, label.str(), tally);
+      }
+    }
+  }
+  EXPECT_EQ(tally.failures, 0);
+  EXPECT_GT(repairs, 50);
+  EXPECT_GT(tally.found, 1000);
+  EXPECT_GT(tally.notFound, 100);
+}
+
+TEST(TerrainChange, RepairedWeightedGraphsStayCompleteUnderCosts) {
+  TerrainCosts costs;
+  costs.perCell[static_cast<std::size_t>(Terrain::Ground)] = 0.5;
+  costs.perCell[static_cast<std::size_t>(Terrain::Swamp)] = 2.0;
+  costs.perCell[static_cast<std::size_t>(Terrain::Water)] = 1.0;
+  CompletenessTally tally;
+  for (int size = 1; size <= 3; ++size) {
+    for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
+      AnnotatedGrid grid(randomMap(77 + static_cast<std::uint64_t>(size), 52, 46, 6));
+      const Agent agent{size, costs.capability()};
+      ClusterAbstraction abstraction =
+          ClusterAbstraction::build(grid, weightedAbstractionSpec(agent, costs, 8, quality));
+      HierarchicalAStar haa(abstraction);
+      RandomChanges changes{SplitMix64(static_cast<std::uint64_t>(size) * 7 + 3), 8, {}};
+      for (int step = 0; step < 10; ++step) {
+        const TerrainChange change = changes.apply(grid);
+        abstraction.repair(change);
+        const AnnotatedGrid fresh(grid.map());
+        const CostField field(fresh, agent, costs);
+        const auto cases = drawCompletenessCases(
+            fresh, {agent}, static_cast<std::uint64_t>(size * 100 + step), 2, 8, 1, &field);
+        std::ostringstream label;
+        label << "size " << size << " " << kAbstractionQualityNames.name(quality) << " step "
+              << step;
+        checkCompleteness(fresh, cases, haa, label.str(), tally);
+      }
+    }
+  }
+  EXPECT_EQ(tally.failures, 0);
+  EXPECT_GT(tally.found, 300);
+}
+
+}  // namespace
+}  // namespace warpath::pathing
