@@ -135,7 +135,7 @@ TEST(BridgeDemolition, DeterministicAndTheChangeReachesTheHash) {
 }
 
 // Two worlds that differ only in a change that touches no unit's route hash differently.
-TEST(TerrainChange, AChangeAloneChangesTheHash) {
+TEST(WorldTerrainChange, AChangeAloneChangesTheHash) {
   const Scenario s = load(scenarioText());
   WorldSettings settings = s.settings;
   World a(s.grid, s.catalogue, settings);
@@ -149,7 +149,7 @@ TEST(TerrainChange, AChangeAloneChangesTheHash) {
   EXPECT_EQ(a.grid().map().at({50, 40}), Terrain::Ground);
 }
 
-TEST(TerrainChange, NeedsAWorldThatMayChangeItsTerrain) {
+TEST(WorldTerrainChange, NeedsAWorldThatMayChangeItsTerrain) {
   const Scenario s = load(withoutDemolition());
   WorldSettings settings = s.settings;
   World world(s.grid, s.catalogue, settings);
@@ -245,7 +245,7 @@ int countEvents(const World& world, EventKind kind) {
 
 // The rule: a unit whose footprint can no longer stand where it is moves to the nearest anchor
 // it can stand on, at once, at the start of the step the change applies in.
-TEST(TerrainChange, AUnitOnTerrainThatBecameImpassableIsPushedToTheNearestStandableCell) {
+TEST(WorldTerrainChange, AUnitOnTerrainThatBecameImpassableIsPushedToTheNearestStandableCell) {
   WorldSettings settings;
   settings.terrainChanges = true;
   settings.combat.enabled = false;
@@ -262,7 +262,7 @@ TEST(TerrainChange, AUnitOnTerrainThatBecameImpassableIsPushedToTheNearestStanda
   EXPECT_TRUE(u.alive());
 }
 
-TEST(TerrainChange, AMovingUnitWhosePathCrossesTheChangeRepaths) {
+TEST(WorldTerrainChange, AMovingUnitWhosePathCrossesTheChangeRepaths) {
   WorldSettings settings;
   settings.terrainChanges = true;
   settings.combat.enabled = false;
@@ -284,7 +284,7 @@ TEST(TerrainChange, AMovingUnitWhosePathCrossesTheChangeRepaths) {
 }
 
 // A size-2 wreck blocks planning over its footprint while it stands; a size-1 one does not.
-TEST(TerrainChange, WrecksOfLargeUnitsBlockPlanningWhileTheyStand) {
+TEST(WorldTerrainChange, WrecksOfLargeUnitsBlockPlanningWhileTheyStand) {
   for (const bool block : {true, false}) {
     WorldSettings settings;
     settings.combat.wreckSeconds = 1.0;  // 30 ticks
