@@ -157,7 +157,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Golden{"demo", "94f004afe1cb75f5", "268efd7eedf339cb"},
                       Golden{"river_ambush", "e02f77cfc2857a8d", "5e0e2076b5bf9d94"},
                       Golden{"forest_battle", "418269f9132f682d", "1e2811529b35473b"},
-                      Golden{"amphibious_landing", "a0c07a636b15d90d", "7bb81fc9f3a1784e"}),
+                      Golden{"amphibious_landing", "a0c07a636b15d90d", "7bb81fc9f3a1784e"},
+                      Golden{"bridge_demolition", "87e5a21810de3f77", "e92b92a84829b703"}),
     [](const auto& golden) { return std::string(golden.param.scenario); });
 
 // The field list format-2 replays recorded (World::legacyStateHash) still gives the demo's
