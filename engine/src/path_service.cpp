@@ -84,11 +84,19 @@ PathService::PathService(const AnnotatedGrid& grid, const PathServiceSettings& s
   }
   // Requests without a profile plan in the uniform model (by AA* when no graph was built).
   planner_.emplace(grid, abstraction_ ? settings.algorithm : Algorithm::AStar, abstraction_.get());
-  const Capability present = grid.map().terrainsPresent();
-  for (const CostProfile& profile : costProfiles) {
+  present_ = grid.map().terrainsPresent();
+  costProfiles_ = std::move(costProfiles);
+  mergeCostProfiles();
+  metrics_.preprocessMilliseconds = elapsedMilliseconds(began);
+}
+
+void PathService::mergeCostProfiles() {
+  weighted_.clear();
+  distinctOf_.clear();
+  for (const CostProfile& profile : costProfiles_) {
     std::size_t k = 0;
     while (k < weighted_.size() &&
-           !sameOnMap({weighted_[k]->agent, weighted_[k]->costs}, profile, present))
+           !sameOnMap({weighted_[k]->agent, weighted_[k]->costs}, profile, present_))
       ++k;
     if (k == weighted_.size()) {
       auto planner = std::make_unique<WeightedPlanner>();
@@ -100,7 +108,6 @@ PathService::PathService(const AnnotatedGrid& grid, const PathServiceSettings& s
     }
     distinctOf_.push_back(static_cast<int>(k));
   }
-  metrics_.preprocessMilliseconds = elapsedMilliseconds(began);
 }
 
 PathService::WeightedPlanner& PathService::weightedPlanner(int costProfile) {
@@ -143,6 +150,17 @@ void PathService::changeTerrain(const TerrainChange& change) {
   const auto began = std::chrono::steady_clock::now();
   ++metrics_.terrainChanges;
   if (abstraction_) abstraction_->repair(change);
+  // Profiles merged because they agreed on the map's terrains may differ on a terrain the
+  // change brought: merged again, their planners built anew when next asked.
+  std::uint8_t brought = 0;
+  for (int y = change.area.y; y < change.area.y + change.area.height; ++y) {
+    for (int x = change.area.x; x < change.area.x + change.area.width; ++x)
+      brought |= Capability::of({grid_.map().at({x, y})}).mask();
+  }
+  if ((brought & ~present_.mask()) != 0) {
+    present_ = present_ | Capability::fromMask(brought);
+    mergeCostProfiles();
+  }
   for (const auto& w : weighted_) {
     if (w->abstraction) w->abstraction->repair(change);
     if (w->field) w->field->update(grid_, change.area);

@@ -181,6 +181,7 @@ class AbstractionBuilder {
         }
       }
     }
+    const Tally before = tally(redo);
     // Take out the old crossings of those borders and the old intra-edges of those clusters.
     for (const auto& [k, east] : borders) {
       const CellRect r = g_.clusterBounds(k);
@@ -269,7 +270,7 @@ class AbstractionBuilder {
     }
     // Free ids are reused lowest first.
     std::sort(g_.freeNodes_.begin(), g_.freeNodes_.end(), std::greater<>());
-    updateStats();
+    updateStats(before, tally(redo));
 #if WARPATH_INVARIANTS_ON
     checkGraph();
 #endif
@@ -725,7 +726,8 @@ class AbstractionBuilder {
     g_.edges_.assign(nodeCount, {});
     g_.paths_.assign(static_cast<std::size_t>(g_.clusterCount()), {});
     addEdges(newId);
-    updateStats();
+    g_.stats_ = {};
+    updateStats({}, tally(std::vector<bool>(g_.paths_.size(), true)));
   }
 
   // Adds the live candidates to the graph, each undirected edge once per endpoint in candidate
@@ -761,29 +763,48 @@ class AbstractionBuilder {
     }
   }
 
-  // Counts and sizes of the whole graph.
-  void updateStats() {
+  // What the nodes of some clusters hold: edges (each counted at both ends when both lie in
+  // them), live nodes, cached path bytes.
+  struct Tally {
+    std::size_t inter = 0;
+    std::size_t intra = 0;
+    std::size_t nodes = 0;
+    std::size_t pathBytes = 0;
+  };
+  Tally tally(const std::vector<bool>& clusters) const {
+    Tally t;
+    for (std::size_t k = 0; k < clusters.size(); ++k) {
+      if (!clusters[k]) continue;
+      for (std::uint32_t n : g_.clusterNodes_[k]) {
+        t.nodes += g_.edges_[n].empty() ? 0 : 1;
+        for (const AbstractEdge& e : g_.edges_[n])
+          ++(e.intra ? t.intra : t.inter);
+      }
+      const ClusterAbstraction::ClusterPaths& paths = g_.paths_[k];
+      t.pathBytes += (paths.begin.size() - 1) * sizeof(std::uint32_t) + paths.steps.size();
+    }
+    return t;
+  }
+
+  // The statistics of the whole graph; after a repair, from what the repaired clusters held
+  // before and hold now (every edge a repair changes has both ends in them).
+  void updateStats(const Tally& before, const Tally& after) {
     AbstractionStats& stats = g_.stats_;
     stats.clusters = g_.clusterCount();
-    stats.nodes = 0;
-    stats.interEdges = 0;
-    stats.intraEdges = 0;
-    std::size_t edgeCount = 0;
-    for (const std::vector<AbstractEdge>& edges : g_.edges_) {
-      if (!edges.empty()) ++stats.nodes;
-      edgeCount += edges.size();
-      for (const AbstractEdge& e : edges)
-        ++(e.intra ? stats.intraEdges : stats.interEdges);
-    }
-    stats.interEdges /= 2;  // each undirected edge is held by both ends
-    stats.intraEdges /= 2;
+    const auto delta = [](std::size_t now, std::size_t then) {
+      return static_cast<std::ptrdiff_t>(now) - static_cast<std::ptrdiff_t>(then);
+    };
+    const auto add = [](std::size_t& total, std::ptrdiff_t change) {
+      total = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(total) + change);
+    };
+    add(stats.nodes, delta(after.nodes, before.nodes));
+    add(stats.interEdges, delta(after.inter, before.inter) / 2);
+    add(stats.intraEdges, delta(after.intra, before.intra) / 2);
+    add(stats.pathBytes, delta(after.pathBytes, before.pathBytes));
     stats.graphBytes = g_.nodeCells_.size() * (sizeof(Cell) + sizeof(std::vector<AbstractEdge>)) +
-                       edgeCount * sizeof(AbstractEdge) +
+                       2 * (stats.interEdges + stats.intraEdges) * sizeof(AbstractEdge) +
                        g_.clusterNodes_.size() * sizeof(std::vector<std::uint32_t>) +
                        stats.nodes * sizeof(std::uint32_t);
-    stats.pathBytes = 0;
-    for (const ClusterAbstraction::ClusterPaths& paths : g_.paths_)
-      stats.pathBytes += (paths.begin.size() - 1) * sizeof(std::uint32_t) + paths.steps.size();
   }
 
   // Debug and sanitizer builds: the assembled graph is what queries rely on. Every node lies

@@ -332,6 +332,17 @@ CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceFie
   const auto freeAtStart = [&](Tick from, Tick to) {
     return table.isFree(r.start, size, from, to, r.self, sharing);
   };
+  const auto keptOut = [&](Cell anchor) {
+    int level = 0;
+    if (r.keepOut == nullptr) return level;
+    for (int dy = 0; dy < size; ++dy) {
+      for (int dx = 0; dx < size; ++dx) {
+        const Cell c{anchor.x + dx, anchor.y + dy};
+        if (map.contains(c)) level = std::max<int>(level, (*r.keepOut)[map.indexOf(c)]);
+      }
+    }
+    return level;
+  };
 
   add(map.indexOf(r.start), r.startTick, -1, startDistance);
   std::int32_t found = -1;
@@ -356,8 +367,10 @@ CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceFie
     }
     // Within a wait of the window's end counts as there, so waiting is never outdone by a
     // shuffle that lands on the end tick exactly.
+    const int level = keptOut(here);
     if (node.tick + r.waitTicks > windowEnd && free(here, node.tick, node.tick + r.holdTicks) &&
-        (r.passing == nullptr || (*r.passing)[node.cell] != 0 || node.tick >= hardEnd)) {
+        (((r.passing == nullptr || (*r.passing)[node.cell] != 0) && level == 0) ||
+         node.tick >= hardEnd)) {
       out.status = CooperativeStatus::Windowed;
       found = index;
       break;
@@ -386,14 +399,16 @@ CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceFie
           (atRest ? r.startTicks : 0);
       const double nextH = field.distance(next);
       if (!std::isfinite(nextH)) continue;
+      if (const int nextLevel = keptOut(next); nextLevel > 0 && nextLevel >= level) continue;
       const MoveSpan span = moveSpan(node.tick, duration);
       if (!(atStart ? freeAtStart(node.tick, span.leaveBy) : free(here, node.tick, span.leaveBy)) ||
           !free(next, span.enterAt, node.tick + duration))
         continue;
       add(map.indexOf(next), node.tick + duration, index, nextH);
     }
-    // Nobody waits where others cannot pass (but one already standing there may stay at first).
-    const bool roomToWait = r.passing == nullptr || (*r.passing)[node.cell] != 0;
+    // Nobody waits where others cannot pass or where kept out (but one already standing there
+    // may stay at first).
+    const bool roomToWait = (r.passing == nullptr || (*r.passing)[node.cell] != 0) && level == 0;
     if (atStart ? freeAtStart(node.tick, node.tick + r.waitTicks)
                 : roomToWait && free(here, node.tick, node.tick + r.waitTicks))
       add(node.cell, node.tick + r.waitTicks, index, h);

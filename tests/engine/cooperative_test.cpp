@@ -128,6 +128,26 @@ TEST(Cooperative, TanksHeadOnInACorridorWhatCooperationChanges) {
   }
 }
 
+// The bundled 30 v 30 swap through a 1-cell door (scenarios/chokepoints/door_30v30.yaml). With
+// cooperation the door's gate lets one side through at a time (a few units in flight, the other
+// side standing clear of its mouth and of the stream coming out): everyone arrives by the bound
+// and nobody is flagged stuck, at every seed. Without it both crowds push into the door at once
+// and some arrive too late. The run stops at the bound, where the expectations are decided.
+TEST(Cooperative, ThirtyAsideSwapThroughADoorTakingTurns) {
+  Result<Scenario> loaded =
+      loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/chokepoints/door_30v30.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  s.duration = 100.0;
+  for (const bool cooperative : {true, false}) {
+    s.settings.pathing.cooperative = cooperative;
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+      const Report r = runToEnd(s, seed);
+      EXPECT_EQ(r.passed(), cooperative) << "seed " << seed << " cooperative " << cooperative;
+    }
+  }
+}
+
 // Three tanks a side cross a river both ways on a bridge six cells wide: room for two tanks
 // side by side. With cooperation each keeps to its lane (the right half) and all arrive near
 // free flow at every seed; without it both streams take the one shortest line and meet on the

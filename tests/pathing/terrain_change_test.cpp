@@ -164,6 +164,24 @@ TEST(TerrainChange, CostFieldUpdateEqualsAFreshField) {
   }
 }
 
+// A repair keeps the graph's statistics by difference: they must equal a count of the graph.
+void expectStatsCounted(const ClusterAbstraction& g, const std::string& label) {
+  std::size_t nodes = 0;
+  std::size_t inter = 0;
+  std::size_t intra = 0;
+  for (int k = 0; k < g.clusterCount(); ++k) {
+    for (std::uint32_t n : g.nodesInCluster(k)) {
+      ++nodes;
+      EXPECT_FALSE(g.edgesOf(n).empty()) << label << ": a listed node without edges";
+      for (const AbstractEdge& e : g.edgesOf(n))
+        ++(e.intra ? intra : inter);
+    }
+  }
+  EXPECT_EQ(g.stats().nodes, nodes) << label;
+  EXPECT_EQ(g.stats().interEdges, inter / 2) << label;
+  EXPECT_EQ(g.stats().intraEdges, intra / 2) << label;
+}
+
 // The property of issue 14: repaired graphs stay complete and sound on the changed map.
 TEST(TerrainChange, RepairedGraphsFindAPathExactlyWhenAStarDoes) {
   CompletenessTally tally;
@@ -193,6 +211,7 @@ TEST(TerrainChange, RepairedGraphsFindAPathExactlyWhenAStarDoes) {
               << step << " after " << change.area.width << "x" << change.area.height << " at "
               << cell({change.area.x, change.area.y});
         checkCompleteness(fresh, cases, haa, label.str(), tally);
+        expectStatsCounted(abstraction, label.str());
       }
     }
   }

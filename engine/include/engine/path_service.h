@@ -171,11 +171,16 @@ class PathService {
     std::optional<pathing::Planner> planner;
   };
   WeightedPlanner& weightedPlanner(int costProfile);
+  // Groups the cost profiles that plan alike on the terrains present_ (planners unbuilt).
+  void mergeCostProfiles();
 
   const pathing::AnnotatedGrid& grid_;
   PathServiceSettings settings_;
   std::unique_ptr<pathing::ClusterAbstraction> abstraction_;
   std::optional<pathing::Planner> planner_;
+  std::vector<CostProfile> costProfiles_;
+  // Terrains the map has or had: a profile's planner serves the terrains seen so far.
+  pathing::Capability present_;
   std::vector<int> distinctOf_;  // cost profile -> index in weighted_
   std::vector<std::unique_ptr<WeightedPlanner>> weighted_;
   std::deque<PathRequest> queue_;

@@ -87,6 +87,9 @@ void describe(V& v, const TimedPlan& p) {
   v("timed", p.timed);
   v("cruising", p.cruising);
   v("digest", p.digest);
+  v("gate", p.gate);
+  v("admitted", p.admitted);
+  v("gateSince", p.gateSince);
 }
 template <class V>
 void describe(V& v, const MovementStats& m) {

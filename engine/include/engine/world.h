@@ -129,6 +129,13 @@ struct TimedPlan {
   // reserved, and the unit follows its path until one comes into reach.
   bool cruising = false;
   std::uint64_t digest = 0;  // FNV-1a over the steps and the flags
+  // The passage ahead whose gate the window was planned under (docs/cooperative.md: a passage
+  // lets one way through at a time), -1 for none; whether the unit was let through (else it
+  // keeps out of the passage and its mouth), and since when it has been let through or kept
+  // out. Kept from window to window, so a unit that falls behind its window keeps its turn.
+  std::int32_t gate = -1;
+  bool admitted = false;
+  std::int64_t gateSince = -1;
 };
 TimedPlan timedPlan(std::vector<pathing::TimedCell> steps, pathing::CooperativeStatus status,
                     bool timed, bool cruising = false);

@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "engine/world.h"
@@ -104,6 +105,13 @@ class Combat {
 
 // Drops every reservation the unit holds, and its plan.
 void releaseReservations(Refs& w, Unit& unit);
+// The plan keeps the unit out of a passage open to the other way (its gate).
+inline bool keptOut(const TimedPlan& plan) {
+  return plan.gate >= 0 && !plan.admitted;
+}
+// Drops the unit's reservations and window but not its place at a passage's gate: it stands
+// where it is and plans a new window as soon as the budget lets it.
+void expireWindow(Refs& w, Unit& unit);
 // True when the plan holds the unit where it is at `tick` (a wait, or the end of a window that
 // did not reach the goal).
 bool waitingAt(const TimedPlan& plan, pathing::Tick tick);
@@ -134,7 +142,35 @@ class Traffic {
     std::unique_ptr<pathing::DistanceField> field;
   };
 
+  // A passage: a connected set of tracked cells (a door, a corridor, a bridge too narrow for
+  // two). Its gate lets one way through at a time, like a one-lane bridge's traffic light.
+  struct Passage {
+    // Its cells and those of its mouth, with their keep-out levels (CooperativeRequest::keepOut).
+    std::vector<std::pair<std::uint32_t, std::uint8_t>> keepOut;
+  };
+  // A passage's gate this tick, as the units' plans say.
+  struct Gate {
+    std::uint32_t holder = kNone;  // the unit let through first (then the lower id); kNone: free
+    std::int64_t holderSince = 0;
+    bool turning = false;        // one kept out has waited its turn: nobody new is let through
+    std::uint32_t inFlight = 0;  // let through and not past it yet
+  };
+
   static bool before(const Unit& a, const Unit& b);
+  // The passages of the tracked cells, found again when the table tracks more.
+  void findPassages(const Refs& w);
+  // The passage of an anchor where an agent of this kind could not pass another; -1 for none.
+  std::int32_t passageAt(const Refs& w, pathing::Agent agent, pathing::Cell anchor);
+  // The passage the unit stands in or meets next along its path within a window's reach where
+  // it could not pass another of its kind; -1 for none.
+  std::int32_t passageAhead(const Refs& w, const Unit& unit);
+  // The gates as the units' plans left them: who holds each, and whether it is turning.
+  void updateGates(const Refs& w);
+  // The gate of passage `p` lets the unit through now: it is free, or held by units going the
+  // unit's way and not turning.
+  bool admits(std::int32_t p, const Unit& unit) const;
+  // Appends the cells of the unit's stream out of its passage (those kept out stand clear).
+  void addStream(const Refs& w, const Unit& unit, std::vector<std::uint32_t>& stream);
   pathing::CooperativeRequest requestFor(const Refs& w, const Unit& unit, pathing::Cell start);
   // pathing::passingRoom of an agent kind, computed once.
   const std::vector<std::uint8_t>& passingRoom(const Refs& w, pathing::Agent agent);
@@ -159,6 +195,12 @@ class Traffic {
     std::uint64_t trackChanges = 0;
   };
   std::vector<Lookahead> lookahead_;
+  std::uint64_t passageTracks_ = ~std::uint64_t{0};  // trackChanges() the passages were found at
+  std::vector<std::int32_t> passageOf_;              // per cell: its passage, -1 for none
+  std::vector<Passage> passages_;
+  std::vector<Gate> gates_;                          // per passage
+  std::vector<std::vector<std::uint32_t>> streams_;  // per passage: cells of the stream out
+  std::vector<std::uint8_t> keepOut_;  // per cell: a request's keepOut, zero between searches
   std::vector<std::uint32_t> candidates_;
   std::vector<units::Vec2> headings_;  // per unit index: unit vector toward its goal, this tick
   std::vector<std::uint8_t> sharing_;  // per unit index: the request's `sharing`

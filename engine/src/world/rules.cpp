@@ -48,10 +48,10 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor) {
   if (!settings.pathing.cooperative) {
     stuck = unit.progress.update(unit.position, w.state.tick, settings.tickRate, settings.stuck);
   } else if (w.settings.pathing.cooperative &&
-             (!unit.plan ||
+             (!unit.plan || keptOut(*unit.plan) ||
               (cooperative && waitingAt(*unit.plan, w.state.tick) && onSchedule(w, unit)))) {
-    // A wait its window holds it to, or waiting for a window, is not a jam; moving, it must
-    // make progress like anyone else.
+    // A wait its window holds it to, waiting for a window or for its turn at a passage is not
+    // a jam; moving, it must make progress like anyone else.
     unit.progress.restartWindow(unit.position, w.state.tick);
   } else {
     stuck = unit.progress.updateAlong(unit.position, remainingAlong(unit, type.size), w.state.tick,
@@ -67,8 +67,9 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor) {
     if (movingToArea && nearEnd) reassignGoal(w, unit);
     w.log(EventKind::Repath, unit, 0);
     if (cooperative) {
-      // The spatial path is not what jammed: a new window against today's reservations is.
-      releaseReservations(w, unit);
+      // The spatial path is not what jammed: a new window against today's reservations is
+      // (at the same place at a passage's gate).
+      expireWindow(w, unit);
     } else {
       requestPath(w, unit);
     }

@@ -113,7 +113,9 @@ void steerAll(Refs& w, std::vector<std::uint32_t>& touching) {
       } else if (unit.plan) {
         // Keep to the window's times; a unit still waiting for a window stands.
         const units::ScheduleResult s = followSchedule(w, unit, speed);
-        desired = s.desiredVelocity;
+        // Kept out of a passage, a unit waits its turn where the stream coming out pushes it
+        // rather than pushing back toward its place (it plans its next window from there).
+        desired = s.waiting && keptOut(*unit.plan) ? Vec2{} : s.desiredVelocity;
         toward = desired * 0.3;
         const Vec2 goal = units::anchorToCentre(unit.goalCell, type.size);
         if (s.finished && unit.plan->status == pathing::CooperativeStatus::ReachedGoal &&

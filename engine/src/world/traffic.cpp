@@ -23,6 +23,28 @@ constexpr double kLookaheadSeconds = 0.3;
 
 // Two units whose directions to their goals are within about 45° (cosine) go the same way.
 constexpr double kSameWay = 0.7;
+// [Unit: cells] Around a passage, those kept out of it stand back this far: the mouth is left
+// to the stream coming out.
+constexpr int kMouth = 2;
+// [Unit: moves] The stream out of a passage: those kept out do not stand on the next moves of
+// the paths of those let through, past the passage.
+constexpr int kStream = 6;
+// At most this many units are let through a passage and not past it yet: more crowd its mouth
+// and crush the ones at its sides (at the 1-cell door, 12 or more left some unit there 9 s
+// without progress; 3 to 6 starve the door).
+constexpr std::uint32_t kInFlight = 8;
+// [Unit: s] Once one kept out of a passage has waited this long, nobody new is let through the
+// other way: the passage drains and turns.
+constexpr double kGreenSeconds = 15.0;
+
+Cell cellAt(const GridMap& map, std::uint32_t index) {
+  const auto width = static_cast<std::uint32_t>(map.width());
+  return {static_cast<int>(index % width), static_cast<int>(index / width)};
+}
+
+bool sameWay(units::Vec2 a, units::Vec2 b) {
+  return a.x * b.x + a.y * b.y > kSameWay;
+}
 
 std::uint32_t ownerOf(const Unit& unit) {
   return unit.id.index;
@@ -81,6 +103,22 @@ void releaseReservations(Refs& w, Unit& unit) {
   unit.heldSince = -1;
 }
 
+void expireWindow(Refs& w, Unit& unit) {
+  if (!unit.plan || unit.plan->gate < 0) {
+    releaseReservations(w, unit);
+    return;
+  }
+  TimedPlan stub =
+      timedPlan({{nearestStandable(w, unit), w.state.tick}}, CooperativeStatus::Blocked, true);
+  stub.gate = unit.plan->gate;
+  stub.admitted = unit.plan->admitted;
+  stub.gateSince = unit.plan->gateSince;
+  releaseReservations(w, unit);
+  CooperativeSearch::reserve(*w.state.reservations, stub.steps, w.typeOf(unit).size, ownerOf(unit),
+                             kForever);
+  unit.plan = std::make_shared<const TimedPlan>(std::move(stub));
+}
+
 bool waitingAt(const TimedPlan& plan, Tick tick) {
   const std::vector<TimedCell>& s = plan.steps;
   if (tick >= s.back().tick) return plan.status != CooperativeStatus::ReachedGoal;
@@ -125,8 +163,7 @@ CooperativeRequest Traffic::requestFor(const Refs& w, const Unit& unit, Cell sta
   const units::Vec2 mine = headings_[unit.id.index];
   for (std::size_t other = 0; other < headings_.size(); ++other) {
     const units::Vec2 theirs = headings_[other];
-    if (other != unit.id.index && mine.x * theirs.x + mine.y * theirs.y > kSameWay)
-      sharing_[other] = 1;
+    if (other != unit.id.index && sameWay(mine, theirs)) sharing_[other] = 1;
   }
   r.sharing = &sharing_;
   return r;
@@ -212,6 +249,10 @@ void Traffic::cruise(Refs& w, Unit& unit) {
 bool Traffic::needsWindow(const Refs& w, const Unit& unit) {
   if (!unit.plan || unit.plan->cruising) return true;
   const TimedPlan& plan = *unit.plan;
+  // Kept out of a passage whose gate now lets it through: its turn has come.
+  if (keptOut(plan) && static_cast<std::size_t>(plan.gate) < gates_.size() &&
+      admits(plan.gate, unit))
+    return true;
   const Tick now = w.state.tick;
   const Tick end = plan.steps.back().tick;
   const units::UnitType& type = w.typeOf(unit);
@@ -232,16 +273,53 @@ bool Traffic::needsWindow(const Refs& w, const Unit& unit) {
       if (now >= end) return true;
       break;
   }
-  return plan.timed && !onSchedule(w, unit);
+  // One kept out of a passage waits where it is pushed (steering.cpp), on its schedule or not.
+  return plan.timed && !keptOut(plan) && !onSchedule(w, unit);
 }
 
 void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent) {
+  // The gate of the passage ahead: a unit let through keeps its turn from window to window;
+  // one kept out plans around the passage and its mouth.
+  const std::int32_t gate = passageAhead(w, unit);
+  const Tick now = w.state.tick;
+  bool admitted = false;
+  Tick gateSince = now;
+  if (gate >= 0) {
+    const bool same = unit.plan && unit.plan->gate == gate;
+    if (same && unit.plan->admitted) {
+      admitted = true;
+    } else {
+      admitted = admits(gate, unit);
+      Gate& g = gates_[static_cast<std::size_t>(gate)];
+      if (admitted && g.holder == kNone) {
+        g.holder = unit.id.index;
+        g.holderSince = now;
+      }
+      if (admitted) ++g.inFlight;
+    }
+    if (same && unit.plan->admitted == admitted) gateSince = unit.plan->gateSince;
+  }
   releaseReservations(w, unit);
   const Cell start = nearestStandable(w, unit);
-  const CooperativeRequest request = requestFor(w, unit, start);
+  CooperativeRequest request = requestFor(w, unit, start);
+  const bool keptOut = gate >= 0 && !admitted;
+  const std::vector<std::pair<std::uint32_t, std::uint8_t>> noCells;
+  const auto& closed = keptOut ? passages_[static_cast<std::size_t>(gate)].keepOut : noCells;
+  // Nor does it stand in the stream coming out of the passage.
+  const std::vector<std::uint32_t> noStream;
+  const auto& stream = keptOut ? streams_[static_cast<std::size_t>(gate)] : noStream;
+  for (const std::uint32_t cell : stream)
+    keepOut_[cell] = 1;
+  for (const auto& [cell, level] : closed)
+    keepOut_[cell] = level;
+  if (keptOut) request.keepOut = &keepOut_;
   DistanceField& field = fieldFor(w, unit);
   if (!search_) search_.emplace(w.grid);
   CooperativePlan found = search_->plan(request, field, *w.state.reservations);
+  for (const auto& [cell, level] : closed)
+    keepOut_[cell] = 0;
+  for (const std::uint32_t cell : stream)
+    keepOut_[cell] = 0;
   MovementStats& stats = w.state.movement;
   spent += found.metrics.expanded;
   stats.expanded += found.metrics.expanded;
@@ -278,14 +356,155 @@ void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent) {
     if (field.distance(step.cell) > here + 1e-9) ++stats.giveWays;
     break;
   }
-  // Timed when it waits or crosses a chokepoint; a blocked unit keeps to its (short) plan.
-  bool timed = found.status == CooperativeStatus::Blocked;
+  // Timed when it waits or crosses a chokepoint; a blocked unit keeps to its (short) plan, and
+  // one kept out of a passage to its window (its path runs through the passage).
+  bool timed = found.status == CooperativeStatus::Blocked || keptOut;
   for (std::size_t i = 0; i < found.steps.size() && !timed; ++i) {
     timed = (i > 0 && found.steps[i].cell == found.steps[i - 1].cell) ||
             w.state.reservations->tracks(found.steps[i].cell, size);
   }
-  unit.plan =
-      std::make_shared<const TimedPlan>(timedPlan(std::move(found.steps), found.status, timed));
+  TimedPlan plan = timedPlan(std::move(found.steps), found.status, timed);
+  plan.gate = gate;
+  plan.admitted = admitted;
+  plan.gateSince = gate >= 0 ? gateSince : -1;
+  unit.plan = std::make_shared<const TimedPlan>(std::move(plan));
+}
+
+void Traffic::findPassages(const Refs& w) {
+  const ReservationTable& table = *w.state.reservations;
+  if (passageTracks_ == table.trackChanges()) return;
+  passageTracks_ = table.trackChanges();
+  const GridMap& map = w.map();
+  const auto cells = static_cast<std::size_t>(map.width()) * static_cast<std::size_t>(map.height());
+  passageOf_.assign(cells, -1);
+  passages_.clear();
+  keepOut_.assign(cells, 0);
+  // Connected (8 ways) sets of tracked cells, by a flood from each unlabelled one in index order;
+  // then each one's mouth, by rings of Chebyshev distance around it.
+  std::vector<std::uint32_t> frontier;
+  std::vector<std::int32_t> ring(cells, -1);  // per cell: the passage whose mouth reached it
+  for (std::uint32_t seed = 0; seed < cells; ++seed) {
+    const Cell c = cellAt(map, seed);
+    if (passageOf_[seed] >= 0 || !table.tracks(c, 1)) continue;
+    const auto id = static_cast<std::int32_t>(passages_.size());
+    Passage& passage = passages_.emplace_back();
+    frontier.assign(1, seed);
+    passageOf_[seed] = id;
+    for (std::size_t i = 0; i < frontier.size(); ++i) {
+      const Cell at = cellAt(map, frontier[i]);
+      for (const Direction& d : kDirections) {
+        const Cell next{at.x + d.dx, at.y + d.dy};
+        if (!map.contains(next) || passageOf_[map.indexOf(next)] >= 0 || !table.tracks(next, 1))
+          continue;
+        passageOf_[map.indexOf(next)] = id;
+        frontier.push_back(map.indexOf(next));
+      }
+    }
+    for (const std::uint32_t cell : frontier) {
+      passage.keepOut.emplace_back(cell, static_cast<std::uint8_t>(kMouth + 1));
+      ring[cell] = id;
+    }
+    for (std::size_t from = 0, level = kMouth; level > 0; --level) {
+      const std::size_t to = passage.keepOut.size();
+      for (std::size_t i = from; i < to; ++i) {
+        const Cell at = cellAt(map, passage.keepOut[i].first);
+        for (const Direction& d : kDirections) {
+          const Cell next{at.x + d.dx, at.y + d.dy};
+          if (!map.contains(next) || ring[map.indexOf(next)] == id) continue;
+          ring[map.indexOf(next)] = id;
+          passage.keepOut.emplace_back(map.indexOf(next), static_cast<std::uint8_t>(level));
+        }
+      }
+      from = to;
+    }
+  }
+  gates_.assign(passages_.size(), {});
+}
+
+std::int32_t Traffic::passageAt(const Refs& w, Agent agent, Cell anchor) {
+  const GridMap& map = w.map();
+  if (!map.contains(anchor) || passingRoom(w, agent)[map.indexOf(anchor)] != 0) return -1;
+  return passageOf_[map.indexOf(anchor)];
+}
+
+std::int32_t Traffic::passageAhead(const Refs& w, const Unit& unit) {
+  const units::UnitType& type = w.typeOf(unit);
+  const Agent agent = type.agent();
+  if (const std::int32_t here =
+          passageAt(w, agent, units::centreToAnchor(unit.position, type.size));
+      here >= 0)
+    return here;
+  const std::vector<Cell>& cells = unit.path->cells;
+  const std::size_t from = unit.next > 0 ? unit.next - 1 : 0;
+  const std::size_t reach = static_cast<std::size_t>(w.settings.pathing.window + type.size + 2);
+  for (std::size_t i = from; i < std::min(cells.size(), from + reach); ++i) {
+    if (const std::int32_t p = passageAt(w, agent, cells[i]); p >= 0) return p;
+  }
+  return -1;
+}
+
+void Traffic::updateGates(const Refs& w) {
+  gates_.assign(passages_.size(), {});
+  const Tick now = w.state.tick;
+  const auto green = static_cast<Tick>(std::llround(kGreenSeconds * w.settings.tickRate));
+  // Held by whoever was let through first and still has the passage ahead (or is in it).
+  const auto gated = [&](const Unit& unit) {
+    return following(unit) && unit.plan && unit.plan->gate >= 0 &&
+           static_cast<std::size_t>(unit.plan->gate) < gates_.size() &&
+           passageAhead(w, unit) == unit.plan->gate;
+  };
+  streams_.resize(gates_.size());
+  for (std::vector<std::uint32_t>& stream : streams_)
+    stream.clear();
+  for (const Unit& unit : w.state.units) {
+    if (!unit.plan || !unit.plan->admitted || !gated(unit)) continue;
+    Gate& gate = gates_[static_cast<std::size_t>(unit.plan->gate)];
+    if (gate.holder == kNone || unit.plan->gateSince < gate.holderSince) {
+      gate.holder = unit.id.index;
+      gate.holderSince = unit.plan->gateSince;
+    }
+    ++gate.inFlight;
+    addStream(w, unit, streams_[static_cast<std::size_t>(unit.plan->gate)]);
+  }
+  for (const Unit& unit : w.state.units) {
+    if (!unit.plan || unit.plan->admitted || !gated(unit)) continue;
+    Gate& gate = gates_[static_cast<std::size_t>(unit.plan->gate)];
+    if (gate.holder != kNone && now - unit.plan->gateSince > green &&
+        !sameWay(headings_[unit.id.index], headings_[gate.holder]))
+      gate.turning = true;
+  }
+}
+
+void Traffic::addStream(const Refs& w, const Unit& unit, std::vector<std::uint32_t>& stream) {
+  // The footprints along the unit's path from where it leaves the passage, kStream moves on.
+  const units::UnitType& type = w.typeOf(unit);
+  const GridMap& map = w.map();
+  const std::vector<Cell>& cells = unit.path->cells;
+  const std::size_t from = unit.next > 0 ? unit.next - 1 : 0;
+  const std::size_t reach =
+      static_cast<std::size_t>(w.settings.pathing.window + type.size + 2 + kStream);
+  int left = -1;  // moves since the passage, -1 before its end
+  for (std::size_t i = from; i < std::min(cells.size(), from + reach) && left < kStream; ++i) {
+    const Cell a = cells[i];
+    if (passageAt(w, type.agent(), a) == unit.plan->gate) {
+      left = 0;
+      continue;
+    }
+    if (left < 0) continue;
+    ++left;
+    for (int dy = 0; dy < type.size; ++dy) {
+      for (int dx = 0; dx < type.size; ++dx) {
+        const Cell c{a.x + dx, a.y + dy};
+        if (map.contains(c)) stream.push_back(map.indexOf(c));
+      }
+    }
+  }
+}
+
+bool Traffic::admits(std::int32_t p, const Unit& unit) const {
+  const Gate& gate = gates_[static_cast<std::size_t>(p)];
+  return gate.holder == kNone || (!gate.turning && gate.inFlight < kInFlight &&
+                                  sameWay(headings_[unit.id.index], headings_[gate.holder]));
 }
 
 std::optional<std::uint32_t> Traffic::waitsFor(Refs& w, const Unit& unit) {
@@ -346,7 +565,7 @@ void Traffic::breakDeadlocks(Refs& w, std::uint64_t& spent) {
     std::sort(cycle_.begin(), cycle_.end(),
               [&](std::uint32_t a, std::uint32_t b) { return before(all[a], all[b]); });
     for (std::uint32_t m : cycle_)
-      releaseReservations(w, all[m]);
+      w.state.reservations->release(ownerOf(all[m]));
     for (std::uint32_t m : cycle_) {
       planWindow(w, all[m], spent);
       planned_[m] = 1;
@@ -370,6 +589,18 @@ void Traffic::plan(Refs& w, std::uint64_t budget) {
   std::vector<Unit>& all = w.state.units;
   planned_.assign(all.size(), 0);
   candidates_.clear();
+  // Each following unit's direction to its goal (zero when it follows nothing), for `sharing`
+  // and the gates.
+  headings_.assign(all.size(), {});
+  for (const Unit& unit : all) {
+    if (!following(unit)) continue;
+    const units::Vec2 toGoal =
+        units::anchorToCentre(unit.goalCell, w.typeOf(unit).size) - unit.position;
+    const double length = toGoal.length();
+    if (length > 1e-9) headings_[unit.id.index] = toGoal * (1.0 / length);
+  }
+  findPassages(w);
+  updateGates(w);
   for (Unit& unit : all) {
     // Far from any chokepoint a unit needs no window: Box2D alone keeps it apart from others
     // there, as nothing is reserved in the open (docs/cooperative.md).
@@ -385,15 +616,6 @@ void Traffic::plan(Refs& w, std::uint64_t budget) {
       continue;
     }
     if (needsWindow(w, unit)) candidates_.push_back(unit.id.index);
-  }
-  // Each following unit's direction to its goal (zero when it follows nothing), for `sharing`.
-  headings_.assign(all.size(), {});
-  for (const Unit& unit : all) {
-    if (!following(unit)) continue;
-    const units::Vec2 toGoal =
-        units::anchorToCentre(unit.goalCell, w.typeOf(unit).size) - unit.position;
-    const double length = toGoal.length();
-    if (length > 1e-9) headings_[unit.id.index] = toGoal * (1.0 / length);
   }
   std::uint64_t spent = 0;
   // Once a second (staggered by nothing: all at once, so a cycle is seen whole).

@@ -157,6 +157,12 @@ struct CooperativeRequest {
   // Per owner id, or null: 1 where the agent may overlap that owner's reservations (units
   // moving the same way, which queue behind one another on their own).
   const std::vector<std::uint8_t>* sharing = nullptr;
+  // One byte per cell, or null: where the agent is kept out (a passage open to the other way
+  // now, and its mouth), the level rising toward the passage; a footprint's level is its
+  // cells' highest. The agent moves onto a footprint of level > 0 only from a higher one (out
+  // of the passage and its mouth), waits at one only where it stands at first, and a window
+  // does not end at one (before maxWindow).
+  const std::vector<std::uint8_t>* keepOut = nullptr;
 };
 
 enum class CooperativeStatus : std::uint8_t {
@@ -196,8 +202,8 @@ std::string problemWith(const CooperativeRequest& request);
 // since startTick, h the field's distance times the smallest ticksPerCell (admissible). The first
 // state popped that is
 //   (1) the goal, free from then on: ReachedGoal; or
-//   (2) at or past startTick + window, free for holdTicks more, and with passing room (or
-//       past maxWindow): Windowed
+//   (2) at or past startTick + window, free for holdTicks more, and with passing room and not
+//       kept out (or past maxWindow): Windowed
 // ends the search. Among equal times fewer moves win (a unit waits rather than shuffles); ties
 // then go to the larger g, then to the state generated first.
 class CooperativeSearch {
