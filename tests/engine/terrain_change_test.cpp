@@ -262,6 +262,20 @@ TEST(WorldTerrainChange, AUnitOnTerrainThatBecameImpassableIsPushedToTheNearestS
   EXPECT_TRUE(u.alive());
 }
 
+// ... and when no cell of the map can hold it any more, it is killed.
+TEST(WorldTerrainChange, AUnitWithNowhereToStandIsKilled) {
+  WorldSettings settings;
+  settings.terrainChanges = true;
+  settings.combat.enabled = false;
+  World world(openGrid(8, 8), {kind("truck", 2)}, settings);
+  const UnitId truck = world.spawn(0, 0, 0, {3, 3});
+  world.setTerrain({0, 0, 8, 8}, Terrain::Water);
+  world.step();
+  EXPECT_FALSE(world.find(truck)->alive());
+  EXPECT_EQ(countEvents(world, EventKind::Killed), 1);
+  EXPECT_EQ(countEvents(world, EventKind::Pushed), 0);
+}
+
 TEST(WorldTerrainChange, AMovingUnitWhosePathCrossesTheChangeRepaths) {
   WorldSettings settings;
   settings.terrainChanges = true;

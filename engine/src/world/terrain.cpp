@@ -121,7 +121,8 @@ void afterTerrainChange(Refs& w, const CellRect& area, bool push) {
       if (footprintMeets(anchor, type.size, area) && !w.grid.canStand(agent, anchor)) {
         const std::optional<Cell> to = pushTarget(w, unit);
         if (!to) {
-          kill(w, unit, {});  // nowhere on the map to stand
+          unit.hp = 0;  // nowhere on the map to stand
+          kill(w, unit, {});
           continue;
         }
         unit.position = units::anchorToCentre(*to, type.size);
