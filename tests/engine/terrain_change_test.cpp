@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -217,6 +218,22 @@ TEST_F(TerrainReplay, RecordsTheChangeAndVerifies) {
   EXPECT_NE(refused.error().message.find("sets terrain, which format 5 cannot record"),
             std::string::npos)
       << refused.error().message;
+}
+
+// Replays of formats <= 5 play back without wrecks blocking planning (ReplayPlayback::open turns
+// it off): river_ambush, whose tank wrecks change the battle, then runs exactly as it did before
+// the rule — its golden hash as format 3 laid the state out, pinned before terrain changes.
+TEST(WreckRule, OffItRunsRiverAmbushAsBefore) {
+  Result<Scenario> s =
+      loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/river_ambush.yaml");
+  ASSERT_TRUE(s.ok()) << s.error().describe();
+  s.value().settings.combat.wrecksBlock = false;
+  ScenarioRun run(s.value());
+  while (!run.done())
+    run.step();
+  char hex[32];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(run.stateHash(3)));
+  EXPECT_EQ(std::string(hex), "db97e493b5eaebef");
 }
 
 // ---- units on terrain that became impassable, and wrecks ------------------------------------
