@@ -7,6 +7,7 @@
 //   graphs, smoothed and not, and by the hybrid planner; each finds a path exactly when AA*
 //   does, a legal one, never cheaper.
 // - The same under terrain costs, on a weighted graph per agent (issue 13).
+// - The same after changes of terrain, on repaired graphs (issue 14).
 
 #include <gtest/gtest.h>
 
@@ -19,6 +20,7 @@
 #include "pathing/cluster_abstraction.h"
 #include "pathing/haa_star.h"
 #include "pathing/map_io.h"
+#include "pathing/random.h"
 #include "pathing/terrain_costs.h"
 #include "support/completeness.h"
 
@@ -157,6 +159,58 @@ TEST_P(MovingAiMap, WeightedHaaFindsAPathExactlyWhenWeightedAStarDoes) {
   }
   EXPECT_EQ(tally.failures, 0);
   EXPECT_GT(tally.found, 50);
+}
+
+// Terrain that changes (issue 14): after a sequence of changes on the real map (obstacles
+// placed and cleared, terrain set, up to 24 cells a side), the repaired HQ and LQ graphs find a
+// path exactly when AA* on a grid built afresh from the changed map does.
+TEST_P(MovingAiMap, RepairedHaaFindsAPathExactlyWhenAStarDoes) {
+  const MapCase& c = GetParam();
+  auto map = loadMap(c.map);
+  ASSERT_TRUE(map) << map.error().describe();
+  AnnotatedGrid grid(std::move(map).value());
+  std::vector<ClusterAbstraction> graphs;
+  for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
+    graphs.push_back(ClusterAbstraction::build(
+        grid, AbstractionSpec{.clusterSize = 16,
+                              .maxAgentSize = 3,
+                              .capabilities = testing::completenessCapabilities(),
+                              .quality = quality}));
+  }
+  SplitMix64 rng(1914);
+  std::vector<CellRect> obstacles;
+  constexpr Terrain kSet[] = {Terrain::Ground, Terrain::Blocked, Terrain::Swamp, Terrain::Water};
+  testing::CompletenessTally tally;
+  const GridMap& changing = grid.map();
+  for (int step = 0; step < 6; ++step) {
+    const CellRect area{rng.between(0, changing.width() - 1), rng.between(0, changing.height() - 1),
+                        rng.between(2, 24), rng.between(2, 24)};
+    TerrainChange change;
+    if (step % 3 == 2 && !obstacles.empty()) {
+      change = grid.clearObstacle(obstacles.back());
+      obstacles.pop_back();
+    } else if (step % 3 == 1) {
+      obstacles.push_back(area);
+      change = grid.placeObstacle(area);
+    } else {
+      change = grid.setTerrain(area, kSet[rng.between(0, 3)]);
+    }
+    for (ClusterAbstraction& graph : graphs)
+      graph.repair(change);
+    const AnnotatedGrid fresh(grid.map());
+    const std::vector<testing::CompletenessCase> cases = testing::drawCompletenessCases(
+        fresh, testing::completenessAgents(), 2014 + static_cast<std::uint64_t>(step), 2, 6, 0);
+    for (ClusterAbstraction& graph : graphs) {
+      HierarchicalAStar haa(graph);
+      testing::checkCompleteness(
+          fresh, cases, haa,
+          c.map.filename().string() + " step " + std::to_string(step) + " " +
+              std::string(kAbstractionQualityNames.name(graph.spec().quality)),
+          tally);
+    }
+  }
+  EXPECT_EQ(tally.failures, 0);
+  EXPECT_GT(tally.found, 100);
 }
 
 INSTANTIATE_TEST_SUITE_P(Data, MovingAiMap, ::testing::ValuesIn(discoverCases()),

@@ -237,6 +237,26 @@ BENCHMARK(BM_TerrainRepair)
                     static_cast<int>(AbstractionQuality::Low)}})
     ->Unit(benchmark::kMicrosecond);
 
+// The same for one weighted graph (terrain costs: one graph per unit kind), infantry costs,
+// size range(1), HQ.
+void BM_WeightedTerrainRepair(benchmark::State& state) {
+  const int side = static_cast<int>(state.range(0));
+  const int size = static_cast<int>(state.range(1));
+  AnnotatedGrid grid(benchmarkMap(512));
+  ClusterAbstraction graph =
+      ClusterAbstraction::build(grid, weightedSpec(size, AbstractionQuality::High));
+  SplitMix64 rng(14);
+  CellRect area{};
+  bool placed = false;
+  for (auto _ : state) {
+    if (!placed) area = {rng.between(0, 511 - side), rng.between(0, 511 - side), side, side};
+    const TerrainChange change = placed ? grid.clearObstacle(area) : grid.placeObstacle(area);
+    placed = !placed;
+    benchmark::DoNotOptimize(graph.repair(change));
+  }
+}
+BENCHMARK(BM_WeightedTerrainRepair)->Args({16, 1})->Args({16, 3})->Unit(benchmark::kMicrosecond);
+
 // The grid's share of BM_TerrainRepair: clearance and agent layers alone.
 void BM_GridRepair(benchmark::State& state) {
   const int side = static_cast<int>(state.range(0));

@@ -2,7 +2,8 @@
 // A map annotated for agents of any size and capability: true clearance per capability,
 // legal moves and connected components per agent kind, each computed on first use and
 // cached. Safe to share between threads: the caches fill under a lock and never change
-// what they already hold.
+// what they already hold, except when the terrain changes (setTerrain and the obstacle calls),
+// which no query may overlap.
 
 #include <cstdint>
 #include <map>

@@ -14,8 +14,9 @@
 // capability, and dominance pruning only removes an edge when the graph keeps another route
 // usable by every agent that could use it.
 //
-// The abstraction is immutable after build() and safe to share between threads; queries
-// (HierarchicalAStar) own their scratch memory.
+// The abstraction changes only through repair() (terrain that changes, docs/haa.md) and is
+// safe to share between threads otherwise; queries (HierarchicalAStar) own their scratch
+// memory.
 
 #include <cstdint>
 #include <optional>
