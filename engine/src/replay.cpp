@@ -174,7 +174,7 @@ IssuedOrder decodeOrder(Decoder& d) {
   IssuedOrder o;
   o.tick = d.i64();
   const std::uint8_t kind = d.u8();
-  if (kind > static_cast<std::uint8_t>(IssuedKind::EndBattle))
+  if (kind > static_cast<std::uint8_t>(IssuedKind::SetTerrain))
     throw Malformed{"unknown order kind " + std::to_string(kind)};
   o.kind = static_cast<IssuedKind>(kind);
   o.group = d.i32();
@@ -495,6 +495,20 @@ std::string scriptProblem(const Replay& replay, const Scenario& scenario) {
           return at + " ends the battle with team " + std::to_string(o.group) +
                  ", which the scenario does not have";
         break;
+      case IssuedKind::SetTerrain: {
+        const pathing::CellRect& a = o.command.area;
+        if (replay.version < kFirstTerrainReplayVersion)
+          return at + " sets terrain, which format " + std::to_string(replay.version) +
+                 " cannot record";
+        if (!scenario.settings.terrainChanges)
+          return at + " sets terrain, and the scenario has no set_terrain action";
+        if (a.width < 1 || a.height < 1 || a.x < 0 || a.y < 0 || a.x > map.width() - a.width ||
+            a.y > map.height() - a.height)
+          return at + " sets the terrain of an area outside the map";
+        if (o.group < 0 || o.group >= static_cast<int>(pathing::kTerrainNames.rows().size()))
+          return at + " sets an unknown terrain " + std::to_string(o.group);
+        break;
+      }
     }
   }
   return {};
@@ -512,6 +526,10 @@ Result<ReplayPlayback> ReplayPlayback::open(const Replay& replay, const std::str
   if (replay.version < kFirstCooperativeReplayVersion) {
     // Recorded before cooperative movement: replayed under the movement of its time.
     scenario->settings.pathing.cooperative = false;
+  }
+  if (replay.version < kFirstTerrainReplayVersion) {
+    // Recorded before wrecks blocked planning: replayed with wrecks that block bodies only.
+    scenario->settings.combat.wrecksBlock = false;
   }
   return ReplayPlayback(replay, std::move(scenario));
 }

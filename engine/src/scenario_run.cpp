@@ -156,6 +156,13 @@ void ScenarioRun::give(Command command) {
   world_.order(std::move(command));
 }
 
+void ScenarioRun::setTerrain(pathing::CellRect area, pathing::Terrain terrain) {
+  Command where;
+  where.area = area;
+  issued_.push_back({world_.tick(), IssuedKind::SetTerrain, where, static_cast<int>(terrain)});
+  world_.setTerrain(area, terrain);
+}
+
 void ScenarioRun::endBattle(int team, std::string how) {
   if (state_.ended) return;
   state_.ended = true;
@@ -190,6 +197,9 @@ void ScenarioRun::playScript() {
         endBattle(team, "end_battle (played from the script)");
         break;
       }
+      case IssuedKind::SetTerrain:
+        setTerrain(entry.command.area, static_cast<pathing::Terrain>(entry.group));
+        break;
     }
   }
 }
@@ -261,6 +271,9 @@ void ScenarioRun::runAction(const TriggerSpec& trigger, const ActionSpec& action
     case ActionKind::EndBattle:
       issued_.push_back({world_.tick(), IssuedKind::EndBattle, {}, action.team});
       endBattle(action.team, "end_battle by trigger " + trigger.name);
+      break;
+    case ActionKind::SetTerrain:
+      setTerrain(action.area, action.terrain);
       break;
   }
 }

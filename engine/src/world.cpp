@@ -84,6 +84,14 @@ World::World(std::shared_ptr<const AnnotatedGrid> grid, std::vector<units::UnitT
       phases_(std::make_unique<Phases>(world::maxUnitSize(catalogue_))) {
   if (std::string problem = problemWith(settings_); !problem.empty())
     throw std::invalid_argument("world settings: " + problem);
+  // A world that may change its terrain plans on a grid of its own (the path service keeps a
+  // reference to it, so it is chosen here, once): the scenario's grid is shared by every run of
+  // it and never changes. The copy starts from the map alone, as the shared grid does.
+  const bool wreckObstacles = settings_.combat.wrecksBlock && world::maxUnitSize(catalogue_) >= 2;
+  if (settings_.terrainChanges || wreckObstacles) {
+    ownGrid_ = std::make_shared<AnnotatedGrid>(grid_->map());
+    grid_ = ownGrid_;
+  }
   const std::vector<Capability> capabilities = capabilitiesOf(catalogue_);
   state_.rng = SplitMix64(settings_.seed);
   state_.goals = GoalBoard(grid_->map());
@@ -147,6 +155,49 @@ void World::order(Command command) {
   state_.pending.push_back(std::move(command));
 }
 
+void World::setTerrain(CellRect area, Terrain terrain) {
+  if (!settings_.terrainChanges)
+    throw std::logic_error("World::setTerrain needs WorldSettings::terrainChanges");
+  state_.terrain.pending.push_back({TerrainEditKind::SetTerrain, area, terrain});
+}
+
+void World::applyTerrain() {
+  TerrainLog& log = state_.terrain;
+  if (log.pending.empty()) return;
+  world::Refs w{*grid_, catalogue_, settings_, state_, events_};
+  // Moved out first: pushing a unit off new terrain may kill it, which may queue a wreck.
+  const std::vector<TerrainEdit> edits = std::move(log.pending);
+  log.pending.clear();
+  for (const TerrainEdit& edit : edits) {
+    TerrainChange change;
+    switch (edit.kind) {
+      case TerrainEditKind::SetTerrain:
+        change = ownGrid_->setTerrain(edit.area, edit.terrain);
+        state_.physics->setTerrain(change.area, edit.terrain);
+        break;
+      case TerrainEditKind::PlaceObstacle:  // the wreck is a body already
+        change = ownGrid_->placeObstacle(edit.area);
+        break;
+      case TerrainEditKind::ClearObstacle:
+        change = ownGrid_->clearObstacle(edit.area);
+        break;
+    }
+    ++log.applied;
+    log.digest = world::digestAfter(log.digest, edit);
+    if (!change.changed) continue;
+    state_.paths->changeTerrain(change);
+    // New chokepoints may have appeared: track them for the kinds of unit on the map (cells
+    // tracked before stay tracked, which costs reservations there and nothing else).
+    std::vector<Agent> tracked;
+    for (std::size_t t = 0; t < catalogue_.size(); ++t) {
+      if (phases_->contestedTracked[t]) tracked.push_back(catalogue_[t].agent());
+    }
+    if (!tracked.empty()) state_.reservations->track(contestedCells(*grid_, tracked));
+    phases_->traffic.terrainChanged();
+    world::afterTerrainChange(w, change.area, edit.kind == TerrainEditKind::SetTerrain);
+  }
+}
+
 void World::step() {
   using world::Phase;
   world::PhaseTimer& timer = phases_->timer;
@@ -155,6 +206,9 @@ void World::step() {
   // The log keeps what was logged since the last step ended (spawns, say) and this step's.
   events_.erase(events_.begin(), events_.begin() + static_cast<std::ptrdiff_t>(eventsKept_));
 
+  // 0. Terrain changes due this tick (wrecks of the last tick, then set_terrain), in order.
+  applyTerrain();
+  timer.mark(Phase::Pathing);
   // 1. Commands due this tick.
   for (const Command& command : state_.pending)
     world::applyCommand(w, command);

@@ -500,6 +500,61 @@ TEST(BattleParse, TriggerErrors) {
               "unknown key 'then' in a trigger", "then");
 }
 
+// ---- terrain that changes ------------------------------------------------------------------
+
+TEST(BattleParse, SetTerrainActions) {
+  const Scenario plain = load(battle(""));
+  EXPECT_FALSE(plain.settings.terrainChanges);  // runs share the scenario's grid
+  EXPECT_TRUE(plain.settings.combat.wrecksBlock);
+  const Scenario s =
+      load(battle("combat: {wrecks_block: false}\n"
+                  "triggers:\n"
+                  "  - when: {at: 5}\n"
+                  "    do:\n"
+                  "      - {set_terrain: {area: {x: 8, y: 4, w: 2, h: 2}, "
+                  "terrain: ground}}\n"
+                  "      - {set_terrain: {area: {x: 0, y: 9, w: 20, h: 1}, "
+                  "terrain: blocked}}\n"));
+  EXPECT_FALSE(s.settings.combat.wrecksBlock);
+  EXPECT_TRUE(s.settings.terrainChanges);  // each run gets a grid of its own
+  ASSERT_EQ(s.triggers.size(), 1u);
+  ASSERT_EQ(s.triggers[0].actions.size(), 2u);
+  const ActionSpec& bridge = s.triggers[0].actions[0];
+  EXPECT_EQ(bridge.kind, ActionKind::SetTerrain);
+  EXPECT_EQ(rectText(bridge.area), "8,4 2x2");
+  EXPECT_EQ(bridge.terrain, pathing::Terrain::Ground);
+  EXPECT_EQ(s.triggers[0].actions[1].terrain, pathing::Terrain::Blocked);
+}
+
+TEST(BattleParse, SetTerrainErrors) {
+  const auto action = [](const std::string& body) {
+    return battle(
+        "triggers:\n"
+        "  - when: {at: 5}\n"
+        "    do:\n"
+        "      - " +
+        body + "\n");
+  };
+  expectError(action("{set_terrain: {area: {x: 1, y: 1, w: 2, h: 2}, terrain: lava}}"),
+              "unknown terrain 'lava' (ground, swamp, trees, water, blocked)", "lava");
+  expectError(action("{set_terrain: {area: {x: 19, y: 1, w: 2, h: 2}, terrain: water}}"),
+              "set_terrain area w must be between 1 and 1", "w: 2");
+  expectError(action("{set_terrain: {area: {x: 25, y: 1, w: 1, h: 1}, terrain: water}}"),
+              "set_terrain area x must be between 0 and 19", "x: 25");
+  expectError(action("{set_terrain: {terrain: water}}"), "set_terrain needs 'area'",
+              "{terrain: water}");
+  expectError(action("{set_terrain: {area: {x: 1, y: 1, w: 1, h: 1}}}"),
+              "set_terrain needs 'terrain'", "{area:");
+  expectError(action("{set_terrain: {area: {x: 1, y: 1, w: 1}, terrain: water}}"),
+              "set_terrain area needs 'h'", "{x: 1, y: 1, w: 1}");
+  expectError(action("{set_terrain: {area: {x: 1, y: 1, w: 1, h: 1}, terrain: water, "
+                     "depth: 3}}"),
+              "unknown key 'depth' in set_terrain", "depth");
+  expectError(action("{set_terrain: water}"), "set_terrain", "{set_terrain: water}");
+  expectError(battle("combat: {wrecks_block: sometimes}\n"), "wrecks_block must be true or false",
+              "sometimes");
+}
+
 // ---- victory and expectations --------------------------------------------------------------
 
 TEST(BattleParse, VictoryConditions) {

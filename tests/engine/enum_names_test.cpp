@@ -20,7 +20,7 @@ TEST(EngineEnumNames, TablesRoundTrip) {
       kEventKindNames,
       {EventKind::Spawned, EventKind::Ordered, EventKind::PathFound, EventKind::PathFailed,
        EventKind::Arrived, EventKind::Parked, EventKind::Repath, EventKind::StuckFlagged,
-       EventKind::Killed, EventKind::WreckCleared});
+       EventKind::Killed, EventKind::WreckCleared, EventKind::Pushed});
   // Stat expectations are keyed by their statistic, not by a name of their own.
   testing::expectRoundTrip(kExpectationKindNames,
                            {ExpectationKind::ArrivalRate, ExpectationKind::ArrivalTime,
@@ -32,12 +32,12 @@ TEST(EngineEnumNames, TablesRoundTrip) {
   testing::expectRoundTrip(kTriggerKindNames,
                            {TriggerKind::At, TriggerKind::Arrived, TriggerKind::TeamBelow,
                             TriggerKind::Enters, TriggerKind::Dies});
-  testing::expectRoundTrip(kActionKindNames,
-                           {ActionKind::Order, ActionKind::Reinforce, ActionKind::EndBattle});
+  testing::expectRoundTrip(kActionKindNames, {ActionKind::Order, ActionKind::Reinforce,
+                                              ActionKind::EndBattle, ActionKind::SetTerrain});
   testing::expectRoundTrip(kVictoryKindNames,
                            {VictoryKind::Eliminate, VictoryKind::HoldArea, VictoryKind::Exit});
-  testing::expectRoundTrip(kIssuedKindNames,
-                           {IssuedKind::Order, IssuedKind::Reinforce, IssuedKind::EndBattle});
+  testing::expectRoundTrip(kIssuedKindNames, {IssuedKind::Order, IssuedKind::Reinforce,
+                                              IssuedKind::EndBattle, IssuedKind::SetTerrain});
   testing::expectRoundTrip(kReplayEndNames,
                            {ReplayEnd::Complete, ReplayEnd::Stopped, ReplayEnd::Interrupted});
 }

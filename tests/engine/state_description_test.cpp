@@ -82,6 +82,8 @@ TEST(StateDescription, NamesEveryFieldOfEveryStateType) {
   expectComplete<Shot>("Shot");
   expectComplete<Command>("Command");
   expectComplete<PathRequest>("PathRequest");
+  expectComplete<TerrainEdit>("TerrainEdit");
+  expectComplete<TerrainLog>("TerrainLog");
   expectComplete<WorldState>("WorldState");
   expectComplete<RunState>("RunState");
 }
@@ -184,6 +186,8 @@ TEST(StateDescription, EveryFieldReachesTheHash) {
   expectEveryFieldChangesTheHash<Command>("Command", hashOf<Command>);
   expectEveryFieldChangesTheHash<PathRequest>("PathRequest", hashOf<PathRequest>);
   expectEveryFieldChangesTheHash<RunState>("RunState", hashOf<RunState>);
+  expectEveryFieldChangesTheHash<TerrainEdit>("TerrainEdit", hashOf<TerrainEdit>);
+  expectEveryFieldChangesTheHash<TerrainLog>("TerrainLog", hashOf<TerrainLog>);
   // Physics and the path service are owned through pointers: their own fields are described.
   expectEveryFieldChangesTheHash<WorldState>(
       "WorldState", [](const WorldState& s) { return hashState(s); }, 3);
@@ -205,6 +209,27 @@ TEST(StateDescription, OlderFormatsLeaveOutTheFieldsAddedSince) {
   EXPECT_NE(hashOf(a), hashOf(b));
   b.hp = 1;
   EXPECT_NE(format3(a), format3(b));
+}
+
+TEST(StateDescription, Format5LeavesOutTheTerrainChanges) {
+  // Replays of format 5 recorded hashes before terrain changes: the terrain log and the wrecks'
+  // obstacles reach format 6's hash only.
+  WorldState a;
+  WorldState b;
+  b.terrain.applied = 1;
+  b.terrain.digest = 42;
+  EXPECT_EQ(hashState(a, 5), hashState(b, 5));
+  EXPECT_NE(hashState(a), hashState(b));
+  Unit u;
+  Unit wreck;
+  wreck.wreckArea = {1, 2, 2, 2};
+  const auto format5 = [](const Unit& x) {
+    StateHasher h(5);
+    describe(h, x);
+    return h.value();
+  };
+  EXPECT_EQ(format5(u), format5(wreck));
+  EXPECT_NE(hashOf(u), hashOf(wreck));
 }
 
 TEST(StateDescription, PositionsAreQuantisedTo1Over1024Cell) {

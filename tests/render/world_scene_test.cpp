@@ -8,6 +8,8 @@
 #include <memory>
 
 #include "engine/world.h"
+#include "render/palette.h"
+#include "render/renderer.h"
 
 namespace warpath::render {
 namespace {
@@ -140,6 +142,43 @@ TEST(WorldScene, ShellsInFlightAreStreaks) {
   EXPECT_FLOAT_EQ(t.from.x, t.to.x - 1.0f);
   EXPECT_FLOAT_EQ(t.to.y, 3.5f);
   EXPECT_TRUE(world.units()[1].alive());
+}
+
+// Terrain that changes during a run shows in the next frame, exactly where it changed.
+TEST(WorldScene, FramesShowTheTerrainAsItChanges) {
+  const pathing::GridMap map(24, 24);
+  auto grid = std::make_shared<const pathing::AnnotatedGrid>(map);
+  engine::WorldSettings settings;
+  settings.terrainChanges = true;
+  units::UnitType truck;
+  truck.name = "truck";
+  truck.capability = pathing::Capability::of({Terrain::Ground});
+  engine::World world(grid, {truck}, settings);
+  auto renderer = Renderer::create(map, fittedDef(map, 192));  // 8 pixels a cell
+  ASSERT_TRUE(renderer) << renderer.error().describe();
+  world.step();
+  ASSERT_TRUE(renderer.value().render(sceneOf(world)));
+  const Image before = renderer.value().image();
+  const pathing::CellRect changed{12, 14, 4, 3};
+  world.setTerrain(changed, Terrain::Water);
+  world.step();
+  FrameScene next = sceneOf(world);
+  next.tick = 1;  // the HUD's clock as before: only the terrain differs
+  next.seconds = world.seconds() - 1.0 / world.tickRate();
+  ASSERT_TRUE(renderer.value().render(next));
+  const Image& after = renderer.value().image();
+  int inside = 0;
+  int outside = 0;
+  for (int y = 0; y < after.height; ++y) {
+    for (int x = 0; x < after.width; ++x) {
+      if (before.at(x, y) == after.at(x, y)) continue;
+      const bool in = changed.contains({x / 8, y / 8});
+      (in ? inside : outside) += 1;
+    }
+  }
+  EXPECT_EQ(inside, changed.width * changed.height * 64);
+  EXPECT_EQ(outside, 0);
+  EXPECT_EQ(after.at(13 * 8 + 4, 15 * 8 + 4), palette::terrainColour(Terrain::Water));
 }
 
 }  // namespace

@@ -54,6 +54,13 @@ class Physics {
   static constexpr float kBracedMassFactor = 1000.0f;
   // Takes a body out of the simulation. Its last position and a zero velocity stay readable.
   void removeBody(BodyId body);
+  // Puts a body at `centre` at rest (a unit pushed off terrain that became impassable to it).
+  void moveBody(BodyId body, units::Vec2 centre);
+  // Terrain that changed during a run (docs/terrain_changes.md): every cell of `area` (inside the
+  // map) becomes `terrain`, and the static geometry is built again from the whole map as the
+  // constructor builds it. Obstacles that stand on the planning grid (wrecks) are bodies of
+  // their own and never part of this map.
+  void setTerrain(pathing::CellRect area, pathing::Terrain terrain);
   void setVelocity(BodyId body, units::Vec2 velocity);
   // Advances every body by dt seconds.
   void step(double dt);
@@ -67,9 +74,13 @@ class Physics {
  private:
   // The body behind a handle; null when removed or when the handle is not one of ours.
   bool known(BodyId body) const;
+  // (Re)builds the static body of the terrain from map_.
+  void buildTerrain();
   struct Impl;
   std::unique_ptr<Impl> impl_;
   PhysicsStats stats_;
+  pathing::GridMap map_;     // the terrain the static geometry is built from
+  std::uint16_t forbidden_;  // categories some unit's mask includes (blocked always)
 };
 
 }  // namespace warpath::engine

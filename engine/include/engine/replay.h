@@ -27,10 +27,16 @@ namespace warpath::engine {
 // cooperative movement (docs/cooperative.md); the hashes cover its state too (a format-3 file's
 // hashes are computed without it: engine/state_description.h's Since). 5: the same, the hashes
 // also covering each queued path request's cost profile (terrain costs, docs/terrain_costs.md).
-// Version-1 files (move orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 5;
+// 6: terrain that changes (docs/terrain_changes.md): set_terrain entries in the command stream
+// (an order record of kind set_terrain: the area, the terrain in the group field), wrecks of
+// large units blocking planning, and the hashes covering the terrain changes and wreck
+// obstacles. Version-1 files (move orders only) are refused with a message saying so.
+inline constexpr std::uint32_t kReplayVersion = 6;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
+// Formats before this one were recorded before terrain changes: they play back with wrecks that
+// block bodies but not plans (CombatSettings::wrecksBlock off).
+inline constexpr std::uint32_t kFirstTerrainReplayVersion = 6;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

@@ -90,25 +90,28 @@ inline constexpr EnumNames<TriggerKind, 5> kTriggerKindNames{{{
 }}};
 
 enum class ActionKind : std::uint8_t {
-  Order,      // order `groups` (their living units): `order` with `area` or `targetGroups`
-  Reinforce,  // spawn the reinforcement group `group`
-  EndBattle,  // stop the run; `team` (-1: none) is the winner unless a victory came first
+  Order,       // order `groups` (their living units): `order` with `area` or `targetGroups`
+  Reinforce,   // spawn the reinforcement group `group`
+  EndBattle,   // stop the run; `team` (-1: none) is the winner unless a victory came first
+  SetTerrain,  // every cell of `area` becomes `terrain` (docs/terrain_changes.md)
 };
 // The key that says which action an entry of a trigger's `do:` is.
-inline constexpr EnumNames<ActionKind, 3> kActionKindNames{{{
+inline constexpr EnumNames<ActionKind, 4> kActionKindNames{{{
     {ActionKind::Order, "order"},
     {ActionKind::Reinforce, "reinforce"},
     {ActionKind::EndBattle, "end_battle"},
+    {ActionKind::SetTerrain, "set_terrain"},
 }}};
 
 struct ActionSpec {
   ActionKind kind = ActionKind::Order;
   OrderKind order = OrderKind::Move;
-  std::vector<int> groups;        // Order
-  pathing::CellRect area;         // Order: Move, AttackMove
-  std::vector<int> targetGroups;  // Order: Attack, the enemies' groups
-  int group = -1;                 // Reinforce
-  int team = -1;                  // EndBattle
+  std::vector<int> groups;                              // Order
+  pathing::CellRect area;                               // Order: Move, AttackMove; SetTerrain
+  pathing::Terrain terrain = pathing::Terrain::Ground;  // SetTerrain
+  std::vector<int> targetGroups;                        // Order: Attack, the enemies' groups
+  int group = -1;                                       // Reinforce
+  int team = -1;                                        // EndBattle
 };
 
 struct TriggerSpec {

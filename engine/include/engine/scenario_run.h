@@ -106,11 +106,15 @@ enum class IssuedKind : std::uint8_t {
   Order,      // `command` given to the world
   Reinforce,  // the reinforcement group `group` spawned
   EndBattle,  // the battle ended; `group` holds the winner's team index, -1 for none
+  // The terrain of `command.area` set (World::setTerrain); `group` holds the pathing::Terrain.
+  // Replay format 6 on.
+  SetTerrain,
 };
-inline constexpr EnumNames<IssuedKind, 3> kIssuedKindNames{{{
+inline constexpr EnumNames<IssuedKind, 4> kIssuedKindNames{{{
     {IssuedKind::Order, "order"},
     {IssuedKind::Reinforce, "reinforce"},
     {IssuedKind::EndBattle, "end_battle"},
+    {IssuedKind::SetTerrain, "set_terrain"},
 }}};
 
 struct IssuedOrder {
@@ -184,6 +188,7 @@ class ScenarioRun {
   // The living members of `groups`, ascending index.
   std::vector<UnitId> living(const std::vector<int>& groups) const;
   void give(Command command);
+  void setTerrain(pathing::CellRect area, pathing::Terrain terrain);
   void playScript();
   void fireTriggers();
   bool triggerDue(const TriggerSpec& trigger) const;

@@ -21,7 +21,7 @@ namespace warpath::engine {
 struct Since {
   std::uint32_t format;
 };
-inline constexpr std::uint32_t kStateFormat = 5;
+inline constexpr std::uint32_t kStateFormat = 6;
 
 template <class V>
 void describe(V& v, const pathing::Cell& c) {
@@ -151,6 +151,7 @@ void describe(V& v, const Unit& u) {
   v("wreckUntilTick", u.wreckUntilTick);
   v("killedBy", u.killedBy);
   v("combat", u.combat);
+  v(Since{6}, "wreckArea", u.wreckArea);
 }
 template <class V>
 void describe(V& v, const Shot& s) {
@@ -199,6 +200,19 @@ void describe(V& v, const PathService& paths) {
   v("maxQueue", m.maxQueue);
 }
 template <class V>
+void describe(V& v, const TerrainEdit& e) {
+  v("kind", e.kind);
+  v("area", e.area);
+  v("terrain", e.terrain);
+}
+// The terrain is the map with the changes applied: their digest stands for it.
+template <class V>
+void describe(V& v, const TerrainLog& t) {
+  v("pending", t.pending);
+  v("applied", t.applied);
+  v("digest", t.digest);
+}
+template <class V>
 void describe(V& v, const WorldState& s) {
   v("tick", s.tick);
   v("rng", s.rng);
@@ -211,6 +225,7 @@ void describe(V& v, const WorldState& s) {
   v("paths", s.paths);
   v(Since{4}, "reservations", s.reservations);
   v(Since{4}, "movement", s.movement);
+  v(Since{6}, "terrain", s.terrain);
 }
 template <class V>
 void describe(V& v, const RunState& s) {

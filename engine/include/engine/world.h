@@ -40,6 +40,10 @@ struct CombatSettings {
   // [Unit: s] [Limit: >= 0] how long a destroyed unit's wreck stays as an obstacle; 0 removes
   // the body at once.
   double wreckSeconds = 20.0;
+  // Wrecks of units of size >= 2 block planning while they stand: an obstacle over the cells
+  // of the footprint they died on (docs/terrain_changes.md). Replays of formats <= 5 play back
+  // without it.
+  bool wrecksBlock = true;
   // [Unit: ticks] [Limit: >= 1] how often a unit without a target scans for one (staggered by
   // id); a unit with a target checks every tick that it may still engage it.
   int scanEveryTicks = 5;
@@ -54,6 +58,10 @@ struct WorldSettings {
   units::StuckRule stuck;
   units::SteeringParams steering;
   CombatSettings combat;
+  // The run may change its terrain (World::setTerrain): the world plans on a grid of its own,
+  // copied from the one it is given, instead of sharing it. Wreck obstacles get one too
+  // (combat.wrecksBlock with a unit of size >= 2 in the catalogue).
+  bool terrainChanges = false;
 };
 // Empty when every [Limit] of the settings (path service, stuck rule, combat included) holds,
 // else the first that does not, beginning with the field, e.g. "tickRate must be > 0 (got 0)",
@@ -171,6 +179,8 @@ struct Unit {
   bool engaged = false;               // halted this tick to fight (AttackMove, Attack)
   std::int64_t deathTick = -1;
   std::int64_t wreckUntilTick = -1;  // the wreck's body is removed at this tick
+  // The obstacle the wreck stands as on the planning grid until wreckUntilTick; width 0: none.
+  pathing::CellRect wreckArea;
   UnitId killedBy;
   CombatStats combat;
 
@@ -196,12 +206,13 @@ enum class EventKind : std::uint8_t {
   PathFailed,    // detail: pathing::PathStatus
   Arrived,       // anchor entered the goal area
   Parked,        // reached its goal cell
-  Repath,        // detail: 0 stuck, 1 left its path, 2 goal cell taken
+  Repath,        // detail: 0 stuck, 1 left its path, 2 goal cell taken, 3 terrain changed
   StuckFlagged,  // stuck for StuckRule::flagAfter windows in a row
   Killed,        // hp reached 0; detail: the killer's index
   WreckCleared,  // the wreck's body was removed
+  Pushed,        // moved to the nearest anchor it can stand on: its terrain became impassable
 };
-inline constexpr EnumNames<EventKind, 10> kEventKindNames{{{
+inline constexpr EnumNames<EventKind, 11> kEventKindNames{{{
     {EventKind::Spawned, "spawned"},
     {EventKind::Ordered, "ordered"},
     {EventKind::PathFound, "path-found"},
@@ -212,6 +223,7 @@ inline constexpr EnumNames<EventKind, 10> kEventKindNames{{{
     {EventKind::StuckFlagged, "stuck"},
     {EventKind::Killed, "killed"},
     {EventKind::WreckCleared, "wreck-cleared"},
+    {EventKind::Pushed, "pushed"},
 }}};
 std::string_view toString(EventKind kind);
 
@@ -234,6 +246,23 @@ struct MovementStats {
   bool operator==(const MovementStats&) const = default;
 };
 
+// A change of the terrain (docs/terrain_changes.md): a scenario's set_terrain, or a wreck's
+// obstacle placed or cleared.
+enum class TerrainEditKind : std::uint8_t { SetTerrain, PlaceObstacle, ClearObstacle };
+struct TerrainEdit {
+  TerrainEditKind kind = TerrainEditKind::SetTerrain;
+  pathing::CellRect area;                               // inside the map
+  pathing::Terrain terrain = pathing::Terrain::Ground;  // SetTerrain
+  bool operator==(const TerrainEdit&) const = default;
+};
+// The terrain's part of the state: the changes waiting for the next step, and a digest of those
+// applied (with the map, what the grid is now).
+struct TerrainLog {
+  std::vector<TerrainEdit> pending;  // applied at the start of the next step, in order
+  std::uint64_t applied = 0;         // changes applied so far
+  std::uint64_t digest = 0;          // FNV-1a over the changes applied, in order
+};
+
 // The whole simulation state: everything a step reads besides the map, the catalogue and the
 // settings, and everything it changes. The state hash covers every field through
 // engine/state_description.h (a test fails when a field is not described). Events are the
@@ -252,6 +281,7 @@ struct WorldState {
   // held footprint, so its content follows from the units' fields.
   std::unique_ptr<pathing::ReservationTable> reservations;
   MovementStats movement;
+  TerrainLog terrain;
 
   // The unit a handle names; null when the world did not give it out (an index past the units,
   // or a stale generation). The one handle check: World::find and the phases use it.
@@ -277,7 +307,9 @@ struct TickTiming {
 class World {
  public:
   // `catalogue` holds every unit type the world may spawn; the path service is built for their
-  // capabilities and the largest size. The grid is shared (read-only).
+  // capabilities and the largest size. The grid is shared (read-only) unless the terrain may
+  // change (WorldSettings::terrainChanges, wreck obstacles): then the world copies its map into
+  // a grid of its own, so that other runs of the same scenario never see its changes.
   World(std::shared_ptr<const pathing::AnnotatedGrid> grid, std::vector<units::UnitType> catalogue,
         const WorldSettings& settings);
   ~World();
@@ -292,6 +324,10 @@ class World {
   void orderMove(std::vector<UnitId> units, pathing::CellRect area) {
     order({OrderKind::Move, std::move(units), area, {}});
   }
+  // Sets every cell of `area` (clipped to the map) to `terrain` at the start of the next step,
+  // before the orders given (docs/terrain_changes.md). [Limit: settings().terrainChanges, else
+  // std::logic_error]
+  void setTerrain(pathing::CellRect area, pathing::Terrain terrain);
 
   void step();
 
@@ -327,8 +363,11 @@ class World {
 
  private:
   struct Phases;  // the tick's phases and their scratch memory (engine/src/world/)
+  // Applies the pending terrain changes (phase 0 of a step).
+  void applyTerrain();
 
   std::shared_ptr<const pathing::AnnotatedGrid> grid_;
+  std::shared_ptr<pathing::AnnotatedGrid> ownGrid_;  // grid_'s target when the terrain may change
   std::vector<units::UnitType> catalogue_;
   WorldSettings settings_;
   WorldState state_;

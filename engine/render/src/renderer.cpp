@@ -117,6 +117,14 @@ GLuint uploadTexture(GLuint texture, int width, int height, const std::vector<Rg
   return texture;
 }
 
+// The terrain texture: a texel per cell, in the palette's terrain colours.
+GLuint uploadTerrain(GLuint texture, const pathing::GridMap& map) {
+  std::vector<Rgba> texels(map.cellCount());
+  for (std::size_t i = 0; i < texels.size(); ++i)
+    texels[i] = palette::terrainColour(map.cells()[i]);
+  return uploadTexture(texture, map.width(), map.height(), texels);
+}
+
 Status checkCamera(const CellRect& camera, int mapWidth, int mapHeight) {
   if (camera.width <= 0 || camera.height <= 0) {
     return Error{"", 0, 0,
@@ -141,6 +149,7 @@ struct Renderer::Impl {
   int mapWidth = 0;
   int mapHeight = 0;
   GLuint terrainTexture = 0;
+  std::uint64_t terrainRevision = 0;  // of the terrain the texture shows
   GLuint clearanceTexture = 0;
   Batch graphLines;  // cluster borders and edges, built by setAbstractGraph
   Batch graphNodes;
@@ -444,6 +453,12 @@ struct Renderer::Impl {
     // Keep destination alpha at 1 so the image stays opaque under translucent overlays.
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
 
+    if (scene.terrain != nullptr && scene.terrainRevision != terrainRevision) {
+      if (scene.terrain->width() != mapWidth || scene.terrain->height() != mapHeight)
+        return Error{"", 0, 0, "the scene's terrain is not the size of the renderer's map"};
+      terrainTexture = uploadTerrain(terrainTexture, *scene.terrain);
+      terrainRevision = scene.terrainRevision;
+    }
     const float ppc = enterMapSpace();
     glDisable(GL_BLEND);  // opaque, and the largest area drawn: no need to read the target
     drawTexture(terrainTexture);
@@ -569,10 +584,7 @@ Result<Renderer> Renderer::create(const pathing::GridMap& map, const RenderDef& 
                      " map exceeds the largest texture OSMesa offers (" +
                      std::to_string(maxTexture) + ")"};
   }
-  std::vector<Rgba> texels(map.cellCount());
-  for (std::size_t i = 0; i < texels.size(); ++i)
-    texels[i] = palette::terrainColour(map.cells()[i]);
-  impl->terrainTexture = uploadTexture(0, map.width(), map.height(), texels);
+  impl->terrainTexture = uploadTerrain(0, map);
   if (const GLenum error = glGetError(); error != GL_NO_ERROR) {
     return Error{"", 0, 0,
                  "OpenGL error " + std::to_string(error) + " while uploading the terrain"};

@@ -9,6 +9,8 @@ FrameScene sceneOf(const engine::World& world, int teamCount) {
   FrameScene scene;
   scene.tick = world.tick();
   scene.seconds = world.seconds();
+  scene.terrain = &world.grid().map();
+  scene.terrainRevision = world.grid().revision();
   int teams = std::max(teamCount, 0);
   for (const engine::Unit& u : world.units())
     teams = std::max(teams, u.team + 1);

@@ -89,17 +89,22 @@ void addBox(b2Body* body, const Box& box, std::uint16_t category) {
 }  // namespace
 
 Physics::Physics(const GridMap& map, std::span<const Capability> capabilities)
-    : impl_(std::make_unique<Impl>()) {
+    : impl_(std::make_unique<Impl>()), map_(map), forbidden_(kBlockedCategory) {
+  for (Capability c : capabilities)
+    forbidden_ = static_cast<std::uint16_t>(forbidden_ | (collisionMaskFor(c) & ~kUnitCategory));
+  buildTerrain();
+}
+
+void Physics::buildTerrain() {
+  if (impl_->terrain != nullptr) impl_->world.DestroyBody(impl_->terrain);
+  stats_.staticBoxes = 0;
   b2BodyDef def;
   def.type = b2_staticBody;
   impl_->terrain = impl_->world.CreateBody(&def);
-
-  std::uint16_t forbidden = kBlockedCategory;
-  for (Capability c : capabilities)
-    forbidden = static_cast<std::uint16_t>(forbidden | (collisionMaskFor(c) & ~kUnitCategory));
+  const GridMap& map = map_;
   for (int slot = 0; slot < pathing::kTraversableTerrainSlots; ++slot) {
     const auto t = static_cast<Terrain>(slot);
-    if ((forbidden & terrainCategory(t)) == 0) continue;
+    if ((forbidden_ & terrainCategory(t)) == 0) continue;
     for (const Box& box : mergeCells(map, [t](Terrain cell) { return cell == t; })) {
       addBox(impl_->terrain, box, terrainCategory(t));
       ++stats_.staticBoxes;
@@ -118,6 +123,22 @@ Physics::Physics(const GridMap& map, std::span<const Capability> capabilities)
     addBox(impl_->terrain, box, kBlockedCategory);
     ++stats_.staticBoxes;
   }
+}
+
+void Physics::setTerrain(pathing::CellRect area, Terrain terrain) {
+  for (int y = area.y; y < area.y + area.height; ++y) {
+    for (int x = area.x; x < area.x + area.width; ++x) {
+      if (map_.contains({x, y})) map_.set({x, y}, terrain);
+    }
+  }
+  buildTerrain();
+}
+
+void Physics::moveBody(BodyId body, units::Vec2 centre) {
+  if (!known(body) || impl_->bodies[body.index] == nullptr) return;
+  b2Body* b = impl_->bodies[body.index];
+  b->SetTransform(b2Vec2(static_cast<float>(centre.x), static_cast<float>(centre.y)), 0.0f);
+  b->SetLinearVelocity(b2Vec2(0.0f, 0.0f));
 }
 
 Physics::~Physics() = default;

@@ -381,11 +381,13 @@ raw::Stuck stuck(const Reader& r, const YAML::Node& node) {
 }
 
 raw::Combat combat(const Reader& r, const YAML::Node& node) {
-  r.checkKeys(node, "combat",
-              {"enabled", "wreck_seconds", "sight_through_trees", "scan_every", "armour"});
+  r.checkKeys(
+      node, "combat",
+      {"enabled", "wreck_seconds", "wrecks_block", "sight_through_trees", "scan_every", "armour"});
   raw::Combat c;
   c.enabled = r.maybeBoolean(node, "enabled", "combat enabled");
   c.wreckSeconds = r.maybeNumber(node, "wreck_seconds", "wreck_seconds");
+  c.wrecksBlock = r.maybeBoolean(node, "wrecks_block", "wrecks_block");
   c.sightThroughTrees = r.maybeInteger(node, "sight_through_trees", "sight_through_trees");
   c.scanEvery = r.maybeInteger(node, "scan_every", "scan_every");
   if (const YAML::Node armour = node["armour"]) {
@@ -558,7 +560,7 @@ raw::Condition condition(const Reader& r, const YAML::Node& when) {
 raw::Action action(const Reader& r, const YAML::Node& node) {
   const std::string one =
       "an action is exactly one of: {order: KIND, group, move_to or target}, "
-      "{reinforce: GROUP}, {end_battle: TEAM or none}";
+      "{reinforce: GROUP}, {end_battle: TEAM or none}, {set_terrain: {area, terrain}}";
   if (!node.IsMap()) r.fail(node, one);
   int kinds = 0;
   raw::Action a;
@@ -581,6 +583,15 @@ raw::Action action(const Reader& r, const YAML::Node& node) {
       r.checkKeys(node, "an end_battle action", {"end_battle"});
       a.name = r.text(node["end_battle"], "end_battle");
       break;
+    case ActionKind::SetTerrain: {
+      r.checkKeys(node, "a set_terrain action", {"set_terrain"});
+      const YAML::Node body = node["set_terrain"];
+      r.checkKeys(body, "set_terrain", {"area", "terrain"});
+      a.area = area(r, r.need(body, "area", "set_terrain"), "set_terrain area");
+      a.terrain = r.named(r.need(body, "terrain", "set_terrain"), "set_terrain terrain",
+                          pathing::kTerrainNames, "terrain", pathing::kTerrainNames.list());
+      break;
+    }
   }
   return a;
 }

@@ -122,6 +122,7 @@ struct ArmourPercent {
 struct Combat {
   Maybe<bool> enabled;
   Maybe<double> wreckSeconds;
+  Maybe<bool> wrecksBlock;
   Maybe<int> sightThroughTrees;
   Maybe<int> scanEvery;
   std::vector<ArmourPercent> armour;
@@ -180,8 +181,10 @@ struct Condition {
 // An entry of a trigger's `do:`.
 struct Action {
   ActionKind kind = ActionKind::Order;
-  OrderAction order;        // Order
-  Field<std::string> name;  // Reinforce: the group; EndBattle: the team or `none`
+  OrderAction order;                // Order
+  Field<std::string> name;          // Reinforce: the group; EndBattle: the team or `none`
+  Area area;                        // SetTerrain
+  Field<pathing::Terrain> terrain;  // SetTerrain
 };
 
 struct Trigger {

@@ -288,6 +288,7 @@ void applyStuck(const Checker& c, const raw::Stuck& in, units::StuckRule& out) {
 void applyCombat(const Checker& c, const raw::Combat& in, CombatSettings& out) {
   if (in.enabled) out.enabled = in.enabled->value;
   if (in.wreckSeconds) out.wreckSeconds = c.range(*in.wreckSeconds, "wreck_seconds", 0.0, 1e6);
+  if (in.wrecksBlock) out.wrecksBlock = in.wrecksBlock->value;
   if (in.sightThroughTrees)
     out.sight.maxTreeCells = c.range(*in.sightThroughTrees, "sight_through_trees", -1, 1000000);
   if (in.scanEvery) out.scanEveryTicks = c.range(*in.scanEvery, "scan_every", 1, 1000000);
@@ -605,6 +606,12 @@ class Builder {
       case ActionKind::EndBattle:
         a.kind = ActionKind::EndBattle;
         a.team = teamOrNone(in.name, "end_battle");
+        return a;
+      case ActionKind::SetTerrain:
+        a.kind = ActionKind::SetTerrain;
+        a.area = c_.area(in.area, gridMap(), "set_terrain area");
+        a.terrain = in.terrain.value;
+        s_.settings.terrainChanges = true;  // the run's world gets a grid of its own
         return a;
     }
     return a;

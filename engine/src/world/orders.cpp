@@ -351,6 +351,7 @@ void kill(Refs& w, Unit& unit, UnitId killer) {
     w.state.physics->freeze(unit.body);
     unit.wreckUntilTick =
         w.state.tick + std::max<std::int64_t>(1, std::llround(wreck * w.settings.tickRate));
+    placeWreck(w, unit);
   } else {
     w.state.physics->removeBody(unit.body);
   }

@@ -129,6 +129,9 @@ class Traffic {
   // then the lower id) within `budget` expansions (at least one a tick); once a second, cycles
   // of units waiting on each other are broken. Nothing happens when cooperation is off.
   void plan(Refs& w, std::uint64_t budget);
+  // The terrain changed: the caches that follow from the map (passing room, distance fields,
+  // what is known of tracked cells ahead) are dropped and built again when next needed.
+  void terrainChanged();
 
  private:
   static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
@@ -216,5 +219,20 @@ void stepPhysics(Refs& w);
 
 // --- Rules: arrivals, wrecks, repaths, stuck units (engine/src/world/rules.cpp) ---
 void applyRules(Refs& w);
+
+// --- Terrain: changes during a run (engine/src/world/terrain.cpp, docs/terrain_changes.md) ---
+
+// A dying unit's wreck: with combat.wrecksBlock and a size >= 2, queues an obstacle over the
+// cells of its footprint (applied at the start of the next step) and keeps it in wreckArea.
+void placeWreck(Refs& w, Unit& unit);
+// The wreck is removed: queues the clearing of its obstacle, if it has one.
+void clearWreck(Refs& w, Unit& unit);
+// After the cells of `area` changed, in id order: with `push` (terrain set, not an obstacle),
+// each living unit whose footprint can no longer stand where it is moves to the nearest anchor
+// it can stand on (killed when the map has none); units whose remaining path, window or goal
+// crosses `area` (or that were pushed) get a new goal cell when theirs is gone and a new path.
+void afterTerrainChange(Refs& w, const pathing::CellRect& area, bool push);
+// FNV-1a of `digest` followed by the edit: TerrainLog::digest after applying `edit`.
+std::uint64_t digestAfter(std::uint64_t digest, const TerrainEdit& edit);
 
 }  // namespace warpath::engine::world

@@ -85,6 +85,7 @@ void applyRules(Refs& w) {
       if (unit.wreckUntilTick >= 0 && tick >= unit.wreckUntilTick) {
         w.state.physics->removeBody(unit.body);
         unit.wreckUntilTick = -1;
+        clearWreck(w, unit);
         w.log(EventKind::WreckCleared, unit);
       }
       continue;

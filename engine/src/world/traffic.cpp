@@ -169,6 +169,12 @@ CooperativeRequest Traffic::requestFor(const Refs& w, const Unit& unit, Cell sta
   return r;
 }
 
+void Traffic::terrainChanged() {
+  passing_.clear();
+  fields_.clear();
+  lookahead_.clear();
+}
+
 const std::vector<std::uint8_t>& Traffic::passingRoom(const Refs& w, Agent agent) {
   auto it = passing_.find(agent);
   if (it == passing_.end()) it = passing_.emplace(agent, pathing::passingRoom(w.grid, agent)).first;

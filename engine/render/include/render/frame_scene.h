@@ -72,6 +72,12 @@ struct FrameScene {
   std::vector<Tracer> shots{};  // drawn over the units
   // A line of text along the bottom edge (the viewer's status and keys); empty: none.
   std::string caption{};
+  // The terrain as it is now, when it may differ from the map the renderer was created with
+  // (terrain changed during the run, docs/terrain_changes.md): the renderer draws it again
+  // whenever `terrainRevision` differs from the last it drew. Null: the map it was created
+  // with. [Limit: the renderer's map size]
+  const pathing::GridMap* terrain = nullptr;
+  std::uint64_t terrainRevision = 0;  // 0: the map as loaded
 };
 
 }  // namespace warpath::render
