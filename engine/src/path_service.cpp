@@ -149,7 +149,21 @@ void PathService::changeTerrain(const TerrainChange& change) {
   if (!change.changed) return;
   const auto began = std::chrono::steady_clock::now();
   ++metrics_.terrainChanges;
-  if (abstraction_) abstraction_->repair(change);
+  // The graphs catch up in chunks a few clusters a side, within the ticks' budgets (serve()):
+  // a large change is spread over several ticks, and requests wait for the last chunk.
+  const bool graphs =
+      abstraction_ || std::any_of(weighted_.begin(), weighted_.end(),
+                                  [](const auto& w) { return w->abstraction != nullptr; });
+  const int side = kRepairChunkClusters * settings_.clusterSize;
+  const CellRect& a = change.area;
+  for (int y = a.y / side * side; graphs && y < a.y + a.height; y += side) {
+    for (int x = a.x / side * side; x < a.x + a.width; x += side) {
+      const int x0 = std::max(x, a.x);
+      const int y0 = std::max(y, a.y);
+      pendingRepairs_.push_back({x0, y0, std::min(x + side, a.x + a.width) - x0,
+                                 std::min(y + side, a.y + a.height) - y0});
+    }
+  }
   // Profiles merged because they agreed on the map's terrains may differ on a terrain the
   // change brought: merged again, their planners built anew when next asked.
   std::uint8_t brought = 0;
@@ -162,7 +176,6 @@ void PathService::changeTerrain(const TerrainChange& change) {
     mergeCostProfiles();
   }
   for (const auto& w : weighted_) {
-    if (w->abstraction) w->abstraction->repair(change);
     if (w->field) w->field->update(grid_, change.area);
   }
   // A path that crosses the change (its footprints grown by the agent's size) may no longer be
@@ -199,8 +212,28 @@ void PathService::cancel(UnitId unit) {
   std::erase_if(queue_, [&](const PathRequest& r) { return r.unit == unit; });
 }
 
+std::uint64_t PathService::repairChunk() {
+  const auto began = std::chrono::steady_clock::now();
+  const TerrainChange part{pendingRepairs_.front(), true};
+  pendingRepairs_.pop_front();
+  std::uint64_t spent = 0;
+  if (abstraction_) spent += abstraction_->repair(part).expanded;
+  for (const auto& w : weighted_) {
+    if (w->abstraction) spent += w->abstraction->repair(part).expanded;
+  }
+  ++metrics_.repairChunks;
+  metrics_.repairExpanded += spent;
+  metrics_.repairMilliseconds += elapsedMilliseconds(began);
+  return spent;
+}
+
 std::uint64_t PathService::serve(std::vector<PathDelivery>& out) {
   std::uint64_t spent = 0;
+  // The graphs first: at least one chunk a tick, more while the budget lasts.
+  for (bool first = true; !pendingRepairs_.empty() && (first || spent < settings_.expansionBudget);
+       first = false)
+    spent += repairChunk();
+  if (!pendingRepairs_.empty()) return spent;
   while (!queue_.empty()) {
     const PathRequest& front = queue_.front();
     const Key key{front.agent.size, front.agent.capability.mask(),

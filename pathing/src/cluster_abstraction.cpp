@@ -142,6 +142,7 @@ class AbstractionBuilder {
 #if WARPATH_INVARIANTS_ON
     checkGraph();
 #endif
+    g_.stats_.buildExpanded = expanded_;
     g_.stats_.buildMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
     return std::move(out_);
@@ -271,6 +272,7 @@ class AbstractionBuilder {
     // Free ids are reused lowest first.
     std::sort(g_.freeNodes_.begin(), g_.freeNodes_.end(), std::greater<>());
     updateStats(before, tally(redo));
+    stats.expanded = expanded_;
 #if WARPATH_INVARIANTS_ON
     checkGraph();
 #endif
@@ -502,6 +504,7 @@ class AbstractionBuilder {
             }
             if (targets.empty()) continue;
             dijkstra.run(map_, layer, region, source, targets, costs_);
+            expanded_ += dijkstra.expanded();
             int covers = maxSize_;
             for (std::size_t t = 0; t < targets.size(); ++t) {
               if (!dijkstra.reached(targets[t])) continue;
@@ -870,6 +873,7 @@ class AbstractionBuilder {
   ClusterAbstraction out_;            // what build() returns
   ClusterAbstraction& g_;             // the graph built or repaired: out_, or the one repaired
   bool repairing_ = false;
+  std::uint64_t expanded_ = 0;                           // cells the intra-edge searches expanded
   std::map<std::uint32_t, std::uint32_t> repairNodeOf_;  // cell index -> node, when repairing
   std::vector<bool> persisting_;  // repair: builder nodes that keep crossings not scanned again
   std::vector<Cell> first_;       // scratch of scanBorder
@@ -908,6 +912,7 @@ RepairStats ClusterAbstraction::repair(const TerrainChange& change) {
     *this = AbstractionBuilder(*grid_, spec_).build();
     stats.rebuilt = true;
     stats.clusters = clusterCount();
+    stats.expanded = stats_.buildExpanded;
   } else {
     if (costs_) costs_->update(*grid_, change.area);
     AbstractionBuilder(*this).repair(change.area, stats);

@@ -84,6 +84,34 @@ TEST(PathServiceTerrainChange, GraphsFollowTheChangeAndOnlyTouchedAnswersAreDrop
   }
 }
 
+// A large change is repaired over several ticks within the budget; requests wait for it and
+// are then answered on the changed map.
+TEST(PathServiceTerrainChange, ALargeChangeIsRepairedOverSeveralTicks) {
+  pathing::AnnotatedGrid grid(pathing::GridMap(160, 160));
+  PathServiceSettings settings;
+  settings.algorithm = pathing::Algorithm::HaaHigh;
+  settings.expansionBudget = 5000;
+  const pathing::Agent jeep{2, pathing::Capability::of({Terrain::Ground})};
+  PathService service(grid, settings, {jeep.capability}, 2);
+  // A wall across the map but for a gap at the bottom right: 150 cells of it.
+  service.changeTerrain(grid.setTerrain({0, 80, 150, 2}, Terrain::Blocked));
+  const std::size_t chunks = service.repairsPending();
+  EXPECT_EQ(chunks, 3u);  // 150 cells in chunks of 4 clusters of 16
+  service.request({{0, 0}, 1, jeep, {5, 5}, {5, 150}});
+  std::vector<PathDelivery> out;
+  int ticks = 0;
+  while (out.empty() && ticks < 10) {
+    service.serve(out);
+    ++ticks;
+  }
+  EXPECT_GT(ticks, 1);  // the budget spread the repair
+  EXPECT_EQ(service.repairsPending(), 0u);
+  EXPECT_EQ(service.metrics().repairChunks, chunks);
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_EQ(out[0].status, PathStatus::Found);
+  EXPECT_EQ(pathing::findIllegalStep(grid, jeep, out[0].path->cells), "");
+}
+
 // Profiles merged because the map lacked a terrain are told apart once a change brings it.
 TEST(PathServiceTerrainChange, ATerrainNewToTheMapSeparatesMergedCostProfiles) {
   pathing::AnnotatedGrid grid(pathing::GridMap(48, 32));

@@ -51,6 +51,8 @@ struct PathServiceSettings {
   bool terrainCosts = false;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
+// [Unit: clusters] side of a chunk of graph repair (PathService::changeTerrain).
+inline constexpr int kRepairChunkClusters = 4;
 
 struct PathRequest {
   UnitId unit;
@@ -98,13 +100,15 @@ struct PathServiceMetrics {
   double microseconds = 0.0;  // wall time of the searches: measurement only
   double preprocessMilliseconds = 0.0;
   std::uint64_t terrainChanges = 0;
-  std::uint64_t cacheDropped = 0;   // answers dropped because a change touched them
-  double repairMilliseconds = 0.0;  // wall time of graph repairs: measurement only
+  std::uint64_t cacheDropped = 0;  // answers dropped because a change touched them
+  std::uint64_t repairChunks = 0;
+  std::uint64_t repairExpanded = 0;  // cells the graph repairs' searches expanded
+  double repairMilliseconds = 0.0;   // wall time of graph repairs: measurement only
   bool operator==(const PathServiceMetrics& o) const {  // wall-clock fields excluded
     return std::tie(requests, cacheHits, searches, found, failed, expanded, maxQueue,
-                    terrainChanges, cacheDropped) ==
+                    terrainChanges, cacheDropped, repairChunks, repairExpanded) ==
            std::tie(o.requests, o.cacheHits, o.searches, o.found, o.failed, o.expanded, o.maxQueue,
-                    o.terrainChanges, o.cacheDropped);
+                    o.terrainChanges, o.cacheDropped, o.repairChunks, o.repairExpanded);
   }
 };
 
@@ -127,11 +131,16 @@ class PathService {
   PathService(const PathService&) = delete;
   PathService& operator=(const PathService&) = delete;
 
-  // The grid's terrain changed (AnnotatedGrid::setTerrain or an obstacle): repairs every graph
-  // and cost field built on it, and drops the cached answers the change touches (paths that
-  // cross the changed cells, and every failed answer, which may now succeed). Requests queued
-  // are served on the changed map.
+  // The grid's terrain changed (AnnotatedGrid::setTerrain or an obstacle): drops the cached
+  // answers the change touches (paths that cross the changed cells, and every failed answer,
+  // which may now succeed), repairs the cost fields at once and queues the repair of every
+  // graph in chunks of kRepairChunkClusters clusters a side. serve() repairs chunks first, at
+  // least one a tick and more while the tick's budget lasts (a chunk costs the cells its
+  // searches expand); requests wait until the last chunk is done, so every answer is planned
+  // on the changed map.
   void changeTerrain(const pathing::TerrainChange& change);
+  // Chunks of graph repair still to do.
+  std::size_t repairsPending() const { return pendingRepairs_.size(); }
 
   void request(const PathRequest& request);
   // Drops the unit's queued requests (it died): its searches are not run.
@@ -171,6 +180,8 @@ class PathService {
     std::optional<pathing::Planner> planner;
   };
   WeightedPlanner& weightedPlanner(int costProfile);
+  // Repairs the graphs for the next pending chunk; returns the cells its searches expanded.
+  std::uint64_t repairChunk();
   // Groups the cost profiles that plan alike on the terrains present_ (planners unbuilt).
   void mergeCostProfiles();
 
@@ -184,6 +195,7 @@ class PathService {
   std::vector<int> distinctOf_;  // cost profile -> index in weighted_
   std::vector<std::unique_ptr<WeightedPlanner>> weighted_;
   std::deque<PathRequest> queue_;
+  std::deque<pathing::CellRect> pendingRepairs_;
   std::map<Key, Answer> cache_;
   std::deque<Key> cacheOrder_;  // insertion order, for eviction
   PathServiceMetrics metrics_;

@@ -95,14 +95,16 @@ struct AbstractionStats {
   std::size_t graphBytes = 0;  // nodes, edges, cluster index
   std::size_t pathBytes = 0;   // cached refinement paths
   double buildMilliseconds = 0.0;
+  std::uint64_t buildExpanded = 0;  // cells the build's intra-edge searches expanded
 };
 
 // What one repair did (ClusterAbstraction::repair).
 struct RepairStats {
-  int clusters = 0;         // clusters whose intra-edges were found again
-  int borders = 0;          // borders whose entrances were found again
-  bool rebuilt = false;     // the whole graph was built again (a terrain new to a capability)
-  double milliseconds = 0;  // wall time: measurement only
+  int clusters = 0;            // clusters whose intra-edges were found again
+  int borders = 0;             // borders whose entrances were found again
+  bool rebuilt = false;        // the whole graph was built again (a terrain new to a capability)
+  std::uint64_t expanded = 0;  // cells the intra-edge searches expanded (the repair's effort)
+  double milliseconds = 0;     // wall time: measurement only
 };
 
 class ClusterAbstraction {
