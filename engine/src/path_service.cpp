@@ -166,11 +166,7 @@ void PathService::changeTerrain(const TerrainChange& change) {
   }
   // Profiles merged because they agreed on the map's terrains may differ on a terrain the
   // change brought: merged again, their planners built anew when next asked.
-  std::uint8_t brought = 0;
-  for (int y = change.area.y; y < change.area.y + change.area.height; ++y) {
-    for (int x = change.area.x; x < change.area.x + change.area.width; ++x)
-      brought |= Capability::of({grid_.map().at({x, y})}).mask();
-  }
+  const std::uint8_t brought = grid_.map().terrainsIn(change.area).mask();
   if ((brought & ~present_.mask()) != 0) {
     present_ = present_ | Capability::fromMask(brought);
     mergeCostProfiles();

@@ -288,17 +288,8 @@ const AgentLayer& AnnotatedGrid::layer(Agent agent) const {
   return *slot;
 }
 
-CellRect AnnotatedGrid::clip(CellRect area) const {
-  const int x0 = std::max(0, area.x);
-  const int y0 = std::max(0, area.y);
-  const int x1 = std::min(map_.width(), area.x + std::max(0, area.width));
-  const int y1 = std::min(map_.height(), area.y + std::max(0, area.height));
-  if (x1 <= x0 || y1 <= y0) return {x0, y0, 0, 0};
-  return {x0, y0, x1 - x0, y1 - y0};
-}
-
 TerrainChange AnnotatedGrid::setTerrain(CellRect area, Terrain terrain) {
-  area = clip(area);
+  area = map_.clip(area);
   bool changed = false;
   for (int y = area.y; y < area.y + area.height; ++y) {
     for (int x = area.x; x < area.x + area.width; ++x) {
@@ -317,7 +308,7 @@ TerrainChange AnnotatedGrid::setTerrain(CellRect area, Terrain terrain) {
 }
 
 TerrainChange AnnotatedGrid::placeObstacle(CellRect area) {
-  area = clip(area);
+  area = map_.clip(area);
   if (obstacles_.empty()) {
     obstacles_.assign(map_.cellCount(), 0);
     underneath_.assign(map_.cellCount(), Terrain::Blocked);
@@ -340,7 +331,7 @@ TerrainChange AnnotatedGrid::placeObstacle(CellRect area) {
 }
 
 TerrainChange AnnotatedGrid::clearObstacle(CellRect area) {
-  area = clip(area);
+  area = map_.clip(area);
   for (int y = area.y; y < area.y + area.height; ++y) {
     for (int x = area.x; x < area.x + area.width; ++x) {
       if (obstacles_.empty() || obstacles_[map_.indexOf({x, y})] == 0)

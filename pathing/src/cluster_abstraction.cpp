@@ -155,8 +155,8 @@ class AbstractionBuilder {
   // intra-edges again, the borders whose two strips hold any find their entrances again, and
   // so do the clusters beside those borders (their transitions change).
   void repair(CellRect area, RepairStats& stats) {
-    const CellRect reach = clipped({area.x - maxSize_, area.y - maxSize_, area.width + maxSize_ + 1,
-                                    area.height + maxSize_ + 1});
+    const CellRect reach = map_.clip({area.x - maxSize_, area.y - maxSize_,
+                                      area.width + maxSize_ + 1, area.height + maxSize_ + 1});
     const int clusters = g_.clusterCount();
     std::vector<bool> redo(static_cast<std::size_t>(clusters), false);
     std::vector<std::pair<int, bool>> borders;  // (cluster, east)
@@ -280,14 +280,6 @@ class AbstractionBuilder {
 
  private:
   static constexpr std::uint32_t kNone = UINT32_MAX;
-
-  CellRect clipped(CellRect r) const {
-    const int x0 = std::max(0, r.x);
-    const int y0 = std::max(0, r.y);
-    const int x1 = std::min(map_.width(), r.x + r.width);
-    const int y1 = std::min(map_.height(), r.y + r.height);
-    return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
-  }
 
   static bool overlaps(CellRect a, CellRect b) {
     return a.x < b.x + b.width && b.x < a.x + a.width && a.y < b.y + b.height &&
@@ -899,12 +891,7 @@ RepairStats ClusterAbstraction::repair(const TerrainChange& change) {
   if (!change.changed) return stats;
   // Edges are annotated with the terrains each capability had on the map; a terrain new to
   // one would need edges the graph has no field for: build it whole.
-  const GridMap& map = grid_->map();
-  std::uint8_t added = 0;
-  for (int y = change.area.y; y < change.area.y + change.area.height; ++y) {
-    for (int x = change.area.x; x < change.area.x + change.area.width; ++x)
-      added |= Capability::of({map.at({x, y})}).mask();
-  }
+  const std::uint8_t added = grid_->map().terrainsIn(change.area).mask();
   bool newTerrain = false;
   for (std::size_t i = 0; i < effective_.size(); ++i)
     newTerrain = newTerrain || (spec_.capabilities[i].mask() & added & ~effective_[i].mask()) != 0;

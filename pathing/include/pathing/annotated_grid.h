@@ -100,7 +100,6 @@ class AnnotatedGrid {
   std::uint64_t revision() const { return revision_; }
 
  private:
-  CellRect clip(CellRect area) const;
   // Repairs the caches after the cells of `area` changed.
   void refresh(CellRect area);
 

@@ -55,6 +55,10 @@ class GridMap {
   std::span<const Terrain> cells() const { return cells_; }
   // The traversable terrains that occur on the map.
   Capability terrainsPresent() const;
+  // The traversable terrains of the cells of `area` (clipped to the map).
+  Capability terrainsIn(CellRect area) const;
+  // The part of `area` on the map (width or height 0 when none).
+  CellRect clip(CellRect area) const;
 
   bool operator==(const GridMap&) const = default;
 
