@@ -87,15 +87,8 @@ PathResult JumpPointSearch::findPath(Agent agent, Cell start, Cell goal, std::ve
   PathResult result;
   if (path) path->clear();
   const auto finish = [&](PathStatus status) { return finishQuery(result, status, clock); };
-  if (const auto answer = screenEndpoints(grid_, agent, start, goal)) return finish(*answer);
+  if (const auto answer = screenQuery(grid_, agent, start, goal, limits)) return finish(*answer);
   const GridMap& map = grid_.map();
-  if (limits.region && (!limits.region->contains(start) || !limits.region->contains(goal)))
-    return finish(PathStatus::Unreachable);
-  if (limits.maxExpanded == 0) return finish(PathStatus::BudgetExhausted);
-  // Different components: no search can connect them (as AA* answers, without a search).
-  const auto& components = grid_.layer(agent).components();
-  if (!limits.region && components[map.indexOf(start)] != components[map.indexOf(goal)])
-    return finish(PathStatus::Unreachable);
 
   Query q;
   q.clearance = grid_.clearance(agent.capability).values().data();

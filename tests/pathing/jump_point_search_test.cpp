@@ -5,9 +5,9 @@
 #include <stdexcept>
 
 #include "pathing/aa_star.h"
-#include "pathing/map_generator.h"
 #include "pathing/planner.h"
 #include "pathing/random.h"
+#include "random_grid.h"
 
 namespace warpath::pathing {
 namespace {
@@ -15,19 +15,6 @@ namespace {
 const Capability kGround = Capability::of({Terrain::Ground});
 const Capability kInfantry = Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Trees});
 const Capability kAmphibious = Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Water});
-
-GridMap randomMap(std::uint64_t seed, int side, int blocked, int maxPatch) {
-  RandomMapSpec spec;
-  spec.width = side;
-  spec.height = side - 6;
-  spec.seed = seed;
-  spec.blockedPercent = blocked;
-  spec.swampPercent = 10;
-  spec.treesPercent = 10;
-  spec.waterPercent = 10;
-  spec.maxPatch = maxPatch;
-  return generateRandomMap(spec);
-}
 
 // One query of JPS against AA* (optimal): the same status, the same cost, and a legal path
 // from start to goal that costs what JPS says. Returns whether a path was found.
@@ -65,9 +52,10 @@ TEST(JumpPointSearch, FindsPathsAsShortAsAStarForEverySizeAndCapability) {
   int found = 0;
   int unreachable = 0;
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
-    const AnnotatedGrid grid(randomMap(seed * 104729, 40 + static_cast<int>(seed % 3) * 8,
-                                       5 + static_cast<int>(seed % 4) * 8,
-                                       1 + static_cast<int>(seed % 5) * 2));
+    const int side = 40 + static_cast<int>(seed % 3) * 8;
+    const AnnotatedGrid grid(randomTerrainMap(seed * 104729, side, side - 6,
+                                              1 + static_cast<int>(seed % 5) * 2,
+                                              5 + static_cast<int>(seed % 4) * 8));
     const GridMap& map = grid.map();
     SplitMix64 rng(seed);
     for (Capability capability : {kGround, kInfantry, kAmphibious}) {
@@ -89,7 +77,7 @@ TEST(JumpPointSearch, FindsPathsAsShortAsAStarForEverySizeAndCapability) {
 
 // Inside a region the anchor never leaves it, as with AA*.
 TEST(JumpPointSearch, KeepsToARegionAsAStarDoes) {
-  const AnnotatedGrid grid(randomMap(77, 48, 15, 3));
+  const AnnotatedGrid grid(randomTerrainMap(77, 48, 42, 3, 15));
   SplitMix64 rng(5);
   const CellRect region{8, 6, 20, 16};
   int found = 0;
@@ -147,7 +135,7 @@ TEST(JumpPointSearch, StatusForBadEndsBudgetsAndTrivialQueries) {
 // Through the planner by name; terrain costs are refused, since the jumps assume uniform ones.
 TEST(JumpPointSearch, ThePlannerOffersItByNameOnUniformCostsOnly) {
   EXPECT_EQ(algorithmFromName("jps"), Algorithm::Jps);
-  const AnnotatedGrid grid(randomMap(3, 30, 10, 2));
+  const AnnotatedGrid grid(randomTerrainMap(3, 30, 24, 2, 10));
   Planner planner(grid, Algorithm::Jps, nullptr);
   EXPECT_FALSE(abstractionQualityFor(Algorithm::Jps));
   TerrainCosts costs = TerrainCosts::uniform(kGround);
