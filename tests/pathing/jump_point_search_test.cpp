@@ -52,7 +52,8 @@ TEST(JumpPointSearch, FindsPathsAsShortAsAStarForEverySizeAndCapability) {
   int found = 0;
   int unreachable = 0;
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
-    const int side = 40 + static_cast<int>(seed % 3) * 8;
+    // Sides across 64 and 128: the jumps read 64 cells a word, carrying between words.
+    const int side = 40 + static_cast<int>(seed % 3) * 44;
     const AnnotatedGrid grid(randomTerrainMap(seed * 104729, side, side - 6,
                                               1 + static_cast<int>(seed % 5) * 2,
                                               5 + static_cast<int>(seed % 4) * 8));
@@ -73,6 +74,31 @@ TEST(JumpPointSearch, FindsPathsAsShortAsAStarForEverySizeAndCapability) {
   // Both outcomes must be exercised, or this proves little.
   EXPECT_GT(found, 400);
   EXPECT_GT(unreachable, 20);
+}
+
+// The bit maps follow the grid: after its terrain changes, answers are those of the new map.
+TEST(JumpPointSearch, AnswersOnTheChangedMapAfterTerrainChanges) {
+  AnnotatedGrid grid(randomTerrainMap(41, 90, 70, 3, 10));
+  JumpPointSearch jps(grid);
+  const Agent agent{2, kInfantry};
+  SplitMix64 rng(9);
+  int found = 0;
+  for (int round = 0; round < 6; ++round) {
+    for (int q = 0; q < 40; ++q) {
+      const Cell start{rng.between(0, 89), rng.between(0, 69)};
+      const Cell goal{rng.between(0, 89), rng.between(0, 69)};
+      if (!grid.canStand(agent, start) || !grid.canStand(agent, goal)) continue;
+      std::vector<Cell> path;
+      (void)jps.findPath(agent, start, goal, &path);  // builds, then reuses, the bit maps
+      found += expectSameAsAStar(grid, agent, start, goal) ? 1 : 0;
+    }
+    EXPECT_GT(jps.bitmapBytes(), 0u);
+    // A wall across most of the map, then a gap in it.
+    const int x = rng.between(10, 79);
+    (void)grid.setTerrain({x, 0, 2, 60}, Terrain::Blocked);
+    (void)grid.setTerrain({x, rng.between(5, 50), 2, 4}, Terrain::Ground);
+  }
+  EXPECT_GT(found, 60);
 }
 
 // Inside a region the anchor never leaves it, as with AA*.
