@@ -95,6 +95,32 @@ TEST_F(ReplayPictures, ViewerPlaysAndTogglesUnderTheDummyDriver) {
       << r.out;
 }
 
+TEST_F(ReplayPictures, ViewerScalesTheMapToItsWindowKeepingItsShape) {
+  // A tall window: the 8:5 map is drawn 300 wide and 188 high, centred (rows 206-393).
+  const fs::path shot = dir_ / "window.png";
+  RtsResult r =
+      view("offscreen", "--window 300x600 --frames-then-exit 3 --screenshot " + shot.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  auto image = readPng(shot);
+  ASSERT_TRUE(image.ok()) << image.error().describe();
+  const Image& im = image.value();
+  ASSERT_EQ(im.width, 300);
+  ASSERT_EQ(im.height, 600);
+  const Rgba edge = palette::kBackground;
+  EXPECT_EQ(im.at(150, 100), edge);
+  EXPECT_EQ(im.at(150, 500), edge);
+  for (const int y : {210, 300, 390}) {
+    EXPECT_NE(im.at(0, y), edge) << "row " << y;
+    EXPECT_NE(im.at(299, y), edge) << "row " << y;
+  }
+  r = view("offscreen", "--window 300 --frames-then-exit 1");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("--window: must be WIDTHxHEIGHT"), std::string::npos) << r.out;
+  r = view("offscreen", "--screenshot " + shot.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("--screenshot needs --frames-then-exit"), std::string::npos) << r.out;
+}
+
 TEST(Caption, DrawsAStripAlongTheBottomOnly) {
   std::string rows;
   for (int y = 0; y < 8; ++y)

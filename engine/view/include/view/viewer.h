@@ -18,7 +18,14 @@
 namespace warpath::view {
 
 struct ViewerDef {
-  int size = 768;          // [Unit: pixels] [Limit: 16..8192] the window's longer side
+  int size = 768;  // [Unit: pixels] [Limit: 16..8192] the window's longer side
+  // [Unit: pixels] [Limit: 0, or 16..8192] the window's size at the start; 0: the map's shape
+  // at `size`. The map is drawn as large as the window allows, keeping its shape, centred,
+  // and again at the new size when the window is resized.
+  int windowWidth = 0;
+  int windowHeight = 0;
+  // A PNG of the whole window as the last of framesThenExit frames leaves it; empty: none.
+  std::string screenshot;
   int framesThenExit = 0;  // > 0: draw this many frames, then quit (tests under SDL's
                            // offscreen or dummy video driver)
   double speed = 1.0;      // [Limit: > 0] simulated seconds per wall second at the start
