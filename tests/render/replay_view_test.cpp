@@ -15,6 +15,7 @@
 #include "render/renderer.h"
 #include "support/rts_process.h"
 #include "support/scratch_dir.h"
+#include "support/walk_scenario.h"
 
 namespace warpath::render {
 namespace {
@@ -27,15 +28,9 @@ class ReplayPictures : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = warpath::testing::freshTestDir("warpath_replay_view_");
-    std::ofstream(dir_ / "s.yaml")
-        << "map: {rows: ['........', '........', '..TT....', '........', '........']}\n"
-           "catalogue: " WARPATH_SOURCE_DIR
-           "/assets/units.yaml\n"
-           "duration: 5\nteams: [blue]\n"
-           "groups:\n  - {name: g, team: blue, type: infantry, count: 2,"
-           " spawn: {x: 0, y: 0, w: 1, h: 5}, goal: {x: 6, y: 0, w: 2, h: 5}}\n";
+    const std::string scenario = warpath::testing::writeWalkScenario(dir_ / "s.yaml").string();
     replay_ = (dir_ / "r.rpl").string();
-    const RtsResult r = rts("run " + (dir_ / "s.yaml").string() + " --quiet --replay " + replay_);
+    const RtsResult r = rts("run " + scenario + " --quiet --replay " + replay_);
     ASSERT_EQ(r.status, 0) << r.out;
   }
   void TearDown() override { fs::remove_all(dir_); }

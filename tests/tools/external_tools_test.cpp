@@ -20,6 +20,7 @@
 #include "rts/chart.h"
 #include "support/rts_process.h"
 #include "support/scratch_dir.h"
+#include "support/walk_scenario.h"
 
 namespace warpath {
 namespace {
@@ -40,27 +41,11 @@ int count(const std::string& text, const std::string& what) {
   return n;
 }
 
-// An 8x5 map (the window's shape 8:5 at any size), two infantry walking across it.
-fs::path writeScenario(const fs::path& dir) {
-  const fs::path file = dir / "s.yaml";
-  std::ofstream(file)
-      << "name: walk\n"
-         "map: {rows: ['........', '........', '..TT....', '........', "
-         "'........']}\n"
-         "catalogue: " WARPATH_SOURCE_DIR
-         "/assets/units.yaml\n"
-         "duration: 5\nteams: [blue]\n"
-         "groups:\n  - {name: g, team: blue, type: infantry, count: 2,"
-         " spawn: {x: 0, y: 0, w: 1, h: 5}, goal: {x: 6, y: 0, w: 2, h: 5}}\n"
-         "expectations:\n  - arrival_rate: {team: blue, type: infantry, at_least: 1.0, by: 5}\n";
-  return file;
-}
-
 class ExternalTools : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = testing::freshTestDir("warpath_external_");
-    scenario_ = writeScenario(dir_).string();
+    scenario_ = testing::writeWalkScenario(dir_ / "s.yaml").string();
   }
   void TearDown() override { fs::remove_all(dir_); }
   fs::path dir_;

@@ -18,6 +18,7 @@
 #include "rts/svg_plot.h"
 #include "support/rts_process.h"
 #include "support/scratch_dir.h"
+#include "support/walk_scenario.h"
 
 namespace warpath::tools {
 namespace {
@@ -204,16 +205,9 @@ class HtmlCli : public ::testing::Test {
   void SetUp() override {
     dir_ = warpath::testing::freshTestDir("warpath_html_cli_");
     fs::create_directories(dir_ / "suite");
-    scenario_ = (dir_ / "suite" / "s.yaml").string();
-    std::ofstream(scenario_)
-        << "name: small <&> run\n"
-           "map: {rows: ['........', '........', '..TT....', '........', '........']}\n"
-           "catalogue: " WARPATH_SOURCE_DIR
-           "/assets/units.yaml\n"
-           "duration: 5\nteams: [blue]\n"
-           "groups:\n  - {name: g, team: blue, type: infantry, count: 2,"
-           " spawn: {x: 0, y: 0, w: 1, h: 5}, goal: {x: 6, y: 0, w: 2, h: 5}}\n"
-           "expectations:\n  - arrival_rate: {team: blue, type: infantry, at_least: 1.0, by: 5}\n";
+    // Its name, with markup in it, shows escaped.
+    scenario_ =
+        warpath::testing::writeWalkScenario(dir_ / "suite" / "s.yaml", "small <&> run").string();
   }
   void TearDown() override { fs::remove_all(dir_); }
 
