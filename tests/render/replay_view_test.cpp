@@ -108,6 +108,21 @@ TEST_F(ReplayPictures, ViewerScalesTheMapToItsWindowKeepingItsShape) {
     EXPECT_NE(im.at(0, y), edge) << "row " << y;
     EXPECT_NE(im.at(299, y), edge) << "row " << y;
   }
+  // Resized while it runs (as if its edge were dragged): drawn again at the new size.
+  r = view(
+      "offscreen",
+      "--window 400x250 --keys Window=250x400 --frames-then-exit 3 --screenshot " + shot.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  image = readPng(shot);
+  ASSERT_TRUE(image.ok()) << image.error().describe();
+  ASSERT_EQ(image.value().width, 250);
+  ASSERT_EQ(image.value().height, 400);
+  EXPECT_EQ(image.value().at(125, 60), edge);  // the map: 250x156, rows 122-277
+  EXPECT_NE(image.value().at(0, 200), edge);
+  EXPECT_NE(image.value().at(249, 200), edge);
+  r = view("offscreen", "--keys Window=2x2 --frames-then-exit 1");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("'Window=2x2': the size must be WxH"), std::string::npos) << r.out;
   r = view("offscreen", "--window 300 --frames-then-exit 1");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.out.find("--window: must be WIDTHxHEIGHT"), std::string::npos) << r.out;

@@ -205,11 +205,12 @@ std::string caseSection(const HtmlCase& c, const std::string& pageDir, std::size
                                                {"failed", "failed"},
                                                {"expanded", "expanded"},
                                                {"max_queue", "max queue"},
-                                               {"search_us", "search us"},
+                                               {"search_us", "search time (us)"},
                                                {"preprocess_ms", "preprocess ms"}});
-  out +=
-      fmt::format("<p>Repaths {}, units with no path {}, stuck units {}.</p>", cell(get("repaths")),
-                  cell(get("no_path_units")), cell(get("stuck_units").value("count", json())));
+  out += fmt::format(
+      "<p>Repaths {}, units with no path {}, stuck units {}.</p>", cell(get("repaths")),
+      cell(get("no_path_units")),
+      cell(get("stuck_units").is_object() ? get("stuck_units").value("count", json()) : json()));
 
   out += "<h3>Timing</h3>" + svgBarChart(timingChart(r));
   out += table(json::array({get("timing")}), {{"ms_per_tick", "ms per tick"},

@@ -2,7 +2,6 @@
 
 #include <fmt/core.h>
 
-#include <optional>
 #include <string>
 
 #include "rts/cli_support.h"
@@ -22,15 +21,11 @@ struct ViewOptions {
 int runView(const ViewOptions& options) {
   view::ViewerDef def = options.def;
   if (!options.window.empty()) {
-    const std::size_t x = options.window.find_first_of("xX");
-    const std::optional<int> w =
-        x == std::string::npos ? std::nullopt : parseInt(options.window.substr(0, x));
-    const std::optional<int> h =
-        x == std::string::npos ? std::nullopt : parseInt(options.window.substr(x + 1));
-    if (!w || !h || *w < 16 || *h < 16 || *w > 8192 || *h > 8192)
+    const auto size = view::parseWindowSize(options.window);
+    if (!size)
       throw BadInput{"--window: must be WIDTHxHEIGHT, each 16..8192, got '" + options.window + "'"};
-    def.windowWidth = *w;
-    def.windowHeight = *h;
+    def.windowWidth = size->first;
+    def.windowHeight = size->second;
   }
   if (!def.screenshot.empty() && def.framesThenExit <= 0)
     throw BadInput{"--screenshot needs --frames-then-exit (the frame it shows)"};
@@ -65,7 +60,8 @@ void registerViewCommand(CLI::App& app, CommandRunner& run) {
       ->check(positiveNumberUpTo(1e6));
   cmd->add_flag("--paused", options->def.paused, "Start paused");
   cmd->add_option("--keys", options->def.keys,
-                  "Keys to press one a frame from the start (SDL names, Shift+ to hold shift)")
+                  "Keys to press one a frame from the start (SDL names, Shift+ to hold shift; "
+                  "Window=WxH resizes the window)")
       ->delimiter(',');
   cmd->add_option("--frames-then-exit", options->def.framesThenExit,
                   "Draw N frames, then quit (for tests under SDL_VIDEODRIVER=offscreen)")

@@ -185,22 +185,39 @@ class Session {
   Status failure_ = Status::success();
 };
 
-// The SDL key events `names` stand for, or a failure naming the first unknown one.
-Status scriptedKeys(const std::vector<std::string>& names, std::vector<SDL_Keysym>& keys) {
+// One frame's scripted input: a key, or a new window size.
+struct ScriptStep {
+  SDL_Keysym key{};
+  int width = 0;  // > 0: resize the window to width x height instead
+  int height = 0;
+};
+
+// The steps `names` stand for, or a failure naming the first unknown key.
+Status scriptedSteps(const std::vector<std::string>& names, std::vector<ScriptStep>& steps) {
   constexpr std::string_view kShift = "shift+";
+  constexpr std::string_view kWindow = "window=";
   for (const std::string& name : names) {
-    SDL_Keysym k{};
+    ScriptStep step;
+    SDL_Keysym& k = step.key;
     std::string key = name;
     std::string lower = name;
     std::transform(lower.begin(), lower.end(), lower.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (lower.starts_with(kWindow)) {
+      const auto size = parseWindowSize(std::string_view(name).substr(kWindow.size()));
+      if (!size) return Error{"", 0, 0, "'" + name + "': the size must be WxH, each 16..8192"};
+      step.width = size->first;
+      step.height = size->second;
+      steps.push_back(step);
+      continue;
+    }
     if (lower.starts_with(kShift) && name.size() > kShift.size()) {
       k.mod = KMOD_LSHIFT;
       key = name.substr(kShift.size());
     }
     k.sym = SDL_GetKeyFromName(key.c_str());
     if (k.sym == SDLK_UNKNOWN) return Error{"", 0, 0, "unknown key '" + name + "'"};
-    keys.push_back(k);
+    steps.push_back(step);
   }
   return Status::success();
 }
@@ -229,6 +246,25 @@ Status writeScreenshot(SDL_Renderer* sdl, const std::string& file) {
 }
 
 }  // namespace
+
+std::optional<std::pair<int, int>> parseWindowSize(std::string_view text) {
+  const std::size_t x = text.find_first_of("xX");
+  if (x == std::string_view::npos) return std::nullopt;
+  const auto side = [](std::string_view digits) -> std::optional<int> {
+    int v = 0;
+    if (digits.empty() || digits.size() > 4) return std::nullopt;
+    for (const char c : digits) {
+      if (c < '0' || c > '9') return std::nullopt;
+      v = v * 10 + (c - '0');
+    }
+    if (v < 16 || v > 8192) return std::nullopt;
+    return v;
+  };
+  const auto w = side(text.substr(0, x));
+  const auto h = side(text.substr(x + 1));
+  if (!w || !h) return std::nullopt;
+  return std::pair{*w, *h};
+}
 
 Status runViewer(engine::ReplayPlayback& playback, const ViewerDef& def) {
   if (def.size < 16 || def.size > 8192) return Error{"", 0, 0, "size must be 16..8192"};
@@ -268,8 +304,8 @@ Status runViewer(engine::ReplayPlayback& playback, const ViewerDef& def) {
   std::unique_ptr<SDL_Texture, TextureDeleter> texture = makeTexture(view.w, view.h);
   if (!texture) return sdlFailure("cannot create a texture");
 
-  std::vector<SDL_Keysym> script;
-  if (Status s = scriptedKeys(def.keys, script); !s) return s;
+  std::vector<ScriptStep> script;
+  if (Status s = scriptedSteps(def.keys, script); !s) return s;
   Session session(playback, renderer, def);
   session.showType(0);
   const int teams = static_cast<int>(scenario.teams.size());
@@ -277,10 +313,15 @@ Status runViewer(engine::ReplayPlayback& playback, const ViewerDef& def) {
   std::uint64_t last = SDL_GetTicks64();
   for (int frame = 0; def.framesThenExit <= 0 || frame < def.framesThenExit; ++frame) {
     if (static_cast<std::size_t>(frame) < script.size()) {
-      SDL_Event typed{};
-      typed.type = SDL_KEYDOWN;
-      typed.key.keysym = script[static_cast<std::size_t>(frame)];
-      SDL_PushEvent(&typed);
+      const ScriptStep& step = script[static_cast<std::size_t>(frame)];
+      if (step.width > 0) {
+        SDL_SetWindowSize(window.get(), step.width, step.height);
+      } else {
+        SDL_Event typed{};
+        typed.type = SDL_KEYDOWN;
+        typed.key.keysym = step.key;
+        SDL_PushEvent(&typed);
+      }
     }
     SDL_Event event;
     while (SDL_PollEvent(&event) != 0) {
