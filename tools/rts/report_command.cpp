@@ -15,8 +15,34 @@
 namespace warpath::tools {
 namespace {
 
-// Reports of the largest bundled runs (2,000 units, every arrival time) are under 1 MiB.
-constexpr FileLimit kReportFileLimit{64 * kMiB, "reports"};
+// A report holds two numbers per unit (arrival time, delay) besides a few KB of figures: the
+// 2,000-unit run's is about 100 KB. 4 MiB of numbers parse in about a second within 200 MB.
+constexpr FileLimit kReportFileLimit{4 * kMiB, "reports"};
+// Reports nest four levels deep; a file nested deeper is no report (and a million levels of
+// '[' would cost the parser hundreds of MB).
+constexpr int kMaxReportNesting = 32;
+
+// Whether `text`'s arrays and objects nest at most `limit` deep (brackets in strings skipped).
+bool nestsWithin(const std::string& text, int limit) {
+  int depth = 0;
+  bool inString = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (inString) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > limit) return false;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return true;
+}
 
 struct PlotOptions {
   std::string report;
@@ -28,6 +54,10 @@ struct PlotOptions {
 int runPlot(const PlotOptions& options) {
   Result<std::string> text = readFileCapped(options.report, kReportFileLimit);
   if (!text.ok()) throw BadInput{text.error().describe()};
+  if (!nestsWithin(text.value(), kMaxReportNesting)) {
+    throw BadInput{options.report + ": nested deeper than " + std::to_string(kMaxReportNesting) +
+                   " levels: not a JSON report (rts run --report)"};
+  }
   const nlohmann::json report = nlohmann::json::parse(text.value(), nullptr, false);
   if (report.is_discarded() || !report.is_object())
     throw BadInput{options.report + ": not a JSON report (rts run --report)"};
