@@ -275,6 +275,11 @@ TEST_F(HtmlCli, ReportPlotDrawsAPngAndRefusesBadReports) {
                             png.string());
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.out.find("old.json: the report has no 'arrived_at'"), std::string::npos) << r.out;
+  std::ofstream(dir_ / "deep.json") << std::string(100, '[') + std::string(100, ']');
+  r = warpath::testing::rts("report plot " + (dir_ / "deep.json").string() + " --png " +
+                            png.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("deep.json: nested deeper than 32 levels"), std::string::npos) << r.out;
   r = warpath::testing::rts("report plot " + (dir_ / "none.json").string() + " --png " +
                             png.string());
   EXPECT_EQ(r.status, 2);
