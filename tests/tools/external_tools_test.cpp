@@ -77,11 +77,11 @@ TEST_F(ExternalTools, HtmlReportRendersItsChartsInHeadlessChromium) {
   auto image = render::readPng(shot);
   ASSERT_TRUE(image.ok()) << image.error().describe();
   // The charts' first colour fills the legend swatches and the timing bars: drawn, not blank.
-  const tools::Colour c = tools::seriesColour(0);
+  const render::Rgba colour = tools::seriesColour(0);
   int painted = 0;
   for (int y = 0; y < image.value().height; ++y) {
     for (int x = 0; x < image.value().width; ++x)
-      painted += image.value().at(x, y) == render::Rgba{c.r, c.g, c.b, 255} ? 1 : 0;
+      painted += image.value().at(x, y) == colour ? 1 : 0;
   }
   EXPECT_GT(painted, 500);
 }

@@ -185,13 +185,13 @@ TEST(PngPlot, DrawsTheCurvesOnWhite) {
   const render::Image image = rasterLineChart(arrivalChart(sampleReport()), 400, 300);
   ASSERT_EQ(image.width, 400);
   ASSERT_EQ(image.height, 300);
-  const Colour c = seriesColour(0);
+  const render::Rgba colour = seriesColour(0);
   int curve = 0;
   int white = 0;
   for (int y = 0; y < image.height; ++y) {
     for (int x = 0; x < image.width; ++x) {
       const render::Rgba p = image.at(x, y);
-      curve += p == render::Rgba{c.r, c.g, c.b, 255} ? 1 : 0;
+      curve += p == colour ? 1 : 0;
       white += p == render::Rgba{255, 255, 255, 255} ? 1 : 0;
     }
   }

@@ -49,9 +49,9 @@ std::vector<double> numbers(const json& object, const std::string& key) {
 
 }  // namespace
 
-Colour seriesColour(std::size_t index) {
+render::Rgba seriesColour(std::size_t index) {
   // Okabe and Ito's palette, without its black and yellow (too faint on white).
-  constexpr std::array<Colour, 6> kColours{
+  constexpr std::array<render::Rgba, 6> kColours{
       {{0, 114, 178}, {213, 94, 0}, {0, 158, 115}, {204, 121, 167}, {86, 180, 233}, {230, 159, 0}}};
   return kColours[index % kColours.size()];
 }

@@ -9,16 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "render/image.h"
+
 namespace warpath::tools {
 
-struct Colour {
-  std::uint8_t r = 0;
-  std::uint8_t g = 0;
-  std::uint8_t b = 0;
-};
-
 // Series colours, in order (a colour-blind-safe qualitative palette); repeats past the end.
-Colour seriesColour(std::size_t index);
+render::Rgba seriesColour(std::size_t index);
 
 struct Series {
   std::string name;

@@ -84,10 +84,6 @@ class Canvas {
   int scale_;
 };
 
-Rgba rgba(Colour c) {
-  return {c.r, c.g, c.b, 255};
-}
-
 }  // namespace
 
 render::Image rasterLineChart(const LineChart& chart, int width, int height) {
@@ -137,7 +133,7 @@ render::Image rasterLineChart(const LineChart& chart, int width, int height) {
   const int thick = std::max(2, scale);
   for (std::size_t i = 0; i < chart.series.size(); ++i) {
     const Series& s = chart.series[i];
-    const Rgba colour = rgba(seriesColour(i));
+    const Rgba colour = seriesColour(i);
     for (std::size_t k = 1; k < s.xs.size() && k < s.ys.size(); ++k) {
       const double cornerY = chart.steps ? s.ys[k - 1] : s.ys[k];
       canvas.line(px(s.xs[k - 1]), py(s.ys[k - 1]), px(s.xs[k]), py(cornerY), colour, thick);

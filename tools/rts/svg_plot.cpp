@@ -21,7 +21,7 @@ struct Layout {
 constexpr Layout kSmall{
     .width = 440, .height = 240, .left = 50, .right = 20, .top = 30, .bottom = 50};
 
-std::string colourText(Colour c) {
+std::string colourText(render::Rgba c) {
   return fmt::format("#{:02x}{:02x}{:02x}", c.r, c.g, c.b);
 }
 
