@@ -9,6 +9,7 @@
 
 #include "rts/cli_support.h"
 #include "rts/commands.h"
+#include "rts/html_report.h"
 #include "rts/scenario_support.h"
 
 namespace warpath::tools {
@@ -18,6 +19,7 @@ namespace fs = std::filesystem;
 
 struct TestOptions {
   std::string folder;
+  std::string html;
 };
 
 int runTest(const TestOptions& options) {
@@ -39,11 +41,13 @@ int runTest(const TestOptions& options) {
 
   int passed = 0;
   int failed = 0;
+  std::vector<HtmlCase> page;  // --html: one section per case
   for (const fs::path& file : files) {
     if (interruptRequested()) break;
     Result<engine::Scenario> loaded = engine::loadScenario(file);
     if (!loaded.ok()) {
       fmt::print("FAIL {}: {}\n", file.string(), loaded.error().describe());
+      page.push_back(HtmlCase::failed(file.string(), loaded.error().describe()));
       ++failed;
       continue;
     }
@@ -58,7 +62,10 @@ int runTest(const TestOptions& options) {
       if (!e.pass) fmt::print("  expectation \"{}\" failed: actual {:.4g}\n", e.text, e.actual);
     }
     (ok ? passed : failed) += 1;
+    if (!options.html.empty())
+      page.push_back(HtmlCase::ran(file.string(), reportJson(outcome, run)));
   }
+  if (!options.html.empty()) writeHtmlReport(options.html, "warpath test: " + options.folder, page);
   fmt::print("{} passed, {} failed\n", passed, failed);
   return failed == 0 && !interruptRequested() ? kExitOk : kExitFailed;
 }
@@ -70,6 +77,7 @@ void registerTestCommand(CLI::App& app, CommandRunner& run) {
       app, run, "test", "Run every scenario (*.yaml) in a folder; ends with \"N passed, N failed\"",
       runTest);
   cmd->add_option("folder", options->folder, "Folder of scenario files")->required();
+  cmd->add_option("--html", options->html, "Write one HTML page with every case's charts");
 }
 
 }  // namespace warpath::tools
