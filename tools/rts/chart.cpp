@@ -50,9 +50,18 @@ std::vector<double> numbers(const json& object, const std::string& key) {
 }  // namespace
 
 render::Rgba seriesColour(std::size_t index) {
-  // Okabe and Ito's palette, without its black and yellow (too faint on white).
-  constexpr std::array<render::Rgba, 6> kColours{
-      {{0, 114, 178}, {213, 94, 0}, {0, 158, 115}, {204, 121, 167}, {86, 180, 233}, {230, 159, 0}}};
+  // Okabe and Ito's palette, without its black and yellow (too faint on white), then four dark
+  // colours of Paul Tol's: two teams of four unit types draw in eight colours of their own.
+  constexpr std::array<render::Rgba, 10> kColours{{{0, 114, 178},
+                                                   {213, 94, 0},
+                                                   {0, 158, 115},
+                                                   {204, 121, 167},
+                                                   {86, 180, 233},
+                                                   {230, 159, 0},
+                                                   {136, 34, 85},
+                                                   {51, 34, 136},
+                                                   {17, 119, 51},
+                                                   {153, 153, 51}}};
   return kColours[index % kColours.size()];
 }
 
