@@ -99,7 +99,12 @@ int runTest(const TestOptions& options) {
   std::vector<CaseResult> inOrder;
   const std::size_t started =
       runInWorkers(cases, options.jobs, [&](std::size_t index, CaseResult result) {
-        if (!options.reportDir.empty()) writeCaseReport(options.reportDir, result);
+        try {
+          if (!options.reportDir.empty()) writeCaseReport(options.reportDir, result);
+        } catch (const BadInput& e) {  // the run goes on; its workers must be waited for
+          fmt::print(stderr, "rts: warning: {}\n", e.message);
+          result.reportFile.clear();
+        }
         result.report = nullptr;  // on disk now; a sweep need not hold every report
         finished[index] = std::move(result);
         while (inOrder.size() < cases.size() && finished[inOrder.size()]) {
@@ -196,14 +201,13 @@ int runMerge(const MergeOptions& options) {
     auto& [result, from] = it->second;
     if (result.status == CaseStatus::NotRun) notRunNames.push_back(name);
     if (!options.reportDir.empty() && !result.reportFile.empty()) {
+      const fs::path source = fs::path(dirs[from]) / result.reportFile;
+      const fs::path target = fs::path(options.reportDir) / result.reportFile;
+      std::error_code same;  // (no target yet is an error here, and not the same file)
       std::error_code error;
-      fs::copy_file(fs::path(dirs[from]) / result.reportFile,
-                    fs::path(options.reportDir) / result.reportFile,
-                    fs::copy_options::overwrite_existing, error);
-      if (error) {
-        throw BadInput{"cannot copy " + (fs::path(dirs[from]) / result.reportFile).string() + ": " +
-                       error.message()};
-      }
+      if (!fs::equivalent(source, target, same))  // merging into a shard's own folder
+        fs::copy_file(source, target, fs::copy_options::overwrite_existing, error);
+      if (error) throw BadInput{"cannot copy " + source.string() + ": " + error.message()};
     }
     results.push_back(std::move(result));
     byName.erase(it);
