@@ -226,15 +226,22 @@ TEST_F(TestCommand, JUnitHasFailuresErrorsAndTimes) {
   write("slow.yaml", "  - arrival_rate: {team: blue, type: infantry, at_least: 1, by: 1}\n");
   // A file that does not load: an unknown team, on line 9.
   write("bad.yaml", "  - arrival_rate: {team: green, type: infantry, at_least: 1, by: 1}\n");
+  // One whose error quotes markup, a control character and bytes that are not UTF-8.
+  write("odd.yaml",
+        "  - arrival_rate: {team: \"g\\x01<&>\xff\", type: infantry, at_least: 1, by: 1}\n");
   const fs::path xml = dir_ / "out/junit.xml";
   const Result r = rts("test " + q(scenarios_) + " --jobs 2 --junit " + q(xml));
   EXPECT_EQ(r.status, 1) << r.out;
-  EXPECT_TRUE(r.out.ends_with("1 passed, 2 failed\n")) << r.out;
+  EXPECT_TRUE(r.out.ends_with("1 passed, 3 failed\n")) << r.out;
   ASSERT_TRUE(wellFormed(xml)) << readFile(xml);
-  EXPECT_EQ(xpath(xml, "string(/testsuites/@tests)"), "3");
-  EXPECT_EQ(xpath(xml, "count(/testsuites/testsuite)"), "3");
+  EXPECT_EQ(xpath(xml, "string(/testsuites/@tests)"), "4");
+  EXPECT_EQ(xpath(xml, "count(/testsuites/testsuite)"), "4");
   EXPECT_EQ(xpath(xml, "string(/testsuites/@failures)"), "1");
-  EXPECT_EQ(xpath(xml, "string(/testsuites/@errors)"), "1");
+  EXPECT_EQ(xpath(xml, "string(/testsuites/@errors)"), "2");
+  EXPECT_NE(xpath(xml, "string(//testcase[@name='odd.yaml']/error/@message)")
+                .find("unknown team 'g?<&>\xEF\xBF\xBD'"),
+            std::string::npos)
+      << readFile(xml);
   EXPECT_EQ(xpath(xml, "string(//testcase[@name='slow.yaml']/failure/@message)"),
             "expectation \"arrival_rate(blue, infantry) >= 1 by 1s\" failed: actual 0");
   const std::string error = xpath(xml, "string(//testcase[@name='bad.yaml']/error/@message)");
