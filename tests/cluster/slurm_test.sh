@@ -115,7 +115,7 @@ local_status=0
 "$rts" test "${test_args[@]}" --jobs 2 --report-dir "$tmp/local" >"$tmp/local.out" || local_status=$?
 cluster_status=0
 bash "$src/tools/cluster/slurm_array.sh" --shards 4 --out "$tmp/cluster" --rts "$rts" --wait \
-  -- "${test_args[@]}" >"$tmp/cluster.out" || cluster_status=$?
+  --cpus 1 --sbatch-arg --time=10 -- "${test_args[@]}" >"$tmp/cluster.out" || cluster_status=$?
 cat "$tmp/cluster.out"
 
 fail() { echo "FAIL: $*"; exit 1; }
