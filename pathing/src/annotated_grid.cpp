@@ -51,6 +51,7 @@ struct AgentLayer::Scratch {
   std::vector<std::uint32_t> group;  // per cell: the group that reached it
   std::uint32_t epoch = 0;
   std::vector<std::uint32_t> parent;                // union-find over groups
+  std::vector<std::uint32_t> seed;                  // per group: the cell it started from
   std::vector<std::vector<std::uint32_t>> reached;  // per root: cells, in the order reached
   std::vector<std::size_t> head;                    // per root: next of `reached` to expand
 };
@@ -96,7 +97,9 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
     s.epoch = 1;
   }
   s.parent.clear();
-  s.reached.clear();
+  s.seed.clear();
+  for (std::vector<std::uint32_t>& cells : s.reached)
+    cells.clear();  // keeps their memory for the next update
   s.head.clear();
   const auto root = [&](std::uint32_t g) {
     while (s.parent[g] != g)
@@ -119,17 +122,39 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
       }
       const auto g = static_cast<std::uint32_t>(s.parent.size());
       s.parent.push_back(g);
-      s.reached.push_back({cell});
-      s.head.push_back(0);
+      s.seed.push_back(cell);
       s.stamp[cell] = s.epoch;
       s.group[cell] = g;
     }
   }
-  std::vector<std::uint32_t> live(s.parent.size());
-  std::iota(live.begin(), live.end(), 0u);
+  // Cells joined by a move inside the region start as one group: after a change in the open
+  // the region is connected in itself, one group remains and no search runs at all.
+  for (const std::uint32_t cell : s.seed) {
+    const std::uint8_t mask = moveMasks_[cell];
+    for (int d = 0; d < 4; ++d) {
+      if ((mask & (1u << d)) == 0) continue;
+      const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+      const auto neighbour =
+          static_cast<std::uint32_t>(static_cast<std::int64_t>(cell) + dir.dy * w + dir.dx);
+      if (s.stamp[neighbour] != s.epoch) continue;
+      const std::uint32_t a = root(s.group[cell]);
+      const std::uint32_t b = root(s.group[neighbour]);
+      if (a != b) s.parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  s.reached.resize(s.parent.size());
+  s.head.assign(s.parent.size(), 0);
+  std::vector<std::uint32_t> live;
+  for (std::uint32_t g = 0; g < s.parent.size(); ++g) {
+    const std::uint32_t r = root(g);
+    s.reached[r].push_back(s.seed[g]);
+    if (r == g) live.push_back(g);
+  }
   std::vector<std::uint32_t> done;  // roots that ran out of cells
+  std::vector<std::uint32_t> stillLive;
+  std::vector<std::uint32_t> pending;
   while (live.size() > 1) {
-    std::vector<std::uint32_t> next;
+    stillLive.clear();
     for (std::uint32_t g : live) {
       if (root(g) != g) continue;  // merged into another this round
       if (s.head[g] == s.reached[g].size()) {
@@ -159,8 +184,7 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
         std::vector<std::uint32_t>& into = s.reached[keep];
         std::vector<std::uint32_t>& from = s.reached[gone];
         // Cells not yet expanded go to the end of the survivor's list; expanded ones need not.
-        std::vector<std::uint32_t> pending(into.begin() + static_cast<std::ptrdiff_t>(s.head[keep]),
-                                           into.end());
+        pending.assign(into.begin() + static_cast<std::ptrdiff_t>(s.head[keep]), into.end());
         into.resize(s.head[keep]);
         into.insert(into.end(), from.begin(),
                     from.begin() + static_cast<std::ptrdiff_t>(s.head[gone]));
@@ -172,12 +196,14 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
         from.shrink_to_fit();
         g = keep;
       }
-      next.push_back(g);
+      stillLive.push_back(g);
     }
-    std::sort(next.begin(), next.end());
-    next.erase(std::unique(next.begin(), next.end()), next.end());
-    std::erase_if(next, [&](std::uint32_t g) { return root(g) != g; });
-    live = std::move(next);
+    // In order unless a merge kept a group listed before the one it met.
+    if (!std::is_sorted(stillLive.begin(), stillLive.end()))
+      std::sort(stillLive.begin(), stillLive.end());
+    stillLive.erase(std::unique(stillLive.begin(), stillLive.end()), stillLive.end());
+    std::erase_if(stillLive, [&](std::uint32_t g) { return root(g) != g; });
+    std::swap(live, stillLive);
   }
   // Groups that ran out hold whole components: new ids.
   for (std::uint32_t g : done) {
@@ -196,7 +222,8 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
   const std::uint32_t last = root(live.front());
   std::vector<std::uint32_t> met;
   for (std::uint32_t cell : s.reached[last]) {
-    if (components_[cell] != 0) met.push_back(components_[cell]);
+    const std::uint32_t id = components_[cell];
+    if (id != 0 && (met.empty() || met.back() != id)) met.push_back(id);  // runs of one id
   }
   std::sort(met.begin(), met.end());
   met.erase(std::unique(met.begin(), met.end()), met.end());

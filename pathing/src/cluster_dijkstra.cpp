@@ -1,12 +1,44 @@
 #include "cluster_dijkstra.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 
 namespace warpath::pathing {
 
+namespace {
+
+// Per cell position in a block: the directions that stay inside it. Bit 0: on the west edge,
+// 1: east edge, 2: north edge, 3: south edge.
+constexpr std::array<std::uint8_t, 16> kInsideMasks = [] {
+  std::array<std::uint8_t, 16> masks{};
+  for (unsigned edges = 0; edges < 16; ++edges) {
+    for (int d = 0; d < kDirectionCount; ++d) {
+      const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+      const bool out = ((edges & 1u) && dir.dx < 0) || ((edges & 2u) && dir.dx > 0) ||
+                       ((edges & 4u) && dir.dy < 0) || ((edges & 8u) && dir.dy > 0);
+      if (!out) masks[edges] = static_cast<std::uint8_t>(masks[edges] | (1u << d));
+    }
+  }
+  return masks;
+}();
+
+}  // namespace
+
 void ClusterDijkstra::run(const GridMap& map, const AgentLayer& layer, CellRect region, Cell source,
                           std::span<const Cell> targets, const CostField* costs) {
+  if (costs) {
+    search(map, layer, region, source, targets,
+           [costs](Cell from, int d) { return costs->moveCost(from, d); });
+  } else {
+    search(map, layer, region, source, targets,
+           [](Cell, int d) { return kDirections[static_cast<std::size_t>(d)].cost; });
+  }
+}
+
+template <class MoveCost>
+void ClusterDijkstra::search(const GridMap& map, const AgentLayer& layer, CellRect region,
+                             Cell source, std::span<const Cell> targets, MoveCost moveCost) {
   region_ = region;
   expanded_ = 0;
   generated_ = 1;  // the source
@@ -45,6 +77,11 @@ void ClusterDijkstra::run(const GridMap& map, const AgentLayer& layer, CellRect 
   g_[start] = 0.0;
   open_.push(OpenList::makeKey(0.0, 0.0), static_cast<std::uint32_t>(start));
   const int width = region.width;
+  std::array<std::ptrdiff_t, kDirectionCount> step{};  // local index offset of each direction
+  for (int d = 0; d < kDirectionCount; ++d) {
+    const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+    step[static_cast<std::size_t>(d)] = static_cast<std::ptrdiff_t>(dir.dy) * width + dir.dx;
+  }
   while (!open_.empty()) {
     const std::uint32_t current = open_.pop();
     if (stamp_[current] == settled) continue;
@@ -55,16 +92,18 @@ void ClusterDijkstra::run(const GridMap& map, const AgentLayer& layer, CellRect 
     const int ly = static_cast<int>(current / static_cast<std::uint32_t>(width));
     const Cell here{region.x + lx, region.y + ly};
     const double g = g_[current];
-    for (unsigned mask = masks[map.indexOf(here)]; mask != 0; mask &= mask - 1) {
+    const unsigned edges = (lx == 0 ? 1u : 0u) | (lx == width - 1 ? 2u : 0u) | (ly == 0 ? 4u : 0u) |
+                           (ly == region.height - 1 ? 8u : 0u);
+    // Directions in increasing order, as the open list's tie-breaking expects.
+    for (unsigned mask = masks[map.indexOf(here)] & kInsideMasks[edges]; mask != 0;
+         mask &= mask - 1) {
       const int d = std::countr_zero(mask);
-      const Direction& dir = kDirections[static_cast<std::size_t>(d)];
-      const int nx = lx + dir.dx;
-      const int ny = ly + dir.dy;
-      if (nx < 0 || ny < 0 || nx >= width || ny >= region.height) continue;
-      const std::size_t next = static_cast<std::size_t>(ny) * static_cast<std::size_t>(width) +
-                               static_cast<std::size_t>(nx);
-      const double ng = g + (costs ? costs->moveCost(here, d) : dir.cost);
-      if (stamp_[next] == settled || (stamp_[next] == openStamp && ng >= g_[next])) continue;
+      const auto next = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(current) +
+                                                 step[static_cast<std::size_t>(d)]);
+      const std::uint32_t stamp = stamp_[next];
+      if (stamp == settled) continue;
+      const double ng = g + moveCost(here, d);
+      if (stamp == openStamp && ng >= g_[next]) continue;
       stamp_[next] = openStamp;
       g_[next] = ng;
       via_[next] = static_cast<std::uint8_t>(d);
@@ -85,6 +124,42 @@ void ClusterDijkstra::appendSteps(Cell target, std::vector<std::uint8_t>* steps)
     index = local(at);
   }
   std::reverse(steps->begin() + static_cast<std::ptrdiff_t>(first), steps->end());
+}
+
+void RegionComponents::label(const GridMap& map, const AgentLayer& layer, CellRect region) {
+  region_ = region;
+  const std::size_t cells = static_cast<std::size_t>(region.width) * region.height;
+  part_.assign(cells, 0);
+  const std::uint8_t* masks = layer.moveMasks().data();
+  const int width = region.width;
+  std::uint32_t parts = 0;
+  // Cardinal moves suffice: a diagonal move needs both cells beside it, so its ends are also
+  // joined by two cardinal moves, inside the block's rectangle.
+  for (std::size_t seed = 0; seed < cells; ++seed) {
+    const int sx = static_cast<int>(seed % static_cast<std::size_t>(width));
+    const int sy = static_cast<int>(seed / static_cast<std::size_t>(width));
+    if (part_[seed] != 0 || masks[map.indexOf({region.x + sx, region.y + sy})] == 0) continue;
+    part_[seed] = ++parts;
+    stack_.assign(1, static_cast<std::uint32_t>(seed));
+    while (!stack_.empty()) {
+      const std::uint32_t current = stack_.back();
+      stack_.pop_back();
+      const int lx = static_cast<int>(current % static_cast<std::uint32_t>(width));
+      const int ly = static_cast<int>(current / static_cast<std::uint32_t>(width));
+      const unsigned mask = masks[map.indexOf({region.x + lx, region.y + ly})] & 0xFu;
+      for (unsigned m = mask; m != 0; m &= m - 1) {
+        const Direction& dir = kDirections[static_cast<std::size_t>(std::countr_zero(m))];
+        const int nx = lx + dir.dx;
+        const int ny = ly + dir.dy;
+        if (nx < 0 || ny < 0 || nx >= width || ny >= region.height) continue;
+        const std::size_t next = static_cast<std::size_t>(ny) * static_cast<std::size_t>(width) +
+                                 static_cast<std::size_t>(nx);
+        if (part_[next] != 0) continue;
+        part_[next] = parts;
+        stack_.push_back(static_cast<std::uint32_t>(next));
+      }
+    }
+  }
 }
 
 }  // namespace warpath::pathing

@@ -33,6 +33,11 @@ class ClusterDijkstra {
   std::uint64_t generated() const { return generated_; }
 
  private:
+  // run() for one model of move costs, so the uniform one's inner loop has no branch on it.
+  template <class MoveCost>
+  void search(const GridMap& map, const AgentLayer& layer, CellRect region, Cell source,
+              std::span<const Cell> targets, MoveCost moveCost);
+
   std::size_t local(Cell c) const {
     return static_cast<std::size_t>(c.y - region_.y) * static_cast<std::size_t>(region_.width) +
            static_cast<std::size_t>(c.x - region_.x);
@@ -48,6 +53,28 @@ class ClusterDijkstra {
   std::uint32_t generation_ = 0;
   std::uint64_t expanded_ = 0;
   std::uint64_t generated_ = 0;
+};
+
+// The connected parts of one block of cells for one agent kind, moving inside the block only:
+// cells of different parts cannot reach each other by a path inside it, so a search inside the
+// block need not look for them. Owns its scratch memory.
+class RegionComponents {
+ public:
+  // [Limit: region inside the map]
+  void label(const GridMap& map, const AgentLayer& layer, CellRect region);
+  // 0 where the agent has no move (cannot stand, or stands walled in); equal non-zero parts
+  // <=> joined inside the region.
+  // [Limit: c in the labelled region]
+  std::uint32_t partOf(Cell c) const {
+    return part_[static_cast<std::size_t>(c.y - region_.y) *
+                     static_cast<std::size_t>(region_.width) +
+                 static_cast<std::size_t>(c.x - region_.x)];
+  }
+
+ private:
+  CellRect region_;
+  std::vector<std::uint32_t> part_;
+  std::vector<std::uint32_t> stack_;
 };
 
 }  // namespace warpath::pathing
