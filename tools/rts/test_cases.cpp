@@ -139,8 +139,10 @@ std::vector<TestCase> collectCases(const std::vector<std::string>& inputs,
         files.emplace_back(file, file.lexically_relative(input).generic_string());
     } else if (fs::is_regular_file(status)) {
       files.emplace_back(input, fs::path(input).filename().string());
-    } else if (!fs::exists(status)) {
+    } else if (status.type() == fs::file_type::not_found) {
       throw BadInput{input + ": no such file or folder"};
+    } else if (error) {
+      throw BadInput{input + ": cannot read: " + error.message()};
     } else {
       throw BadInput{"'" + input + "' is not a folder or a regular file"};
     }
