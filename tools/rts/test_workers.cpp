@@ -34,6 +34,11 @@ CaseResult failedToRun(const TestCase& testCase, const std::string& message) {
   return r;
 }
 
+CaseResult cannotStart(const TestCase& testCase) {
+  return failedToRun(testCase,
+                     std::string("cannot start a worker process: ") + std::strerror(errno));
+}
+
 void writeAll(int fd, const std::string& text) {
   std::size_t written = 0;
   while (written < text.size()) {
@@ -102,8 +107,7 @@ std::size_t runInWorkers(const std::vector<TestCase>& cases, int jobs,
       const std::size_t index = next++;
       int fds[2];
       if (::pipe(fds) != 0) {
-        done(index, failedToRun(cases[index], std::string("cannot start a worker process: ") +
-                                                  std::strerror(errno)));
+        done(index, cannotStart(cases[index]));
         continue;
       }
       std::fflush(stdout);  // what is printed so far, once
@@ -118,8 +122,7 @@ std::size_t runInWorkers(const std::vector<TestCase>& cases, int jobs,
       ::close(fds[1]);
       if (pid < 0) {
         ::close(fds[0]);
-        done(index, failedToRun(cases[index], std::string("cannot start a worker process: ") +
-                                                  std::strerror(errno)));
+        done(index, cannotStart(cases[index]));
         continue;
       }
       running.push_back({pid, fds[0], index, {}, Clock::now()});
