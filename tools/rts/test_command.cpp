@@ -88,6 +88,10 @@ int runTest(const TestOptions& options) {
     allNames.push_back(c.name);
     if (inShard(c.name, shard)) cases.push_back(c);
   }
+  if (!options.shard.empty()) {  // on stderr: stdout stays what a whole run prints
+    fmt::print(stderr, "rts: shard {}/{}: {} of {} cases\n", shard.index, shard.count, cases.size(),
+               all.size());
+  }
   prepareOutputPath(options.junit, "--junit");
   if (!options.reportDir.empty()) prepareReportDir(options.reportDir);
   Outputs outputs(options.junit, options.reportDir, shard, std::move(allNames));
