@@ -82,8 +82,10 @@ PathService::PathService(const AnnotatedGrid& grid, const PathServiceSettings& s
     spec.quality = *quality;
     abstraction_ = std::make_unique<ClusterAbstraction>(ClusterAbstraction::build(grid, spec));
   }
-  // Requests without a profile plan in the uniform model (by AA* when no graph was built).
-  planner_.emplace(grid, abstraction_ ? settings.algorithm : Algorithm::AStar, abstraction_.get());
+  // Requests without a profile plan in the uniform model (by AA* when the algorithm needs a
+  // graph and none was built).
+  planner_.emplace(grid, abstraction_ || !quality ? settings.algorithm : Algorithm::AStar,
+                   abstraction_.get());
   present_ = grid.map().terrainsPresent();
   costProfiles_ = std::move(costProfiles);
   mergeCostProfiles();

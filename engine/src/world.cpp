@@ -194,7 +194,10 @@ void World::applyTerrain() {
     }
     if (!tracked.empty()) state_.reservations->track(contestedCells(*grid_, tracked));
     phases_->traffic.terrainChanged();
-    world::afterTerrainChange(w, change.area, edit.kind == TerrainEditKind::SetTerrain);
+    const bool set = edit.kind == TerrainEditKind::SetTerrain;
+    world::afterTerrainChange(
+        w, change.area, set,
+        edit.kind == TerrainEditKind::ClearObstacle || (set && edit.terrain != Terrain::Blocked));
   }
 }
 

@@ -15,6 +15,7 @@ std::optional<Algorithm> algorithmFromName(std::string_view name) {
 std::optional<AbstractionQuality> abstractionQualityFor(Algorithm algorithm) {
   switch (algorithm) {
     case Algorithm::AStar:
+    case Algorithm::Jps:
       return std::nullopt;
     case Algorithm::HaaLow:
       return AbstractionQuality::Low;
@@ -43,7 +44,7 @@ std::string problemWith(const AnnotatedGrid& grid, Algorithm algorithm,
 
 namespace {
 
-using Impl = std::variant<AnnotatedAStar, HierarchicalAStar, HybridPlanner>;
+using Impl = std::variant<AnnotatedAStar, HierarchicalAStar, HybridPlanner, JumpPointSearch>;
 
 }  // namespace
 
@@ -52,12 +53,16 @@ Planner::Planner(const AnnotatedGrid& grid, Algorithm algorithm,
                  const CostField* costs)
     : algorithm_(algorithm), costs_(costs), impl_([&]() -> Impl {
         limits::require(problemWith(grid, algorithm, abstraction, hybrid));
+        if (algorithm == Algorithm::Jps && costs)
+          limits::require("jps plans on uniform costs only (got terrain costs)");
         switch (algorithm) {
           case Algorithm::HaaHigh:
           case Algorithm::HaaLow:
             return Impl(std::in_place_type<HierarchicalAStar>, *abstraction, haa);
           case Algorithm::Hybrid:
             return Impl(std::in_place_type<HybridPlanner>, *abstraction, hybrid, haa);
+          case Algorithm::Jps:
+            return Impl(std::in_place_type<JumpPointSearch>, grid);
           case Algorithm::AStar:
             break;
         }

@@ -314,6 +314,35 @@ TEST(WorldTerrainChange, AMovingUnitWhosePathCrossesTheChangeRepaths) {
   EXPECT_GE(world.find(truck)->arrivalTick, 0);
 }
 
+// A unit that found no way to its goal tries again when terrain opens one: a river cuts the map
+// in two, the unit's order fails, then a ford appears (water set to ground) and it crosses.
+TEST(WorldTerrainChange, AUnitWithNoPathTriesAgainWhenTerrainOpensAWay) {
+  WorldSettings settings;
+  settings.terrainChanges = true;
+  settings.combat.enabled = false;
+  World world(openGrid(30, 12), {kind("truck", 1)}, settings);
+  world.setTerrain({14, 0, 2, 12}, Terrain::Water);  // the river, bank to bank
+  world.step();
+  const UnitId truck = world.spawn(0, 0, 0, {2, 5});
+  world.orderMove({truck}, {26, 5, 2, 2});
+  for (int i = 0; i < 5; ++i)
+    world.step();
+  ASSERT_EQ(world.find(truck)->state, UnitState::NoPath);
+  // Closing terrain elsewhere cannot open a way: the unit does not try again.
+  world.setTerrain({2, 0, 1, 1}, Terrain::Blocked);
+  world.step();
+  EXPECT_EQ(world.find(truck)->state, UnitState::NoPath);
+  world.setTerrain({14, 5, 2, 2}, Terrain::Ground);  // the ford
+  world.step();
+  const auto retries = std::count_if(world.events().begin(), world.events().end(), [](auto& e) {
+    return e.kind == EventKind::Repath && e.detail == 4;
+  });
+  EXPECT_EQ(retries, 1);
+  while (world.find(truck)->arrivalTick < 0 && world.tick() < 900)
+    world.step();
+  EXPECT_GE(world.find(truck)->arrivalTick, 0);
+}
+
 // A size-2 wreck blocks planning over its footprint while it stands; a size-1 one does not.
 TEST(WorldTerrainChange, WrecksOfLargeUnitsBlockPlanningWhileTheyStand) {
   for (const bool block : {true, false}) {

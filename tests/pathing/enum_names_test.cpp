@@ -49,7 +49,7 @@ TEST(EnumNames, PathingTablesRoundTrip) {
   testing::expectRoundTrip(kTerrainNames, {Terrain::Ground, Terrain::Swamp, Terrain::Trees,
                                            Terrain::Water, Terrain::Blocked});
   testing::expectRoundTrip(kAlgorithmNames, {Algorithm::AStar, Algorithm::HaaHigh,
-                                             Algorithm::HaaLow, Algorithm::Hybrid});
+                                             Algorithm::HaaLow, Algorithm::Hybrid, Algorithm::Jps});
   testing::expectRoundTrip(kPathStatusNames,
                            {PathStatus::Found, PathStatus::Unreachable, PathStatus::InvalidStart,
                             PathStatus::InvalidGoal, PathStatus::BudgetExhausted});

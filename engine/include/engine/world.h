@@ -206,7 +206,8 @@ enum class EventKind : std::uint8_t {
   PathFailed,    // detail: pathing::PathStatus
   Arrived,       // anchor entered the goal area
   Parked,        // reached its goal cell
-  Repath,        // detail: 0 stuck, 1 left its path, 2 goal cell taken, 3 terrain changed
+  Repath,        // detail: 0 stuck, 1 left its path, 2 goal cell taken, 3 terrain changed,
+                 // 4 a unit that had no path tries again after terrain opened
   StuckFlagged,  // stuck for StuckRule::flagAfter windows in a row
   Killed,        // hp reached 0; detail: the killer's index
   WreckCleared,  // the wreck's body was removed

@@ -231,7 +231,9 @@ void clearWreck(Refs& w, Unit& unit);
 // each living unit whose footprint can no longer stand where it is moves to the nearest anchor
 // it can stand on (killed when the map has none); units whose remaining path, window or goal
 // crosses `area` (or that were pushed) get a new goal cell when theirs is gone and a new path.
-void afterTerrainChange(Refs& w, const pathing::CellRect& area, bool push);
+// With `mayOpen` (terrain set to a passable one, an obstacle cleared) units that had found no
+// path try again.
+void afterTerrainChange(Refs& w, const pathing::CellRect& area, bool push, bool mayOpen);
 // FNV-1a of `digest` followed by the edit: TerrainLog::digest after applying `edit`.
 std::uint64_t digestAfter(std::uint64_t digest, const TerrainEdit& edit);
 

@@ -89,6 +89,29 @@ void repath(Refs& w, Unit& unit, bool goalGone) {
   requestPath(w, unit);
 }
 
+// A unit that found no way to its goal tries again: an attacker closes in anew, a moving unit
+// takes the nearest free goal cell it can reach now. One that still reaches none stays NoPath.
+void retry(Refs& w, Unit& unit) {
+  if (unit.order == OrderKind::Attack) {
+    pursue(w, unit, true);
+    return;
+  }
+  if (unit.order != OrderKind::Move && unit.order != OrderKind::AttackMove) return;
+  const Agent agent = w.typeOf(unit).agent();
+  reassignGoal(w, unit);
+  const auto& components = w.grid.layer(agent).components();
+  const Cell at = nearestStandable(w, unit);
+  if (!unit.goalArea.contains(unit.goalCell) || !w.grid.canStand(agent, unit.goalCell) ||
+      components[w.map().indexOf(unit.goalCell)] != components[w.map().indexOf(at)])
+    return;
+  w.log(EventKind::Repath, unit, 4);
+  ++unit.repaths;
+  w.state.goals.take(GoalLayer::Claimed, unit.goalCell, w.typeOf(unit).size, unit.id);
+  unit.state = UnitState::WaitingPath;
+  unit.progress.reset(unit.position, w.state.tick);
+  requestPath(w, unit);
+}
+
 }  // namespace
 
 void placeWreck(Refs& w, Unit& unit) {
@@ -110,7 +133,7 @@ void clearWreck(Refs& w, Unit& unit) {
   unit.wreckArea = {};
 }
 
-void afterTerrainChange(Refs& w, const CellRect& area, bool push) {
+void afterTerrainChange(Refs& w, const CellRect& area, bool push, bool mayOpen) {
   for (Unit& unit : w.state.units) {
     if (!unit.alive()) continue;
     const units::UnitType& type = w.typeOf(unit);
@@ -131,6 +154,10 @@ void afterTerrainChange(Refs& w, const CellRect& area, bool push) {
         w.log(EventKind::Pushed, unit);
         pushed = true;
       }
+    }
+    if (unit.state == UnitState::NoPath && mayOpen) {
+      retry(w, unit);
+      continue;
     }
     if (unit.state != UnitState::Moving && unit.state != UnitState::WaitingPath &&
         unit.state != UnitState::Parked)

@@ -13,6 +13,7 @@
 #include "pathing/cluster_abstraction.h"
 #include "pathing/enum_names.h"
 #include "pathing/haa_star.h"
+#include "pathing/jump_point_search.h"
 
 namespace warpath::pathing {
 
@@ -21,18 +22,20 @@ enum class Algorithm : std::uint8_t {
   HaaHigh,  // "haa-hq": HAA* on the high-quality (strong dominance) graph
   HaaLow,   // "haa-lq": HAA* on the low-quality (weak dominance) graph
   Hybrid,   // "hybrid": AA* within a node budget for short queries, else HAA* (HQ graph)
+  Jps,      // "jps": jump point search on the agent's layer, optimal, uniform costs only
 };
-inline constexpr EnumNames<Algorithm, 4> kAlgorithmNames{{{
+inline constexpr EnumNames<Algorithm, 5> kAlgorithmNames{{{
     {Algorithm::AStar, "aa"},
     {Algorithm::HaaHigh, "haa-hq"},
     {Algorithm::HaaLow, "haa-lq"},
     {Algorithm::Hybrid, "hybrid"},
+    {Algorithm::Jps, "jps"},
 }}};
 
 // Names from kAlgorithmNames (kAlgorithmNames.list() for "choose one of" messages).
 std::string_view toString(Algorithm algorithm);
 std::optional<Algorithm> algorithmFromName(std::string_view name);
-// The abstraction quality an algorithm needs; nullopt for AA*.
+// The abstraction quality an algorithm needs; nullopt for AA* and JPS.
 std::optional<AbstractionQuality> abstractionQualityFor(Algorithm algorithm);
 
 // Empty when Planner(grid, algorithm, abstraction, hybrid) can be built, else what is wrong:
@@ -48,7 +51,8 @@ class Planner {
   // with the message of problemWith(grid, algorithm, abstraction, hybrid).]
   // Terrain costs: AA* plans under `costs` when given (built for the agents it is asked
   // about, and it must outlive the planner); the hierarchical algorithms plan under their
-  // abstraction's (AbstractionSpec::costs) and ignore it.
+  // abstraction's (AbstractionSpec::costs) and ignore it. JPS plans on uniform costs only
+  // [Limit: no `costs` with JPS, else std::invalid_argument].
   Planner(const AnnotatedGrid& grid, Algorithm algorithm, const ClusterAbstraction* abstraction,
           HybridOptions hybrid = {}, HaaOptions haa = {}, const CostField* costs = nullptr);
 
@@ -58,7 +62,7 @@ class Planner {
  private:
   Algorithm algorithm_;
   const CostField* costs_;
-  std::variant<AnnotatedAStar, HierarchicalAStar, HybridPlanner> impl_;
+  std::variant<AnnotatedAStar, HierarchicalAStar, HybridPlanner, JumpPointSearch> impl_;
 };
 
 }  // namespace warpath::pathing

@@ -1,0 +1,48 @@
+#pragma once
+// Jump point search (Harabor & Grastien 2011) on agent layers: for an agent of size s and a
+// capability, the grid is uniform-cost (the anchor can stand on a cell or not), so the
+// symmetry pruning of JPS applies to every size and capability. Moves follow the annotated
+// grid's rules (moves.h): a diagonal step needs both cells beside it, so no corner is cut, and
+// the pruning is the one for that rule (a straight jump stops where a cell beside it opens
+// after a blocked one behind; a diagonal jump stops where a straight jump from it would).
+// Optimal: its paths are as long as AA*'s (they may take other, equally short, cells).
+//
+// A query object owns its scratch memory and reuses it; the AnnotatedGrid may be shared.
+
+#include <cstdint>
+#include <vector>
+
+#include "pathing/annotated_grid.h"
+#include "pathing/open_list.h"
+#include "pathing/search.h"
+
+namespace warpath::pathing {
+
+class JumpPointSearch {
+ public:
+  explicit JumpPointSearch(const AnnotatedGrid& grid);
+
+  // Finds a shortest path for `agent` from `start` to `goal` (anchor cells), uniform costs
+  // (a diagonal step costs √2). When found and `path` is not null, it receives every cell from
+  // start to goal inclusive. metrics.expanded counts jump points expanded; metrics.generated
+  // the jump points pushed, and the cells the jumps scanned are not counted.
+  PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
+                      const SearchLimits& limits = {});
+
+ private:
+  struct Query;
+  static constexpr std::uint32_t kNone = UINT32_MAX;
+
+  void beginQuery();
+  std::uint32_t jump(const Query& q, int x, int y, int dx, int dy) const;
+  std::uint32_t jumpStraight(const Query& q, int x, int y, int dx, int dy) const;
+
+  const AnnotatedGrid& grid_;
+  std::vector<std::uint32_t> stamps_;  // generation << 1 | closed
+  std::vector<double> g_;
+  std::vector<std::uint32_t> parent_;  // the jump point a cell was reached from
+  OpenList open_;
+  std::uint32_t generation_ = 0;
+};
+
+}  // namespace warpath::pathing

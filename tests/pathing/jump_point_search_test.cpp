@@ -1,0 +1,159 @@
+#include "pathing/jump_point_search.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "pathing/aa_star.h"
+#include "pathing/map_generator.h"
+#include "pathing/planner.h"
+#include "pathing/random.h"
+
+namespace warpath::pathing {
+namespace {
+
+const Capability kGround = Capability::of({Terrain::Ground});
+const Capability kInfantry = Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Trees});
+const Capability kAmphibious = Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Water});
+
+GridMap randomMap(std::uint64_t seed, int side, int blocked, int maxPatch) {
+  RandomMapSpec spec;
+  spec.width = side;
+  spec.height = side - 6;
+  spec.seed = seed;
+  spec.blockedPercent = blocked;
+  spec.swampPercent = 10;
+  spec.treesPercent = 10;
+  spec.waterPercent = 10;
+  spec.maxPatch = maxPatch;
+  return generateRandomMap(spec);
+}
+
+// One query of JPS against AA* (optimal): the same status, the same cost, and a legal path
+// from start to goal that costs what JPS says. Returns whether a path was found.
+bool expectSameAsAStar(const AnnotatedGrid& grid, Agent agent, Cell start, Cell goal,
+                       const SearchLimits& limits = {}) {
+  AnnotatedAStar aa(grid);
+  JumpPointSearch jps(grid);
+  std::vector<Cell> optimal;
+  std::vector<Cell> path;
+  const PathResult expected = aa.findPath(agent, start, goal, &optimal, limits);
+  const PathResult result = jps.findPath(agent, start, goal, &path, limits);
+  SCOPED_TRACE(::testing::Message()
+               << "size " << agent.size << " cap " << agent.capability.toString() << " " << start.x
+               << "," << start.y << " -> " << goal.x << "," << goal.y);
+  EXPECT_EQ(result.status, expected.status);
+  if (!expected.found() || !result.found()) {
+    EXPECT_TRUE(path.empty());
+    return false;
+  }
+  EXPECT_NEAR(result.cost, expected.cost, 1e-9);
+  EXPECT_EQ(path.front(), start);
+  EXPECT_EQ(path.back(), goal);
+  EXPECT_EQ(findIllegalStep(grid, agent, path), "");
+  EXPECT_NEAR(pathCost(path), result.cost, 1e-9);
+  if (limits.region) {
+    for (Cell c : path)
+      EXPECT_TRUE(limits.region->contains(c));
+  }
+  return true;
+}
+
+// Optimal for every size and capability: random multi-terrain maps, sparse and cluttered,
+// small patches and large ones.
+TEST(JumpPointSearch, FindsPathsAsShortAsAStarForEverySizeAndCapability) {
+  int found = 0;
+  int unreachable = 0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    const AnnotatedGrid grid(randomMap(seed * 104729, 40 + static_cast<int>(seed % 3) * 8,
+                                       5 + static_cast<int>(seed % 4) * 8,
+                                       1 + static_cast<int>(seed % 5) * 2));
+    const GridMap& map = grid.map();
+    SplitMix64 rng(seed);
+    for (Capability capability : {kGround, kInfantry, kAmphibious}) {
+      for (int size = 1; size <= 3; ++size) {
+        for (int q = 0; q < 25; ++q) {
+          const Cell start{rng.between(0, map.width() - 1), rng.between(0, map.height() - 1)};
+          const Cell goal{rng.between(0, map.width() - 1), rng.between(0, map.height() - 1)};
+          if (!grid.canStand({size, capability}, start) || !grid.canStand({size, capability}, goal))
+            continue;
+          (expectSameAsAStar(grid, {size, capability}, start, goal) ? found : unreachable) += 1;
+        }
+      }
+    }
+  }
+  // Both outcomes must be exercised, or this proves little.
+  EXPECT_GT(found, 400);
+  EXPECT_GT(unreachable, 20);
+}
+
+// Inside a region the anchor never leaves it, as with AA*.
+TEST(JumpPointSearch, KeepsToARegionAsAStarDoes) {
+  const AnnotatedGrid grid(randomMap(77, 48, 15, 3));
+  SplitMix64 rng(5);
+  const CellRect region{8, 6, 20, 16};
+  int found = 0;
+  for (int q = 0; q < 300; ++q) {
+    const Cell start{rng.between(region.x, region.x + region.width - 1),
+                     rng.between(region.y, region.y + region.height - 1)};
+    const Cell goal{rng.between(region.x, region.x + region.width - 1),
+                    rng.between(region.y, region.y + region.height - 1)};
+    const Agent agent{1 + q % 2, kInfantry};
+    if (!grid.canStand(agent, start) || !grid.canStand(agent, goal)) continue;
+    found +=
+        expectSameAsAStar(grid, agent, start, goal, {.maxExpanded = UINT64_MAX, .region = region})
+            ? 1
+            : 0;
+  }
+  EXPECT_GT(found, 50);
+}
+
+// On open ground the jumps skip the symmetric cells: far fewer expansions than AA*.
+TEST(JumpPointSearch, ExpandsFewNodesOnOpenGround) {
+  GridMap map(64, 64);
+  for (int y = 10; y < 50; ++y)
+    map.set({30, y}, Terrain::Blocked);  // one wall to walk around
+  const AnnotatedGrid grid(map);
+  const Agent agent{2, kGround};
+  AnnotatedAStar aa(grid);
+  JumpPointSearch jps(grid);
+  const PathResult a = aa.findPath(agent, {2, 30}, {60, 31}, nullptr);
+  const PathResult j = jps.findPath(agent, {2, 30}, {60, 31}, nullptr);
+  ASSERT_TRUE(j.found());
+  EXPECT_NEAR(j.cost, a.cost, 1e-9);
+  EXPECT_LT(j.metrics.expanded * 5, a.metrics.expanded);
+}
+
+TEST(JumpPointSearch, StatusForBadEndsBudgetsAndTrivialQueries) {
+  GridMap map(12, 8);
+  map.set({5, 3}, Terrain::Blocked);
+  const AnnotatedGrid grid(map);
+  JumpPointSearch jps(grid);
+  std::vector<Cell> path;
+  const Agent agent{1, kGround};
+  EXPECT_EQ(jps.findPath(agent, {5, 3}, {1, 1}, &path).status, PathStatus::InvalidStart);
+  EXPECT_EQ(jps.findPath(agent, {1, 1}, {5, 3}, &path).status, PathStatus::InvalidGoal);
+  EXPECT_EQ(jps.findPath(agent, {1, 1}, {20, 1}, &path).status, PathStatus::InvalidGoal);
+  const PathResult same = jps.findPath(agent, {2, 2}, {2, 2}, &path);
+  ASSERT_TRUE(same.found());
+  EXPECT_EQ(same.cost, 0.0);
+  EXPECT_EQ(path, (std::vector<Cell>{{2, 2}}));
+  EXPECT_EQ(jps.findPath(agent, {0, 0}, {11, 7}, &path, {.maxExpanded = 0, .region = std::nullopt})
+                .status,
+            PathStatus::BudgetExhausted);
+  EXPECT_TRUE(path.empty());
+}
+
+// Through the planner by name; terrain costs are refused, since the jumps assume uniform ones.
+TEST(JumpPointSearch, ThePlannerOffersItByNameOnUniformCostsOnly) {
+  EXPECT_EQ(algorithmFromName("jps"), Algorithm::Jps);
+  const AnnotatedGrid grid(randomMap(3, 30, 10, 2));
+  Planner planner(grid, Algorithm::Jps, nullptr);
+  EXPECT_FALSE(abstractionQualityFor(Algorithm::Jps));
+  TerrainCosts costs = TerrainCosts::uniform(kGround);
+  const CostField field(grid, {1, kGround}, costs);
+  EXPECT_THROW(Planner(grid, Algorithm::Jps, nullptr, {}, {}, &field), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace warpath::pathing
