@@ -43,9 +43,14 @@ std::string seconds(double s) {
   return fmt::format("{:.6f}", s);  // a small case takes under a millisecond
 }
 
-// The file part of a case name: "demo.yaml#5" -> "demo.yaml".
+// The file part of a case name: "demo.yaml#5" -> "demo.yaml" (file names end in .yaml or .yml,
+// so a '#' with digits after it at the end is a seed, even in "a#b.yaml#5").
 std::string_view fileOf(std::string_view name) {
-  return name.substr(0, name.find('#'));
+  const std::size_t hash = name.rfind('#');
+  if (hash == std::string_view::npos || hash + 1 == name.size() ||
+      name.find_first_not_of("0123456789", hash + 1) != std::string_view::npos)
+    return name;
+  return name.substr(0, hash);
 }
 
 // A JUnit class name without the dots that Jenkins reads as packages: "demo.yaml" -> "demo".
@@ -212,8 +217,8 @@ void prepareReportDir(const std::string& dir) {
 void writeCaseReport(const std::string& dir, CaseResult& result) {
   if (result.report.is_null()) return;
   std::string name = result.name;
-  if (const std::size_t hash = name.find('#'); hash != std::string::npos)
-    name.replace(hash, 1, ".seed");
+  if (const std::size_t file = fileOf(name).size(); file < name.size())
+    name.replace(file, 1, ".seed");
   result.reportFile = "cases/" + name + ".json";
   writeWholeFile(
       (fs::path(dir) / result.reportFile).string(),
