@@ -26,6 +26,9 @@ mkfifo "$tmp/fifo.replay" "$tmp/fifo.yaml"
 truncate -s 2G "$tmp/zeros.replay"
 truncate -s 2G "$tmp/zeros.yaml"
 truncate -s 2G "$tmp/zeros.map"
+truncate -s 2G "$tmp/zeros.json"
+mkfifo "$tmp/fifo.json"
+python3 -c "import sys; open(sys.argv[1], 'w').write('[' * 2000000 + ']' * 2000000)" "$tmp/deep.json"
 
 # A valid scenario to hang the others on (absolute paths: the files live in $tmp).
 scenario() {  # EXTRA_KEYS -> a scenario on the bundled river map with one group
@@ -127,6 +130,11 @@ cases=(
   "--until 99999999999999999999|run $tmp/ok.yaml --quiet --until 99999999999999999999"
   "--replay-every 0|run $tmp/ok.yaml --quiet --replay $tmp/out.replay --replay-every 0"
   "bench paper --cluster-sizes 0|bench paper $repo/assets/maps/river.map --cluster-sizes 0"
+  "a directory as a report (plot)|report plot $tmp/dir.replay --png $tmp/plot.png"
+  "a FIFO as a report (plot)|report plot $tmp/fifo.json --png $tmp/plot.png"
+  "/dev/zero as a report (plot)|report plot /dev/zero --png $tmp/plot.png"
+  "2 GiB of zeros as a report (plot)|report plot $tmp/zeros.json --png $tmp/plot.png"
+  "a report nested 2,000,000 deep (plot)|report plot $tmp/deep.json --png $tmp/plot.png"
 )
 
 failed=0

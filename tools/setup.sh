@@ -12,6 +12,9 @@ packages=(
   # The fuzz harnesses (docs/fuzzing.md): clang 14, and libclang-rt-14-dev, which holds
   # libFuzzer (libclang_rt.fuzzer*.a) and clang's sanitizer runtimes on Debian 12.
   clang libclang-rt-14-dev
+  # The HTML report's browser test (headless Chromium), the viewer's test in an X server
+  # (Xvfb) and `rts run --video` (the ffmpeg program; its test uses ffprobe from the same).
+  chromium xvfb ffmpeg
 )
 
 # --cluster: a single-node Slurm for `rts test` shards (tools/cluster/, docs/cluster.md); the

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "engine/state_description.h"
 
@@ -80,6 +81,7 @@ DelayStats delayOf(const std::vector<Unit>& units, int team, int type) {
   d.p50 = percentile(delays, 50);
   d.p90 = percentile(delays, 90);
   d.max = delays.back();
+  d.delays = std::move(delays);
   return d;
 }
 
@@ -391,7 +393,10 @@ Report ScenarioRun::report() const {
       for (const Unit& u : units) {
         if (!matches(u, static_cast<int>(team), static_cast<int>(type))) continue;
         ++s.units;
-        s.arrived += u.arrivalTick >= 0 ? 1 : 0;
+        if (u.arrivalTick >= 0) {
+          ++s.arrived;
+          s.arrivedAt.push_back(static_cast<double>(u.arrivalTick) / rate);
+        }
         s.dead += u.hp <= 0 ? 1 : 0;
         (u.alive() ? b.alive : b.losses) += 1;
         b.kills += u.combat.kills;
@@ -401,6 +406,7 @@ Report ScenarioRun::report() const {
         b.damageTaken += u.combat.damageTaken;
       }
       if (s.units == 0) continue;
+      std::sort(s.arrivedAt.begin(), s.arrivedAt.end());
       b.units = s.units;
       s.rate = static_cast<double>(s.arrived) / static_cast<double>(s.units);
       if (s.arrived > 0) {

@@ -45,13 +45,9 @@ PathResult AnnotatedAStar::run(Agent agent, Cell start, Cell goal, std::vector<C
   if (path) path->clear();
   const auto finish = [&](PathStatus status) { return finishQuery(result, status, clock); };
 
-  if (const auto answer = screenEndpoints(grid_, agent, start, goal)) return finish(*answer);
+  if (const auto answer = screenQuery(grid_, agent, start, goal, limits)) return finish(*answer);
   const GridMap& map = grid_.map();
   const AgentLayer& layer = grid_.layer(agent);
-  if (limits.region && (!limits.region->contains(start) || !limits.region->contains(goal))) {
-    return finish(PathStatus::Unreachable);
-  }
-  if (limits.maxExpanded == 0) return finish(PathStatus::BudgetExhausted);
   PathStatus status;
   if (costs) {
     status = limits.region ? search<true, true>(layer, start, goal, costs, limits, result)

@@ -31,6 +31,17 @@ std::uint8_t movesFrom(const ClearanceField& clearance, int size, int x, int y) 
   return mask;
 }
 
+// Calls visit(neighbour) for each cardinal move `mask` allows from `cell` (an index in a map
+// `width` cells wide): the moves that decide connectivity (a diagonal needs both cardinals).
+template <class Visit>
+void forCardinalMoves(std::uint8_t mask, std::uint32_t cell, int width, Visit visit) {
+  for (int d = 0; d < 4; ++d) {
+    if ((mask & (1u << d)) == 0) continue;
+    const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+    visit(static_cast<std::uint32_t>(static_cast<std::int64_t>(cell) + dir.dy * width + dir.dx));
+  }
+}
+
 }  // namespace
 
 AgentLayer AgentLayer::compute(const GridMap& map, const ClearanceField& clearance, Agent agent) {
@@ -130,17 +141,12 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
   // Cells joined by a move inside the region start as one group: after a change in the open
   // the region is connected in itself, one group remains and no search runs at all.
   for (const std::uint32_t cell : s.seed) {
-    const std::uint8_t mask = moveMasks_[cell];
-    for (int d = 0; d < 4; ++d) {
-      if ((mask & (1u << d)) == 0) continue;
-      const Direction& dir = kDirections[static_cast<std::size_t>(d)];
-      const auto neighbour =
-          static_cast<std::uint32_t>(static_cast<std::int64_t>(cell) + dir.dy * w + dir.dx);
-      if (s.stamp[neighbour] != s.epoch) continue;
+    forCardinalMoves(moveMasks_[cell], cell, w, [&](std::uint32_t neighbour) {
+      if (s.stamp[neighbour] != s.epoch) return;
       const std::uint32_t a = root(s.group[cell]);
       const std::uint32_t b = root(s.group[neighbour]);
       if (a != b) s.parent[std::max(a, b)] = std::min(a, b);
-    }
+    });
   }
   s.reached.resize(s.parent.size());
   s.head.assign(s.parent.size(), 0);
@@ -162,20 +168,15 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
         continue;
       }
       const std::uint32_t cell = s.reached[g][s.head[g]++];
-      const std::uint8_t mask = moveMasks_[cell];
-      for (int d = 0; d < 4; ++d) {
-        if ((mask & (1u << d)) == 0) continue;
-        const Direction& dir = kDirections[static_cast<std::size_t>(d)];
-        const auto neighbour =
-            static_cast<std::uint32_t>(static_cast<std::int64_t>(cell) + dir.dy * w + dir.dx);
+      forCardinalMoves(moveMasks_[cell], cell, w, [&](std::uint32_t neighbour) {
         if (s.stamp[neighbour] != s.epoch) {
           s.stamp[neighbour] = s.epoch;
           s.group[neighbour] = g;
           s.reached[g].push_back(neighbour);
-          continue;
+          return;
         }
         const std::uint32_t other = root(s.group[neighbour]);
-        if (other == g) continue;
+        if (other == g) return;
         // Merge the smaller into the larger; the survivor keeps searching from where each was.
         std::uint32_t keep = g;
         std::uint32_t gone = other;
@@ -195,7 +196,7 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
         from.clear();
         from.shrink_to_fit();
         g = keep;
-      }
+      });
       stillLive.push_back(g);
     }
     // In order unless a merge kept a group listed before the one it met.
@@ -248,14 +249,9 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
       if (components_[cell] != id) continue;
       components_[cell] = keep;
       ++sizes_[keep];
-      const std::uint8_t mask = moveMasks_[cell];
-      for (int d = 0; d < 4; ++d) {
-        if ((mask & (1u << d)) == 0) continue;
-        const Direction& dir = kDirections[static_cast<std::size_t>(d)];
-        const auto next =
-            static_cast<std::uint32_t>(static_cast<std::int64_t>(cell) + dir.dy * w + dir.dx);
+      forCardinalMoves(moveMasks_[cell], cell, w, [&](std::uint32_t next) {
         if (components_[next] == id) stack.push_back(next);
-      }
+      });
     }
     sizes_[id] = 0;
   }
@@ -283,16 +279,11 @@ void AgentLayer::labelComponents(const GridMap& map, const ClearanceField& clear
       const std::uint32_t cell = stack.back();
       stack.pop_back();
       ++sizes_[id];
-      const std::uint8_t mask = moveMasks_[cell];
-      for (int d = 0; d < 4; ++d) {
-        if ((mask & (1u << d)) == 0) continue;
-        const Direction& dir = kDirections[static_cast<std::size_t>(d)];
-        const std::uint32_t next =
-            static_cast<std::uint32_t>(static_cast<std::int64_t>(cell) + dir.dy * w + dir.dx);
-        if (components_[next] != 0) continue;
+      forCardinalMoves(moveMasks_[cell], cell, w, [&](std::uint32_t next) {
+        if (components_[next] != 0) return;
         components_[next] = id;
         stack.push_back(next);
-      }
+      });
     }
   }
 }
@@ -413,6 +404,15 @@ std::optional<PathStatus> screenEndpoints(const AnnotatedGrid& grid, Agent agent
   if (layer.components()[map.indexOf(start)] != layer.components()[map.indexOf(goal)]) {
     return PathStatus::Unreachable;
   }
+  return std::nullopt;
+}
+
+std::optional<PathStatus> screenQuery(const AnnotatedGrid& grid, Agent agent, Cell start, Cell goal,
+                                      const SearchLimits& limits) {
+  if (const auto answer = screenEndpoints(grid, agent, start, goal)) return answer;
+  if (limits.region && (!limits.region->contains(start) || !limits.region->contains(goal)))
+    return PathStatus::Unreachable;
+  if (limits.maxExpanded == 0) return PathStatus::BudgetExhausted;
   return std::nullopt;
 }
 

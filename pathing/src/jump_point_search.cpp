@@ -1,33 +1,155 @@
 #include "pathing/jump_point_search.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstdlib>
+#include <utility>
 
 #include "pathing/moves.h"
 
 namespace warpath::pathing {
 
-// What the jumps of one query read: where the agent can stand, inside the map (or the
-// query's region), and the goal.
+namespace {
+
+// Word k of a line of 64-cell words, the cells outside [lo, hi) (the query's bounds along the
+// line) cleared; 0 for a missing line or a word outside it.
+std::uint64_t wordOf(const std::uint64_t* line, int words, int k, int lo, int hi) {
+  if (line == nullptr || k < 0 || k >= words) return 0;
+  std::uint64_t w = line[k];
+  const int base = k * 64;
+  if (lo > base) w = lo - base >= 64 ? 0 : w & (~std::uint64_t{0} << (lo - base));
+  if (hi < base + 64) w = hi <= base ? 0 : w & ((std::uint64_t{1} << (hi - base)) - 1);
+  return w;
+}
+
+// A straight jump along one line (a row, or a column) from position `from`, by `step` (+1 or
+// -1), the lines beside it `sideA` and `sideB` (null where there is none): the first position
+// where a cell beside the line is open after a closed one behind it (a forced neighbour), or
+// `goal` (-1 when the goal is not on this line); -1 when a closed cell of the line comes first.
+int scanLine(const std::uint64_t* line, const std::uint64_t* sideA, const std::uint64_t* sideB,
+             int words, int from, int step, int lo, int hi, int goal) {
+  const auto word = [&](const std::uint64_t* l, int k) { return wordOf(l, words, k, lo, hi); };
+  const auto goalBit = [&](int k) {
+    return goal >= k * 64 && goal < k * 64 + 64 ? std::uint64_t{1} << (goal - k * 64) : 0;
+  };
+  const int first = from + step;
+  if (first < lo || first >= hi) return -1;
+  int k = first >> 6;
+  if (step > 0) {
+    // Forced where the side is open and the cell before it (p - 1) closed.
+    std::uint64_t carryA = word(sideA, k - 1) >> 63;
+    std::uint64_t carryB = word(sideB, k - 1) >> 63;
+    for (std::uint64_t skip = ~std::uint64_t{0} << (first & 63); k < words; ++k, skip = ~0ull) {
+      const std::uint64_t c = word(line, k);
+      const std::uint64_t a = word(sideA, k);
+      const std::uint64_t b = word(sideB, k);
+      const std::uint64_t forced = (a & ~((a << 1) | carryA)) | (b & ~((b << 1) | carryB));
+      carryA = a >> 63;
+      carryB = b >> 63;
+      const std::uint64_t hit = (forced | goalBit(k) | ~c) & skip;
+      if (hit == 0) continue;
+      const int bit = std::countr_zero(hit);
+      return (c >> bit) & 1u ? k * 64 + bit : -1;
+    }
+    return -1;
+  }
+  // Backward: forced where the side is open and the cell after it (p + 1) closed.
+  std::uint64_t carryA = word(sideA, k + 1) & 1u;
+  std::uint64_t carryB = word(sideB, k + 1) & 1u;
+  const int top = first & 63;
+  for (std::uint64_t keep = top == 63 ? ~0ull : (std::uint64_t{1} << (top + 1)) - 1; k >= 0;
+       --k, keep = ~0ull) {
+    const std::uint64_t c = word(line, k);
+    const std::uint64_t a = word(sideA, k);
+    const std::uint64_t b = word(sideB, k);
+    const std::uint64_t forced =
+        (a & ~((a >> 1) | (carryA << 63))) | (b & ~((b >> 1) | (carryB << 63)));
+    carryA = a & 1u;
+    carryB = b & 1u;
+    const std::uint64_t hit = (forced | goalBit(k) | ~c) & keep;
+    if (hit == 0) continue;
+    const int bit = 63 - std::countl_zero(hit);
+    return (c >> bit) & 1u ? k * 64 + bit : -1;
+  }
+  return -1;
+}
+
+}  // namespace
+
+// What the jumps of one query read: where the agent can stand (its bit maps), inside the map
+// (or the query's region), and the goal.
 struct JumpPointSearch::Query {
-  const ClearanceField::Value* clearance = nullptr;
+  const Bitmap* bits = nullptr;
   int width = 0;
+  int height = 0;
   CellRect bounds;
-  int size = 1;
-  std::uint32_t goal = 0;
+  Cell goal;
 
   bool walkable(int x, int y) const {
-    return bounds.contains({x, y}) &&
-           clearance[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                     static_cast<std::size_t>(x)] >= size;
+    if (!bounds.contains({x, y})) return false;
+    const std::size_t word =
+        static_cast<std::size_t>(y) * static_cast<std::size_t>(bits->rowWords) +
+        static_cast<std::size_t>(x >> 6);
+    return (bits->rows[word] >> (x & 63)) & 1u;
   }
   std::uint32_t indexOf(int x, int y) const {
     return static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(width) +
            static_cast<std::uint32_t>(x);
   }
+  // Row y's words (null outside the bounds).
+  const std::uint64_t* row(int y) const {
+    if (y < bounds.y || y >= bounds.y + bounds.height) return nullptr;
+    return bits->rows.data() +
+           static_cast<std::size_t>(y) * static_cast<std::size_t>(bits->rowWords);
+  }
+  const std::uint64_t* column(int x) const {
+    if (x < bounds.x || x >= bounds.x + bounds.width) return nullptr;
+    return bits->columns.data() +
+           static_cast<std::size_t>(x) * static_cast<std::size_t>(bits->columnWords);
+  }
 };
 
 JumpPointSearch::JumpPointSearch(const AnnotatedGrid& grid) : grid_(grid) {}
+
+std::size_t JumpPointSearch::bitmapBytes() const {
+  std::size_t bytes = 0;
+  for (const Bitmap& b : bitmaps_)
+    bytes += (b.rows.size() + b.columns.size()) * sizeof(std::uint64_t);
+  return bytes;
+}
+
+const JumpPointSearch::Bitmap& JumpPointSearch::bitmapFor(Agent agent) {
+  auto it = std::find_if(bitmaps_.begin(), bitmaps_.end(), [&](const Bitmap& b) {
+    return b.agent.size == agent.size && b.agent.capability == agent.capability;
+  });
+  if (it == bitmaps_.end()) {
+    Bitmap fresh;
+    fresh.agent = agent;
+    bitmaps_.push_back(std::move(fresh));
+    it = bitmaps_.end() - 1;
+  } else if (it->revision == grid_.revision() && !it->rows.empty()) {
+    return *it;
+  }
+  Bitmap& b = *it;
+  const GridMap& map = grid_.map();
+  const ClearanceField& clearance = grid_.clearance(agent.capability);
+  b.revision = grid_.revision();
+  b.rowWords = (map.width() + 63) / 64;
+  b.columnWords = (map.height() + 63) / 64;
+  b.rows.assign(static_cast<std::size_t>(b.rowWords) * static_cast<std::size_t>(map.height()), 0);
+  b.columns.assign(static_cast<std::size_t>(b.columnWords) * static_cast<std::size_t>(map.width()),
+                   0);
+  for (int y = 0; y < map.height(); ++y) {
+    for (int x = 0; x < map.width(); ++x) {
+      if (clearance.at({x, y}) < agent.size) continue;
+      b.rows[static_cast<std::size_t>(y) * static_cast<std::size_t>(b.rowWords) +
+             static_cast<std::size_t>(x >> 6)] |= std::uint64_t{1} << (x & 63);
+      b.columns[static_cast<std::size_t>(x) * static_cast<std::size_t>(b.columnWords) +
+                static_cast<std::size_t>(y >> 6)] |= std::uint64_t{1} << (y & 63);
+    }
+  }
+  return b;
+}
 
 void JumpPointSearch::beginQuery() {
   const std::size_t cells = grid_.map().cellCount();
@@ -48,21 +170,14 @@ void JumpPointSearch::beginQuery() {
 // opens after a blocked cell behind it (only a path turning there reaches that neighbour
 // optimally), or the goal; kNone at a wall.
 std::uint32_t JumpPointSearch::jumpStraight(const Query& q, int x, int y, int dx, int dy) const {
-  for (;;) {
-    x += dx;
-    y += dy;
-    if (!q.walkable(x, y)) return kNone;
-    const std::uint32_t at = q.indexOf(x, y);
-    if (at == q.goal) return at;
-    if (dx != 0) {
-      if ((q.walkable(x, y - 1) && !q.walkable(x - dx, y - 1)) ||
-          (q.walkable(x, y + 1) && !q.walkable(x - dx, y + 1)))
-        return at;
-    } else if ((q.walkable(x - 1, y) && !q.walkable(x - 1, y - dy)) ||
-               (q.walkable(x + 1, y) && !q.walkable(x + 1, y - dy))) {
-      return at;
-    }
+  if (dx != 0) {
+    const int at = scanLine(q.row(y), q.row(y - 1), q.row(y + 1), q.bits->rowWords, x, dx,
+                            q.bounds.x, q.bounds.x + q.bounds.width, q.goal.y == y ? q.goal.x : -1);
+    return at < 0 ? kNone : q.indexOf(at, y);
   }
+  const int at = scanLine(q.column(x), q.column(x - 1), q.column(x + 1), q.bits->columnWords, y, dy,
+                          q.bounds.y, q.bounds.y + q.bounds.height, q.goal.x == x ? q.goal.y : -1);
+  return at < 0 ? kNone : q.indexOf(x, at);
 }
 
 // From (x, y) along (dx, dy), straight or diagonal. A diagonal step needs both cells beside
@@ -75,7 +190,7 @@ std::uint32_t JumpPointSearch::jump(const Query& q, int x, int y, int dx, int dy
     x += dx;
     y += dy;
     const std::uint32_t at = q.indexOf(x, y);
-    if (at == q.goal || jumpStraight(q, x, y, dx, 0) != kNone ||
+    if ((Cell{x, y} == q.goal) || jumpStraight(q, x, y, dx, 0) != kNone ||
         jumpStraight(q, x, y, 0, dy) != kNone)
       return at;
   }
@@ -87,22 +202,16 @@ PathResult JumpPointSearch::findPath(Agent agent, Cell start, Cell goal, std::ve
   PathResult result;
   if (path) path->clear();
   const auto finish = [&](PathStatus status) { return finishQuery(result, status, clock); };
-  if (const auto answer = screenEndpoints(grid_, agent, start, goal)) return finish(*answer);
+  if (const auto answer = screenQuery(grid_, agent, start, goal, limits)) return finish(*answer);
   const GridMap& map = grid_.map();
-  if (limits.region && (!limits.region->contains(start) || !limits.region->contains(goal)))
-    return finish(PathStatus::Unreachable);
-  if (limits.maxExpanded == 0) return finish(PathStatus::BudgetExhausted);
-  // Different components: no search can connect them (as AA* answers, without a search).
-  const auto& components = grid_.layer(agent).components();
-  if (!limits.region && components[map.indexOf(start)] != components[map.indexOf(goal)])
-    return finish(PathStatus::Unreachable);
 
   Query q;
-  q.clearance = grid_.clearance(agent.capability).values().data();
+  q.bits = &bitmapFor(agent);
   q.width = map.width();
+  q.height = map.height();
   q.bounds = limits.region.value_or(CellRect{0, 0, map.width(), map.height()});
-  q.size = agent.size;
-  q.goal = map.indexOf(goal);
+  q.goal = goal;
+  const std::uint32_t goalIndex = map.indexOf(goal);
 
   beginQuery();
   const std::uint32_t openStamp = generation_ << 1;
@@ -121,7 +230,7 @@ PathResult JumpPointSearch::findPath(Agent agent, Cell start, Cell goal, std::ve
     if (stamps_[current] == closedStamp) continue;  // a dearer duplicate
     stamps_[current] = closedStamp;
     ++result.metrics.expanded;
-    if (current == q.goal) {
+    if (current == goalIndex) {
       result.cost = g_[current];
       status = PathStatus::Found;
       break;
@@ -182,7 +291,7 @@ PathResult JumpPointSearch::findPath(Agent agent, Cell start, Cell goal, std::ve
   }
   if (status == PathStatus::Found && path) {
     // Jump points are joined by straight or diagonal runs: fill in their cells.
-    for (std::uint32_t at = q.goal; at != startIndex; at = parent_[at]) {
+    for (std::uint32_t at = goalIndex; at != startIndex; at = parent_[at]) {
       const Cell to = map.cellAt(at);
       const Cell from = map.cellAt(parent_[at]);
       const int dx = (to.x > from.x) - (to.x < from.x);

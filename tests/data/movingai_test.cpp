@@ -19,6 +19,7 @@
 #include "pathing/aa_star.h"
 #include "pathing/cluster_abstraction.h"
 #include "pathing/haa_star.h"
+#include "pathing/jump_point_search.h"
 #include "pathing/map_io.h"
 #include "pathing/random.h"
 #include "pathing/terrain_costs.h"
@@ -77,21 +78,27 @@ TEST_P(MovingAiMap, EveryScenQueryMatchesItsOptimalLength) {
   ASSERT_TRUE(fits) << fits.error().describe();
 
   const AnnotatedGrid grid(std::move(map).value());
-  AnnotatedAStar search(grid);
+  // Both optimal planners: AA* and jump point search.
+  AnnotatedAStar aa(grid);
+  JumpPointSearch jps(grid);
   std::vector<Cell> path;
   int failures = 0;
   for (const ScenQuery& q : scen.value()) {
     // MovingAI semantics: size 1, capability = the start cell's movement class.
     const Agent agent{1, movingAiClassOf(grid.map().at(q.start))};
-    const PathResult result = search.findPath(agent, q.start, q.goal, &path);
-    const bool ok = result.found() && std::abs(result.cost - q.optimalLength) <= 0.01 &&
-                    findIllegalStep(grid, agent, path).empty();
-    if (!ok && ++failures <= 5) {
-      ADD_FAILURE() << c.scen.string() << ":" << q.line << ": expected " << q.optimalLength
-                    << ", got " << toString(result.status) << " " << result.cost;
+    for (const bool jumps : {false, true}) {
+      const PathResult result = jumps ? jps.findPath(agent, q.start, q.goal, &path)
+                                      : aa.findPath(agent, q.start, q.goal, &path);
+      const bool ok = result.found() && std::abs(result.cost - q.optimalLength) <= 0.01 &&
+                      findIllegalStep(grid, agent, path).empty();
+      if (!ok && ++failures <= 5) {
+        ADD_FAILURE() << c.scen.string() << ":" << q.line << ": " << (jumps ? "JPS" : "AA*")
+                      << " expected " << q.optimalLength << ", got " << toString(result.status)
+                      << " " << result.cost;
+      }
     }
   }
-  EXPECT_EQ(failures, 0) << "of " << scen.value().size() << " queries";
+  EXPECT_EQ(failures, 0) << "of " << 2 * scen.value().size() << " answers";
   EXPECT_FALSE(scen.value().empty());
 }
 

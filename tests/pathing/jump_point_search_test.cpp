@@ -5,9 +5,9 @@
 #include <stdexcept>
 
 #include "pathing/aa_star.h"
-#include "pathing/map_generator.h"
 #include "pathing/planner.h"
 #include "pathing/random.h"
+#include "random_grid.h"
 
 namespace warpath::pathing {
 namespace {
@@ -16,25 +16,11 @@ const Capability kGround = Capability::of({Terrain::Ground});
 const Capability kInfantry = Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Trees});
 const Capability kAmphibious = Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Water});
 
-GridMap randomMap(std::uint64_t seed, int side, int blocked, int maxPatch) {
-  RandomMapSpec spec;
-  spec.width = side;
-  spec.height = side - 6;
-  spec.seed = seed;
-  spec.blockedPercent = blocked;
-  spec.swampPercent = 10;
-  spec.treesPercent = 10;
-  spec.waterPercent = 10;
-  spec.maxPatch = maxPatch;
-  return generateRandomMap(spec);
-}
-
 // One query of JPS against AA* (optimal): the same status, the same cost, and a legal path
 // from start to goal that costs what JPS says. Returns whether a path was found.
-bool expectSameAsAStar(const AnnotatedGrid& grid, Agent agent, Cell start, Cell goal,
-                       const SearchLimits& limits = {}) {
+bool expectSameAsAStar(const AnnotatedGrid& grid, JumpPointSearch& jps, Agent agent, Cell start,
+                       Cell goal, const SearchLimits& limits = {}) {
   AnnotatedAStar aa(grid);
-  JumpPointSearch jps(grid);
   std::vector<Cell> optimal;
   std::vector<Cell> path;
   const PathResult expected = aa.findPath(agent, start, goal, &optimal, limits);
@@ -65,10 +51,13 @@ TEST(JumpPointSearch, FindsPathsAsShortAsAStarForEverySizeAndCapability) {
   int found = 0;
   int unreachable = 0;
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
-    const AnnotatedGrid grid(randomMap(seed * 104729, 40 + static_cast<int>(seed % 3) * 8,
-                                       5 + static_cast<int>(seed % 4) * 8,
-                                       1 + static_cast<int>(seed % 5) * 2));
+    // Sides across 64 and 128: the jumps read 64 cells a word, carrying between words.
+    const int side = 40 + static_cast<int>(seed % 3) * 44;
+    const AnnotatedGrid grid(randomTerrainMap(seed * 104729, side, side - 6,
+                                              1 + static_cast<int>(seed % 5) * 2,
+                                              5 + static_cast<int>(seed % 4) * 8));
     const GridMap& map = grid.map();
+    JumpPointSearch jps(grid);
     SplitMix64 rng(seed);
     for (Capability capability : {kGround, kInfantry, kAmphibious}) {
       for (int size = 1; size <= 3; ++size) {
@@ -77,7 +66,8 @@ TEST(JumpPointSearch, FindsPathsAsShortAsAStarForEverySizeAndCapability) {
           const Cell goal{rng.between(0, map.width() - 1), rng.between(0, map.height() - 1)};
           if (!grid.canStand({size, capability}, start) || !grid.canStand({size, capability}, goal))
             continue;
-          (expectSameAsAStar(grid, {size, capability}, start, goal) ? found : unreachable) += 1;
+          (expectSameAsAStar(grid, jps, {size, capability}, start, goal) ? found : unreachable) +=
+              1;
         }
       }
     }
@@ -87,11 +77,36 @@ TEST(JumpPointSearch, FindsPathsAsShortAsAStarForEverySizeAndCapability) {
   EXPECT_GT(unreachable, 20);
 }
 
+// The bit maps follow the grid: after its terrain changes, answers are those of the new map.
+TEST(JumpPointSearch, AnswersOnTheChangedMapAfterTerrainChanges) {
+  AnnotatedGrid grid(randomTerrainMap(41, 90, 70, 3, 10));
+  JumpPointSearch jps(grid);
+  const Agent agent{2, kInfantry};
+  SplitMix64 rng(9);
+  int found = 0;
+  for (int round = 0; round < 6; ++round) {
+    for (int q = 0; q < 40; ++q) {
+      const Cell start{rng.between(0, 89), rng.between(0, 69)};
+      const Cell goal{rng.between(0, 89), rng.between(0, 69)};
+      if (!grid.canStand(agent, start) || !grid.canStand(agent, goal)) continue;
+      // The first query builds the bit maps, the others reuse them until the next change.
+      found += expectSameAsAStar(grid, jps, agent, start, goal) ? 1 : 0;
+    }
+    EXPECT_GT(jps.bitmapBytes(), 0u);
+    // A wall across most of the map, then a gap in it.
+    const int x = rng.between(10, 79);
+    (void)grid.setTerrain({x, 0, 2, 60}, Terrain::Blocked);
+    (void)grid.setTerrain({x, rng.between(5, 50), 2, 4}, Terrain::Ground);
+  }
+  EXPECT_GT(found, 60);
+}
+
 // Inside a region the anchor never leaves it, as with AA*.
 TEST(JumpPointSearch, KeepsToARegionAsAStarDoes) {
-  const AnnotatedGrid grid(randomMap(77, 48, 15, 3));
+  const AnnotatedGrid grid(randomTerrainMap(77, 48, 42, 3, 15));
   SplitMix64 rng(5);
   const CellRect region{8, 6, 20, 16};
+  JumpPointSearch jps(grid);
   int found = 0;
   for (int q = 0; q < 300; ++q) {
     const Cell start{rng.between(region.x, region.x + region.width - 1),
@@ -100,10 +115,10 @@ TEST(JumpPointSearch, KeepsToARegionAsAStarDoes) {
                     rng.between(region.y, region.y + region.height - 1)};
     const Agent agent{1 + q % 2, kInfantry};
     if (!grid.canStand(agent, start) || !grid.canStand(agent, goal)) continue;
-    found +=
-        expectSameAsAStar(grid, agent, start, goal, {.maxExpanded = UINT64_MAX, .region = region})
-            ? 1
-            : 0;
+    found += expectSameAsAStar(grid, jps, agent, start, goal,
+                               {.maxExpanded = UINT64_MAX, .region = region})
+                 ? 1
+                 : 0;
   }
   EXPECT_GT(found, 50);
 }
@@ -147,7 +162,7 @@ TEST(JumpPointSearch, StatusForBadEndsBudgetsAndTrivialQueries) {
 // Through the planner by name; terrain costs are refused, since the jumps assume uniform ones.
 TEST(JumpPointSearch, ThePlannerOffersItByNameOnUniformCostsOnly) {
   EXPECT_EQ(algorithmFromName("jps"), Algorithm::Jps);
-  const AnnotatedGrid grid(randomMap(3, 30, 10, 2));
+  const AnnotatedGrid grid(randomTerrainMap(3, 30, 24, 2, 10));
   Planner planner(grid, Algorithm::Jps, nullptr);
   EXPECT_FALSE(abstractionQualityFor(Algorithm::Jps));
   TerrainCosts costs = TerrainCosts::uniform(kGround);

@@ -15,6 +15,7 @@
 #include "render/renderer.h"
 #include "support/rts_process.h"
 #include "support/scratch_dir.h"
+#include "support/walk_scenario.h"
 
 namespace warpath::render {
 namespace {
@@ -27,15 +28,9 @@ class ReplayPictures : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = warpath::testing::freshTestDir("warpath_replay_view_");
-    std::ofstream(dir_ / "s.yaml")
-        << "map: {rows: ['........', '........', '..TT....', '........', '........']}\n"
-           "catalogue: " WARPATH_SOURCE_DIR
-           "/assets/units.yaml\n"
-           "duration: 5\nteams: [blue]\n"
-           "groups:\n  - {name: g, team: blue, type: infantry, count: 2,"
-           " spawn: {x: 0, y: 0, w: 1, h: 5}, goal: {x: 6, y: 0, w: 2, h: 5}}\n";
+    const std::string scenario = warpath::testing::writeWalkScenario(dir_ / "s.yaml").string();
     replay_ = (dir_ / "r.rpl").string();
-    const RtsResult r = rts("run " + (dir_ / "s.yaml").string() + " --quiet --replay " + replay_);
+    const RtsResult r = rts("run " + scenario + " --quiet --replay " + replay_);
     ASSERT_EQ(r.status, 0) << r.out;
   }
   void TearDown() override { fs::remove_all(dir_); }
@@ -93,6 +88,47 @@ TEST_F(ReplayPictures, ViewerPlaysAndTogglesUnderTheDummyDriver) {
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(replay_ + ": truncated in the middle of a record"), std::string::npos)
       << r.out;
+}
+
+TEST_F(ReplayPictures, ViewerScalesTheMapToItsWindowKeepingItsShape) {
+  // A tall window: the 8:5 map is drawn 300 wide and 188 high, centred (rows 206-393).
+  const fs::path shot = dir_ / "window.png";
+  RtsResult r =
+      view("offscreen", "--window 300x600 --frames-then-exit 3 --screenshot " + shot.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  auto image = readPng(shot);
+  ASSERT_TRUE(image.ok()) << image.error().describe();
+  const Image& im = image.value();
+  ASSERT_EQ(im.width, 300);
+  ASSERT_EQ(im.height, 600);
+  const Rgba edge = palette::kBackground;
+  EXPECT_EQ(im.at(150, 100), edge);
+  EXPECT_EQ(im.at(150, 500), edge);
+  for (const int y : {210, 300, 390}) {
+    EXPECT_NE(im.at(0, y), edge) << "row " << y;
+    EXPECT_NE(im.at(299, y), edge) << "row " << y;
+  }
+  // Resized while it runs (as if its edge were dragged): drawn again at the new size.
+  r = view(
+      "offscreen",
+      "--window 400x250 --keys Window=250x400 --frames-then-exit 3 --screenshot " + shot.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  image = readPng(shot);
+  ASSERT_TRUE(image.ok()) << image.error().describe();
+  ASSERT_EQ(image.value().width, 250);
+  ASSERT_EQ(image.value().height, 400);
+  EXPECT_EQ(image.value().at(125, 60), edge);  // the map: 250x156, rows 122-277
+  EXPECT_NE(image.value().at(0, 200), edge);
+  EXPECT_NE(image.value().at(249, 200), edge);
+  r = view("offscreen", "--keys Window=2x2 --frames-then-exit 1");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("'Window=2x2': the size must be WxH"), std::string::npos) << r.out;
+  r = view("offscreen", "--window 300 --frames-then-exit 1");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("--window: must be WIDTHxHEIGHT"), std::string::npos) << r.out;
+  r = view("offscreen", "--screenshot " + shot.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("--screenshot needs --frames-then-exit"), std::string::npos) << r.out;
 }
 
 TEST(Caption, DrawsAStripAlongTheBottomOnly) {

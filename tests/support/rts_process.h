@@ -14,15 +14,20 @@ struct RtsResult {
   std::string out;  // stdout and stderr
 };
 
-inline RtsResult rts(const std::string& args) {
+// `command` run by the shell (which may set variables before the program: "PATH=/x prog").
+inline RtsResult shell(const std::string& command) {
   RtsResult r;
-  FILE* pipe = popen((std::string(RTS_BINARY) + " " + args + " 2>&1").c_str(), "r");
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
   char buffer[4096];
   while (std::fgets(buffer, sizeof buffer, pipe) != nullptr)
     r.out += buffer;
   const int raw = pclose(pipe);
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   return r;
+}
+
+inline RtsResult rts(const std::string& args) {
+  return shell(std::string(RTS_BINARY) + " " + args);
 }
 
 }  // namespace warpath::testing

@@ -36,5 +36,6 @@ void registerRunCommand(CLI::App& app, CommandRunner& run);
 void registerTestCommand(CLI::App& app, CommandRunner& run);
 void registerReplayCommand(CLI::App& app, CommandRunner& run);
 void registerViewCommand(CLI::App& app, CommandRunner& run);
+void registerReportCommand(CLI::App& app, CommandRunner& run);
 
 }  // namespace warpath::tools

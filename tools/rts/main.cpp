@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   registerTestCommand(app, run);
   registerReplayCommand(app, run);
   registerViewCommand(app, run);
+  registerReportCommand(app, run);
 
   try {
     app.parse(argc, argv);

@@ -54,7 +54,7 @@ void addPlannerOptions(CLI::App& cmd, PlannerChoice& choice) {
   cmd.add_option("--algo", choice.algo,
                  "planner: aa (Annotated A*, optimal), haa-hq / haa-lq (hierarchical, high- or "
                  "low-quality graph), hybrid (AA* within a node budget for short queries, else "
-                 "haa-hq)")
+                 "haa-hq), jps (jump point search, optimal, uniform costs only)")
       ->capture_default_str();
   cmd.add_option("--cluster-size", choice.clusterSize,
                  "side of the clusters of the hierarchical algorithms, in cells")

@@ -58,12 +58,19 @@ void writePathPng(const std::string& file, const pathing::GridMap& map, pathing:
   }
 }
 
+std::string FrameOptions::destinations() const {
+  return (framesDir.empty() ? "" : " to " + framesDir) + (gif.empty() ? "" : ", GIF " + gif) +
+         (video.empty() ? "" : ", video " + video);
+}
+
 void addFrameOptions(CLI::App& cmd, FrameOptions& options, const std::string& everyFlag) {
   cmd.add_option("--frames", options.framesDir,
                  "Write a PNG frame (frame_000123.png, by tick) into this folder");
   cmd.add_option(everyFlag, options.every, "A frame every N ticks (default 1)")
       ->check(wholeNumberIn(1, 1'000'000'000));
   cmd.add_option("--gif", options.gif, "Write the frames as an animated GIF");
+  cmd.add_option("--video", options.video,
+                 "Write the frames as an MP4 video (H.264, through Debian's ffmpeg program)");
   cmd.add_option("--frame-size", options.size, "Pixels along the frame's longer side (default 512)")
       ->check(CLI::Range(16, 8192));
   cmd.add_option("--overlay", options.overlays,
@@ -93,6 +100,8 @@ FrameRecorder::FrameRecorder(const FrameOptions& options, const pathing::GridMap
       def.width, def.height);
   if (!sink) throw BadInput{"frames: " + sink.error().describe()};
   sink_.emplace(std::move(sink).value());
+  if (!options.video.empty())
+    video_.emplace(options.video, def.width, def.height, 1.0 / frameSeconds);
 }
 
 void FrameRecorder::onTick(const engine::World& world) {
@@ -103,11 +112,13 @@ void FrameRecorder::onTick(const engine::World& world) {
   if (Status s = sink_->submit(world.tick(), renderer_->image()); !s) {
     throw BadInput{"frames: " + s.error().describe()};
   }
+  if (video_) video_->write(renderer_->image());
 }
 
 int FrameRecorder::finish() {
   if (Status s = sink_->finish(); !s) throw BadInput{"frames: " + s.error().describe()};
-  return sink_->framesWritten();
+  const int videoFrames = video_ ? video_->finish() : 0;
+  return std::max(sink_->framesWritten(), videoFrames);
 }
 
 }  // namespace warpath::tools

@@ -12,6 +12,7 @@
 #include "pathing/cluster_abstraction.h"
 #include "render/frame_sink.h"
 #include "render/renderer.h"
+#include "rts/video_pipe.h"
 
 namespace warpath::tools {
 
@@ -24,13 +25,17 @@ void writePathPng(const std::string& file, const pathing::GridMap& map, pathing:
 struct FrameOptions {
   std::string framesDir;  // PNG frames (frame_000123.png); empty: none
   std::string gif;        // animated GIF; empty: none
+  std::string video;      // MP4 through ffmpeg (video_pipe.h); empty: none
   int every = 1;          // [Unit: ticks] [Limit: >= 1]
   int size = 512;         // [Unit: pixels] [Limit: 16..8192] the frame's longer side
   std::string overlays;   // overlay names to switch on (render::parseOverlays)
-  bool wanted() const { return !framesDir.empty() || !gif.empty(); }
+  bool wanted() const { return !framesDir.empty() || !gif.empty() || !video.empty(); }
+  // Where they went: " to DIR, GIF FILE, video FILE" (the parts asked for).
+  std::string destinations() const;
 };
 
-// --frames, `everyFlag` (a frame every N ticks), --gif, --frame-size and --overlay on `cmd`.
+// --frames, `everyFlag` (a frame every N ticks), --gif, --video, --frame-size and --overlay on
+// `cmd`.
 void addFrameOptions(CLI::App& cmd, FrameOptions& options, const std::string& everyFlag);
 
 // Frames of a running world: renders the world every `every` ticks and hands the frame to a
@@ -47,6 +52,7 @@ class FrameRecorder {
  private:
   std::optional<render::Renderer> renderer_;
   std::optional<render::FrameSink> sink_;
+  std::optional<VideoPipe> video_;
   int teamCount_ = 0;
 };
 

@@ -54,7 +54,8 @@ int runVerify(const VerifyOptions& options) {
 }
 
 int runRender(const RenderOptions& options) {
-  if (!options.frames.wanted()) throw BadInput{"replay render: give --frames DIR or --gif FILE"};
+  if (!options.frames.wanted())
+    throw BadInput{"replay render: give --frames DIR, --gif FILE or --video FILE"};
   const engine::Replay replay = readReplayOrThrow(options.file);
   engine::ReplayPlayback playback = openPlaybackOrThrow(replay, options.file);
   const engine::Scenario& scenario = playback.scenario();
@@ -70,9 +71,8 @@ int runRender(const RenderOptions& options) {
     frames.onTick(playback.run().world());
   }
   const int written = frames.finish();
-  fmt::print("{}: {} ticks, {} frames written{}{}\n", options.file, playback.run().world().tick(),
-             written, options.frames.framesDir.empty() ? "" : " to " + options.frames.framesDir,
-             options.frames.gif.empty() ? "" : ", GIF " + options.frames.gif);
+  fmt::print("{}: {} ticks, {} frames written{}\n", options.file, playback.run().world().tick(),
+             written, options.frames.destinations());
   return kExitOk;
 }
 

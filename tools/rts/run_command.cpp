@@ -11,6 +11,7 @@
 
 #include "rts/cli_support.h"
 #include "rts/commands.h"
+#include "rts/html_report.h"
 #include "rts/render_support.h"
 #include "rts/scenario_support.h"
 
@@ -21,6 +22,7 @@ struct RunOptions {
   std::string scenario;
   std::optional<std::uint64_t> seed;
   std::string report;
+  std::string html;
   std::optional<std::int64_t> until;
   bool quiet = false;
   FrameOptions frames;
@@ -143,6 +145,8 @@ int runRun(const RunOptions& options) {
                    " (the scenario's duration in ticks), got " + std::to_string(*options.until)};
   }
   prepareOutputPath(options.report, "--report");
+  prepareOutputPath(options.html, "--html");
+  prepareOutputPath(options.frames.video, "--video");
   prepareOutputPath(options.replay, "--replay");
   engine::ScenarioRun run(scenario, options.seed);
   installInterruptHandlers();
@@ -189,9 +193,7 @@ int runRun(const RunOptions& options) {
   if (frames) {
     const int written = frames->finish();
     if (!options.quiet) {
-      fmt::print("frames: {} written{}{}\n", written,
-                 options.frames.framesDir.empty() ? "" : " to " + options.frames.framesDir,
-                 options.frames.gif.empty() ? "" : ", GIF " + options.frames.gif);
+      fmt::print("frames: {} written{}\n", written, options.frames.destinations());
     }
   }
 
@@ -211,11 +213,20 @@ int runRun(const RunOptions& options) {
         t.pathingMicros / 1000.0, t.combatMicros / 1000.0, t.steeringMicros / 1000.0,
         t.physicsMicros / 1000.0, t.bookkeepingMicros / 1000.0, report.stateHash);
   }
+  const nlohmann::json json = reportJson(outcome, run);
   if (!options.report.empty()) {
     std::ofstream out(options.report);
-    out << reportJson(outcome, run).dump(2) << '\n';
+    out << json.dump(2) << '\n';
     if (!out) throw BadInput{"cannot write the report to '" + options.report + "'"};
     if (!options.quiet) fmt::print("report: {}\n", options.report);
+  }
+  if (!options.html.empty()) {
+    HtmlCase pageCase = HtmlCase::ran(options.scenario, json);
+    pageCase.gif = options.frames.gif;
+    pageCase.framesDir = options.frames.framesDir;
+    pageCase.video = options.frames.video;
+    writeHtmlReport(options.html, "warpath run: " + report.scenario, {pageCase});
+    if (!options.quiet) fmt::print("html: {}\n", options.html);
   }
   if (outcome.interrupted) {
     fmt::print(stderr, "rts: interrupted at tick {}; the report is partial\n", report.ticks);
@@ -233,6 +244,9 @@ void registerRunCommand(CLI::App& app, CommandRunner& run) {
   cmd->add_option("scenario", options->scenario, "Scenario YAML file")->required();
   cmd->add_option("--seed", options->seed, "Replace the scenario's seed");
   cmd->add_option("--report", options->report, "Write the report (JSON) to this file");
+  cmd->add_option("--html", options->html,
+                  "Write a self-contained HTML page: expectations, arrival curves, delays, battle, "
+                  "pathing and timing charts, the GIF");
   cmd->add_option("--until", options->until,
                   "Stop after this tick (at most the scenario's duration in ticks)")
       ->check(wholeNumberIn(0, engine::kMaxScenarioTicks));

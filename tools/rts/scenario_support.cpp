@@ -80,6 +80,8 @@ nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& 
   j["seed"] = r.seed;
   j["ticks"] = r.ticks;
   j["sim_seconds"] = r.simSeconds;
+  j["duration_seconds"] =
+      static_cast<double>(run.scenario().durationTicks()) / run.world().tickRate();
   j["wall_seconds"] = outcome.wallSeconds;
   char hash[32];
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(r.stateHash));
@@ -100,7 +102,8 @@ nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& 
                         {"time_to_arrive",
                          {{"p50", secondsOrNull(s.p50)},
                           {"p90", secondsOrNull(s.p90)},
-                          {"max", secondsOrNull(s.max)}}}});
+                          {"max", secondsOrNull(s.max)}}},
+                        {"arrived_at", s.arrivedAt}});
     deaths += s.dead;
   }
   j["arrivals"] = arrivals;
@@ -132,7 +135,8 @@ nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& 
                      {"arrived", d.arrived},
                      {"p50", secondsOrNull(d.p50)},
                      {"p90", secondsOrNull(d.p90)},
-                     {"max", secondsOrNull(d.max)}});
+                     {"max", secondsOrNull(d.max)},
+                     {"delays", d.delays}});
   }
   j["movement"] = {{"cooperative", mv.cooperative},
                    {"window", mv.window},

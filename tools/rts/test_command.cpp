@@ -14,6 +14,7 @@
 
 #include "rts/cli_support.h"
 #include "rts/commands.h"
+#include "rts/html_report.h"
 #include "rts/scenario_support.h"
 #include "rts/test_cases.h"
 #include "rts/test_outputs.h"
@@ -31,6 +32,7 @@ struct TestOptions {
   std::string shard;
   std::string junit;
   std::string reportDir;
+  std::string html;
 };
 
 struct MergeOptions {
@@ -93,6 +95,7 @@ int runTest(const TestOptions& options) {
                all.size());
   }
   prepareOutputPath(options.junit, "--junit");
+  prepareOutputPath(options.html, "--html");
   if (!options.reportDir.empty()) prepareReportDir(options.reportDir);
   Outputs outputs(options.junit, options.reportDir, shard, std::move(allNames));
   outputs.write({}, true);  // a summary from the start: merge tells a shard that never ran
@@ -101,6 +104,7 @@ int runTest(const TestOptions& options) {
   // Results are printed and written in case order, whatever order the workers finish in.
   std::vector<std::optional<CaseResult>> finished(cases.size());
   std::vector<CaseResult> inOrder;
+  std::vector<std::optional<HtmlCase>> page(options.html.empty() ? 0 : cases.size());  // --html
   const std::size_t started =
       runInWorkers(cases, options.jobs, [&](std::size_t index, CaseResult result) {
         try {
@@ -108,6 +112,13 @@ int runTest(const TestOptions& options) {
         } catch (const BadInput& e) {  // the run goes on; its workers must be waited for
           fmt::print(stderr, "rts: warning: {}\n", e.message);
           result.reportFile.clear();
+        }
+        if (!options.html.empty()) {
+          const std::string name =
+              result.file +
+              (result.seedGiven && result.seed ? " seed " + std::to_string(*result.seed) : "");
+          page[index] = result.report.is_null() ? HtmlCase::failed(name, result.message)
+                                                : HtmlCase::ran(name, result.report);
         }
         result.report = nullptr;  // on disk now; a sweep need not hold every report
         finished[index] = std::move(result);
@@ -120,6 +131,15 @@ int runTest(const TestOptions& options) {
   for (std::size_t i = inOrder.size(); i < cases.size(); ++i)
     inOrder.push_back(notRun(cases[i]));
   outputs.write(inOrder, true);
+  if (!options.html.empty()) {
+    std::vector<HtmlCase> ran;  // in case order; the cases never started are left out
+    for (std::optional<HtmlCase>& c : page)
+      if (c) ran.push_back(std::move(*c));
+    std::string title = "warpath test:";
+    for (const std::string& input : options.inputs)
+      title += " " + input;
+    writeHtmlReport(options.html, title, ran);
+  }
   printTotals(inOrder);
   if (started < cases.size()) {
     fmt::print(stderr, "rts: interrupted; {} of {} cases not run\n", cases.size() - started,
@@ -268,6 +288,7 @@ void registerTestCommand(CLI::App& app, CommandRunner& run) {
   cmd->add_option("--junit", options->junit, "Write JUnit XML to this file");
   cmd->add_option("--report-dir", options->reportDir,
                   "Write each case's report and summary.json (for rts test merge) here");
+  cmd->add_option("--html", options->html, "Write one HTML page with every case's charts");
   merge->add_option("dirs", mergeOptions->dirs, "Report folders of the shards")->required();
   merge->add_option("--junit", mergeOptions->junit, "Write the joined JUnit XML to this file");
   merge->add_option("--report-dir", mergeOptions->reportDir, "Write the joined report folder here");

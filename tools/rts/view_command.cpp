@@ -14,16 +14,27 @@ namespace {
 
 struct ViewOptions {
   std::string file;
+  std::string window;  // "WxH"
   view::ViewerDef def;
 };
 
 int runView(const ViewOptions& options) {
+  view::ViewerDef def = options.def;
+  if (!options.window.empty()) {
+    const auto size = view::parseWindowSize(options.window);
+    if (!size)
+      throw BadInput{"--window: must be WIDTHxHEIGHT, each 16..8192, got '" + options.window + "'"};
+    def.windowWidth = size->first;
+    def.windowHeight = size->second;
+  }
+  if (!def.screenshot.empty() && def.framesThenExit <= 0)
+    throw BadInput{"--screenshot needs --frames-then-exit (the frame it shows)"};
   const engine::Replay replay = readReplayOrThrow(options.file);
   engine::ReplayPlayback playback = openPlaybackOrThrow(replay, options.file);
-  if (Status s = view::runViewer(playback, options.def); !s)
+  if (Status s = view::runViewer(playback, def); !s)
     throw BadInput{options.file + ": " + s.error().describe()};
-  if (options.def.framesThenExit > 0) {
-    fmt::print("{}: {} frames drawn, tick {}\n", options.file, options.def.framesThenExit,
+  if (def.framesThenExit > 0) {
+    fmt::print("{}: {} frames drawn, tick {}\n", options.file, def.framesThenExit,
                playback.run().world().tick());
   }
   return kExitOk;
@@ -40,11 +51,17 @@ void registerViewCommand(CLI::App& app, CommandRunner& run) {
   cmd->add_option("file", options->file, "Replay file (rts run --replay)")->required();
   cmd->add_option("--size", options->def.size, "Pixels along the window's longer side (768)")
       ->check(CLI::Range(16, 8192));
+  cmd->add_option("--window", options->window,
+                  "The window's size at the start, WIDTHxHEIGHT (default: the map's shape at "
+                  "--size); the map is scaled to the window, keeping its shape");
+  cmd->add_option("--screenshot", options->def.screenshot,
+                  "Write the window's last frame as a PNG (with --frames-then-exit)");
   cmd->add_option("--speed", options->def.speed, "Simulated seconds per second at the start (1)")
       ->check(positiveNumberUpTo(1e6));
   cmd->add_flag("--paused", options->def.paused, "Start paused");
   cmd->add_option("--keys", options->def.keys,
-                  "Keys to press one a frame from the start (SDL names, Shift+ to hold shift)")
+                  "Keys to press one a frame from the start (SDL names, Shift+ to hold shift; "
+                  "Window=WxH resizes the window)")
       ->delimiter(',');
   cmd->add_option("--frames-then-exit", options->def.framesThenExit,
                   "Draw N frames, then quit (for tests under SDL_VIDEODRIVER=offscreen)")

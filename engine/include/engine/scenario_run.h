@@ -26,6 +26,9 @@ struct ArrivalStats {
   double p50 = -1.0;
   double p90 = -1.0;
   double max = -1.0;
+  // [Unit: s] the simulated time of each arrival, ascending: the arrival curve (arrivals by
+  // time) of the HTML report and `rts report plot`.
+  std::vector<double> arrivedAt;
   bool operator==(const ArrivalStats&) const = default;
 };
 
@@ -53,6 +56,7 @@ struct DelayStats {
   double p50 = -1.0;
   double p90 = -1.0;
   double max = -1.0;
+  std::vector<double> delays;  // each arrived unit's delay, ascending (the histogram's data)
   bool operator==(const DelayStats&) const = default;
 };
 

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "bitmap_font.h"
+#include "render/bitmap_font.h"
 #include "render/palette.h"
 
 namespace warpath::render {

@@ -13,6 +13,8 @@
 #include <string_view>
 #include <vector>
 
+#include "render/palette.h"
+#include "render/png_io.h"
 #include "render/renderer.h"
 #include "render/world_scene.h"
 
@@ -144,6 +146,9 @@ class Session {
     }
   }
 
+  // The clearance heat map and the graph again (a renderer made for a new window size).
+  void refresh() { showType(showType_); }
+
   // The clearance heat map shows where units of catalogue type `type` may stand, the graph
   // the edges they may use.
   void showType(std::size_t type) {
@@ -180,34 +185,101 @@ class Session {
   Status failure_ = Status::success();
 };
 
-// The SDL key events `names` stand for, or a failure naming the first unknown one.
-Status scriptedKeys(const std::vector<std::string>& names, std::vector<SDL_Keysym>& keys) {
+// One frame's scripted input: a key, or a new window size.
+struct ScriptStep {
+  SDL_Keysym key{};
+  int width = 0;  // > 0: resize the window to width x height instead
+  int height = 0;
+};
+
+// The steps `names` stand for, or a failure naming the first unknown key.
+Status scriptedSteps(const std::vector<std::string>& names, std::vector<ScriptStep>& steps) {
   constexpr std::string_view kShift = "shift+";
+  constexpr std::string_view kWindow = "window=";
   for (const std::string& name : names) {
-    SDL_Keysym k{};
+    ScriptStep step;
+    SDL_Keysym& k = step.key;
     std::string key = name;
     std::string lower = name;
     std::transform(lower.begin(), lower.end(), lower.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (lower.starts_with(kWindow)) {
+      const auto size = parseWindowSize(std::string_view(name).substr(kWindow.size()));
+      if (!size) return Error{"", 0, 0, "'" + name + "': the size must be WxH, each 16..8192"};
+      step.width = size->first;
+      step.height = size->second;
+      steps.push_back(step);
+      continue;
+    }
     if (lower.starts_with(kShift) && name.size() > kShift.size()) {
       k.mod = KMOD_LSHIFT;
       key = name.substr(kShift.size());
     }
     k.sym = SDL_GetKeyFromName(key.c_str());
     if (k.sym == SDLK_UNKNOWN) return Error{"", 0, 0, "unknown key '" + name + "'"};
-    keys.push_back(k);
+    steps.push_back(step);
   }
   return Status::success();
 }
 
+// The largest rectangle of the map's shape that fits a `width` x `height` window, centred.
+SDL_Rect fitted(const pathing::GridMap& map, int width, int height) {
+  const double scale = std::min(static_cast<double>(width) / std::max(map.width(), 1),
+                                static_cast<double>(height) / std::max(map.height(), 1));
+  SDL_Rect r;
+  r.w = std::clamp(static_cast<int>(std::lround(map.width() * scale)), 1, 8192);
+  r.h = std::clamp(static_cast<int>(std::lround(map.height() * scale)), 1, 8192);
+  r.x = (width - r.w) / 2;
+  r.y = (height - r.h) / 2;
+  return r;
+}
+
+// The window's pixels as the last frame left them.
+Status writeScreenshot(SDL_Renderer* sdl, const std::string& file) {
+  int w = 0;
+  int h = 0;
+  if (SDL_GetRendererOutputSize(sdl, &w, &h) != 0) return sdlFailure("cannot read the window size");
+  render::Image shot(w, h);
+  if (SDL_RenderReadPixels(sdl, nullptr, SDL_PIXELFORMAT_RGBA32, shot.pixels.data(), w * 4) != 0)
+    return sdlFailure("cannot read the window's pixels");
+  return render::writePng(file, shot);
+}
+
 }  // namespace
+
+std::optional<std::pair<int, int>> parseWindowSize(std::string_view text) {
+  const std::size_t x = text.find_first_of("xX");
+  if (x == std::string_view::npos) return std::nullopt;
+  const auto side = [](std::string_view digits) -> std::optional<int> {
+    int v = 0;
+    if (digits.empty() || digits.size() > 4) return std::nullopt;
+    for (const char c : digits) {
+      if (c < '0' || c > '9') return std::nullopt;
+      v = v * 10 + (c - '0');
+    }
+    if (v < 16 || v > 8192) return std::nullopt;
+    return v;
+  };
+  const auto w = side(text.substr(0, x));
+  const auto h = side(text.substr(x + 1));
+  if (!w || !h) return std::nullopt;
+  return std::pair{*w, *h};
+}
 
 Status runViewer(engine::ReplayPlayback& playback, const ViewerDef& def) {
   if (def.size < 16 || def.size > 8192) return Error{"", 0, 0, "size must be 16..8192"};
   if (!(def.speed > 0.0)) return Error{"", 0, 0, "speed must be positive"};
+  const bool customWindow = def.windowWidth != 0 || def.windowHeight != 0;
+  if (customWindow && (std::min(def.windowWidth, def.windowHeight) < 16 ||
+                       std::max(def.windowWidth, def.windowHeight) > 8192))
+    return Error{"", 0, 0, "window size must be 16..8192 pixels each way"};
   const engine::Scenario& scenario = playback.scenario();
-  const render::RenderDef renderDef = render::fittedDef(scenario.grid->map(), def.size);
-  auto created = render::Renderer::create(scenario.grid->map(), renderDef);
+  const pathing::GridMap& map = scenario.grid->map();
+  const render::RenderDef initial = render::fittedDef(map, def.size);
+  const int windowWidth = customWindow ? def.windowWidth : initial.width;
+  const int windowHeight = customWindow ? def.windowHeight : initial.height;
+  SDL_Rect view = fitted(map, windowWidth, windowHeight);
+  auto created = render::Renderer::create(map, {.width = view.w, .height = view.h});
   if (!created) return created.error();
   render::Renderer renderer = std::move(created).value();
 
@@ -218,20 +290,22 @@ Status runViewer(engine::ReplayPlayback& playback, const ViewerDef& def) {
   const SdlSession sdl;
   if (!sdl.ok) return sdlFailure("cannot start SDL video");
   const std::unique_ptr<SDL_Window, WindowDeleter> window(
-      SDL_CreateWindow("warpath", SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED, renderDef.width,
-                       renderDef.height, SDL_WINDOW_SHOWN));
+      SDL_CreateWindow("warpath", SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED, windowWidth,
+                       windowHeight, SDL_WINDOW_SHOWN | SDL_WINDOW_RESIZABLE));
   if (!window) return sdlFailure("cannot open a window");
   // Copying one image a frame needs no GPU.
   const std::unique_ptr<SDL_Renderer, RendererDeleter> sdlRenderer(
       SDL_CreateRenderer(window.get(), -1, SDL_RENDERER_SOFTWARE));
   if (!sdlRenderer) return sdlFailure("cannot create an SDL renderer");
-  const std::unique_ptr<SDL_Texture, TextureDeleter> texture(
-      SDL_CreateTexture(sdlRenderer.get(), SDL_PIXELFORMAT_RGBA32, SDL_TEXTUREACCESS_STREAMING,
-                        renderDef.width, renderDef.height));
+  const auto makeTexture = [&](int w, int h) {
+    return std::unique_ptr<SDL_Texture, TextureDeleter>(SDL_CreateTexture(
+        sdlRenderer.get(), SDL_PIXELFORMAT_RGBA32, SDL_TEXTUREACCESS_STREAMING, w, h));
+  };
+  std::unique_ptr<SDL_Texture, TextureDeleter> texture = makeTexture(view.w, view.h);
   if (!texture) return sdlFailure("cannot create a texture");
 
-  std::vector<SDL_Keysym> script;
-  if (Status s = scriptedKeys(def.keys, script); !s) return s;
+  std::vector<ScriptStep> script;
+  if (Status s = scriptedSteps(def.keys, script); !s) return s;
   Session session(playback, renderer, def);
   session.showType(0);
   const int teams = static_cast<int>(scenario.teams.size());
@@ -239,10 +313,15 @@ Status runViewer(engine::ReplayPlayback& playback, const ViewerDef& def) {
   std::uint64_t last = SDL_GetTicks64();
   for (int frame = 0; def.framesThenExit <= 0 || frame < def.framesThenExit; ++frame) {
     if (static_cast<std::size_t>(frame) < script.size()) {
-      SDL_Event typed{};
-      typed.type = SDL_KEYDOWN;
-      typed.key.keysym = script[static_cast<std::size_t>(frame)];
-      SDL_PushEvent(&typed);
+      const ScriptStep& step = script[static_cast<std::size_t>(frame)];
+      if (step.width > 0) {
+        SDL_SetWindowSize(window.get(), step.width, step.height);
+      } else {
+        SDL_Event typed{};
+        typed.type = SDL_KEYDOWN;
+        typed.key.keysym = step.key;
+        SDL_PushEvent(&typed);
+      }
     }
     SDL_Event event;
     while (SDL_PollEvent(&event) != 0) {
@@ -258,14 +337,37 @@ Status runViewer(engine::ReplayPlayback& playback, const ViewerDef& def) {
     last = now;
     if (!session.failure().ok()) return session.failure();
 
+    // A resized window gets a renderer of its own size, so the map stays sharp.
+    int outW = 0;
+    int outH = 0;
+    if (SDL_GetRendererOutputSize(sdlRenderer.get(), &outW, &outH) != 0)
+      return sdlFailure("cannot read the window size");
+    const SDL_Rect wanted = fitted(map, std::max(outW, 1), std::max(outH, 1));
+    if (wanted.w != view.w || wanted.h != view.h) {
+      auto resized = render::Renderer::create(map, {.width = wanted.w, .height = wanted.h});
+      if (!resized) return resized.error();
+      resized.value().setOverlays(renderer.overlays());
+      renderer = std::move(resized).value();
+      session.refresh();
+      texture = makeTexture(wanted.w, wanted.h);
+      if (!texture) return sdlFailure("cannot create a texture");
+    }
+    view = wanted;
+
     render::FrameScene scene = render::sceneOf(session.world(), teams);
     scene.caption = session.caption();
     if (Status s = renderer.render(scene); !s) return s;
     const render::Image& image = renderer.image();
     if (SDL_UpdateTexture(texture.get(), nullptr, image.pixels.data(), image.width * 4) != 0)
       return sdlFailure("cannot update the texture");
+    constexpr render::Rgba kEdge = render::palette::kBackground;
+    SDL_SetRenderDrawColor(sdlRenderer.get(), kEdge.r, kEdge.g, kEdge.b, 255);
     SDL_RenderClear(sdlRenderer.get());
-    SDL_RenderCopy(sdlRenderer.get(), texture.get(), nullptr, nullptr);
+    SDL_RenderCopy(sdlRenderer.get(), texture.get(), nullptr, &view);
+    const bool lastFrame = def.framesThenExit > 0 && frame + 1 == def.framesThenExit;
+    if (lastFrame && !def.screenshot.empty()) {
+      if (Status s = writeScreenshot(sdlRenderer.get(), def.screenshot); !s) return s;
+    }
     SDL_RenderPresent(sdlRenderer.get());
     SDL_SetWindowTitle(window.get(), ("warpath  " + session.status()).c_str());
     if (def.framesThenExit <= 0 && !session.playing()) SDL_Delay(15);  // idle: spare the CPU

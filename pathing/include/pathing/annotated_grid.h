@@ -119,6 +119,10 @@ class AnnotatedGrid {
 // the agent; nullopt when a search is needed.
 std::optional<PathStatus> screenEndpoints(const AnnotatedGrid& grid, Agent agent, Cell start,
                                           Cell goal);
+// screenEndpoints, then the limits: Unreachable when a region leaves out an end,
+// BudgetExhausted for a zero budget. What every grid search answers before it searches.
+std::optional<PathStatus> screenQuery(const AnnotatedGrid& grid, Agent agent, Cell start, Cell goal,
+                                      const SearchLimits& limits);
 
 // Checks that `path` is a sequence of legal single moves for the agent (start and goal
 // included). Returns an empty string when legal, else what is wrong and at which step.

@@ -29,15 +29,33 @@ class JumpPointSearch {
   PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                       const SearchLimits& limits = {});
 
+  // [Unit: bytes] the bit maps kept for the agent kinds asked about so far: where each can
+  // stand, by rows and by columns (2 bits a cell a kind), built at its first query and again
+  // when the grid's terrain changes.
+  std::size_t bitmapBytes() const;
+
  private:
   struct Query;
   static constexpr std::uint32_t kNone = UINT32_MAX;
+
+  // Where one agent kind can stand, a bit a cell, 64 cells a word: rows (x along a row) and
+  // columns (y along a column), so that a straight jump tests 64 cells at once either way.
+  struct Bitmap {
+    Agent agent;
+    std::uint64_t revision = 0;
+    int rowWords = 0;
+    int columnWords = 0;
+    std::vector<std::uint64_t> rows;
+    std::vector<std::uint64_t> columns;
+  };
+  const Bitmap& bitmapFor(Agent agent);
 
   void beginQuery();
   std::uint32_t jump(const Query& q, int x, int y, int dx, int dy) const;
   std::uint32_t jumpStraight(const Query& q, int x, int y, int dx, int dy) const;
 
   const AnnotatedGrid& grid_;
+  std::vector<Bitmap> bitmaps_;
   std::vector<std::uint32_t> stamps_;  // generation << 1 | closed
   std::vector<double> g_;
   std::vector<std::uint32_t> parent_;  // the jump point a cell was reached from

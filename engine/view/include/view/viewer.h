@@ -9,7 +9,10 @@
 // h the help line; q or Escape quit. Going back re-simulates from tick 0: worlds hold Box2D
 // state and cannot be copied, and re-simulating the bundled scenarios takes well under a second.
 
+#include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "engine/replay.h"
@@ -18,15 +21,26 @@
 namespace warpath::view {
 
 struct ViewerDef {
-  int size = 768;          // [Unit: pixels] [Limit: 16..8192] the window's longer side
+  int size = 768;  // [Unit: pixels] [Limit: 16..8192] the window's longer side
+  // [Unit: pixels] [Limit: 0, or 16..8192] the window's size at the start; 0: the map's shape
+  // at `size`. The map is drawn as large as the window allows, keeping its shape, centred,
+  // and again at the new size when the window is resized.
+  int windowWidth = 0;
+  int windowHeight = 0;
+  // A PNG of the whole window as the last of framesThenExit frames leaves it; empty: none.
+  std::string screenshot;
   int framesThenExit = 0;  // > 0: draw this many frames, then quit (tests under SDL's
                            // offscreen or dummy video driver)
   double speed = 1.0;      // [Limit: > 0] simulated seconds per wall second at the start
   bool paused = false;
   // Keys pressed one a frame from the first frame, as if typed (scripted runs, tests): SDL key
-  // names ("Space", "Right", "End", "+", "1"), "Shift+" before one to hold shift.
+  // names ("Space", "Right", "End", "+", "1"), "Shift+" before one to hold shift;
+  // "Window=WxH" resizes the window instead, as if its edge were dragged.
   std::vector<std::string> keys;
 };
+
+// "WIDTHxHEIGHT", each 16..8192 pixels, else nullopt.
+std::optional<std::pair<int, int>> parseWindowSize(std::string_view text);
 
 // Runs until the window is closed (or framesThenExit frames are drawn). Fails, naming the
 // problem, when SDL, the window or the renderer cannot be set up, or the replay's hashes stop

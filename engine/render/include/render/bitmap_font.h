@@ -1,5 +1,6 @@
 #pragma once
-// A 5x7 bitmap font for the HUD, defined in code so frames need no font files.
+// A 5x7 bitmap font for the HUD (and the CLI's PNG plots), defined in code so pictures need no
+// font files.
 
 #include <array>
 #include <cstdint>
