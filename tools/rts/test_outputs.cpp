@@ -9,6 +9,7 @@
 
 #include "pathing/file_read.h"
 #include "rts/cli_support.h"
+#include "rts/svg_plot.h"
 
 namespace warpath::tools {
 namespace {
@@ -17,27 +18,6 @@ namespace fs = std::filesystem;
 
 // A summary names each case once and holds no report: 256 MiB is far past a million cases.
 constexpr FileLimit kSummaryFileLimit{256 * kMiB, "test summaries"};
-
-// The length of the UTF-8 sequence starting `text` at `i`, or 0 when it is not one.
-std::size_t utf8Length(std::string_view text, std::size_t i) {
-  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
-  const unsigned char lead = byte(i);
-  std::size_t length = 0;
-  if (lead >= 0xC2 && lead <= 0xDF)
-    length = 2;
-  else if (lead >= 0xE0 && lead <= 0xEF)
-    length = 3;
-  else if (lead >= 0xF0 && lead <= 0xF4)
-    length = 4;
-  if (length == 0 || i + length > text.size()) return 0;
-  for (std::size_t k = 1; k < length; ++k)
-    if ((byte(i + k) & 0xC0) != 0x80) return 0;
-  // Overlong forms and surrogates (the second byte's range after E0, ED, F0 and F4).
-  if ((lead == 0xE0 && byte(i + 1) < 0xA0) || (lead == 0xED && byte(i + 1) > 0x9F) ||
-      (lead == 0xF0 && byte(i + 1) < 0x90) || (lead == 0xF4 && byte(i + 1) > 0x8F))
-    return 0;
-  return length;
-}
 
 std::string seconds(double s) {
   return fmt::format("{:.6f}", s);  // a small case takes under a millisecond
@@ -82,7 +62,7 @@ struct Counts {
 void appendTestCase(std::string& xml, const CaseResult& r) {
   const std::string seed = r.seed ? std::to_string(*r.seed) : "the file's";
   xml += fmt::format(R"(    <testcase name="{}" classname="{}" file="{}" time="{}">)",
-                     xmlEscape(r.name), xmlEscape(className(r.name)), xmlEscape(r.file),
+                     escapeXml(r.name), escapeXml(className(r.name)), escapeXml(r.file),
                      seconds(r.seconds));
   xml += '\n';
   if (r.status == CaseStatus::Fail) {
@@ -98,11 +78,11 @@ void appendTestCase(std::string& xml, const CaseResult& r) {
     }
     if (failed > 1) message += fmt::format(" (and {} more)", failed - 1);
     xml += fmt::format(R"(      <failure type="expectation" message="{}">{}</failure>)",
-                       xmlEscape(message), xmlEscape(body));
+                       escapeXml(message), escapeXml(body));
     xml += '\n';
   } else if (r.status == CaseStatus::Error) {
-    xml += fmt::format(R"(      <error type="error" message="{}">{}</error>)", xmlEscape(r.message),
-                       xmlEscape(r.message));
+    xml += fmt::format(R"(      <error type="error" message="{}">{}</error>)", escapeXml(r.message),
+                       escapeXml(r.message));
     xml += '\n';
   } else if (r.status == CaseStatus::NotRun) {
     xml += "      <skipped message=\"not run: the run was interrupted first\"/>\n";
@@ -110,8 +90,8 @@ void appendTestCase(std::string& xml, const CaseResult& r) {
   if (!r.stateHash.empty()) {
     xml += fmt::format(
         "      <system-out>seed {}, {} units, {} ticks{}, state hash {}{}</system-out>\n", seed,
-        r.units, r.ticks, r.winner.empty() ? "" : ", winner " + xmlEscape(r.winner), r.stateHash,
-        r.reportFile.empty() ? "" : ", report " + xmlEscape(r.reportFile));
+        r.units, r.ticks, r.winner.empty() ? "" : ", winner " + escapeXml(r.winner), r.stateHash,
+        r.reportFile.empty() ? "" : ", report " + escapeXml(r.reportFile));
   }
   xml += "    </testcase>\n";
 }
@@ -121,55 +101,6 @@ void appendTestCase(std::string& xml, const CaseResult& r) {
 }
 
 }  // namespace
-
-std::string xmlEscape(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (std::size_t i = 0; i < text.size();) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (c >= 0x80) {
-      const std::size_t length = utf8Length(text, i);
-      if (length == 0) {
-        out += "\xEF\xBF\xBD";  // U+FFFD
-        ++i;
-      } else {
-        out.append(text.substr(i, length));
-        i += length;
-      }
-      continue;
-    }
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      case '\n':
-        out += "&#10;";
-        break;  // kept in attributes too
-      case '\t':
-        out += "&#9;";
-        break;
-      case '\r':
-        out += "&#13;";
-        break;
-      default:
-        out += c < 0x20 ? '?' : static_cast<char>(c);
-    }
-    ++i;
-  }
-  return out;
-}
 
 std::string junitXml(const std::vector<CaseResult>& results) {
   Counts total;
@@ -183,7 +114,7 @@ std::string junitXml(const std::vector<CaseResult>& results) {
     Counts suite;
     while (end < results.size() && fileOf(results[end].name) == fileOf(results[begin].name))
       suite.add(results[end++]);
-    xml += fmt::format("  <testsuite name=\"{}\" {}>\n", xmlEscape(fileOf(results[begin].name)),
+    xml += fmt::format("  <testsuite name=\"{}\" {}>\n", escapeXml(fileOf(results[begin].name)),
                        suite.attributes());
     for (std::size_t i = begin; i < end; ++i)
       appendTestCase(xml, results[i]);

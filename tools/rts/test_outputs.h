@@ -23,10 +23,6 @@ inline constexpr std::string_view kSummaryFile = "summary.json";
 // value, a case that did not run to its end an <error>, one never started <skipped/>.
 std::string junitXml(const std::vector<CaseResult>& results);
 
-// Text as XML character data or attribute value: markup escaped, characters XML 1.0 forbids
-// replaced by '?', and bytes that are not UTF-8 by U+FFFD.
-std::string xmlEscape(std::string_view text);
-
 // Writes `text` to `file` through a temporary file renamed over it, so a reader (or an
 // interrupted run) finds the old or the new file whole. Throws BadInput naming the file.
 void writeWholeFile(const std::string& file, const std::string& text);
