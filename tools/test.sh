@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds warpath and runs the whole test suite:
 #   1. Release build, every test; the MovingAI data suite (CTest label `data`) runs too when
-#      $WARPATH_DATA or ../shared/data holds the benchmark maps.
+#      $WARPATH_DATA or ../shared/data holds the benchmark maps, and the Slurm test (label
+#      `cluster`) when Slurm is installed (tools/setup.sh --cluster; skipped otherwise).
 #   2. AddressSanitizer + UndefinedBehaviorSanitizer build (-O1 -g1), every test but the data
-#      suite.
+#      suite and the Slurm test.
 #   3. When clang is installed: the libFuzzer harnesses (tests/fuzz, docs/fuzzing.md) built in
 #      build-fuzz/ and each run for 30 s from the bundled seeds; a crash, hang or OOM fails.
 # Pass --no-sanitizers to skip step 2 and --no-fuzz to skip step 3 while iterating.
@@ -34,7 +35,7 @@ if ((sanitizers)); then
     -DWARPATH_BUILD_BENCHMARKS=OFF -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG"
   cmake --build build-asan -j "$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-    ctest --test-dir build-asan -j "$jobs" --output-on-failure --label-exclude data
+    ctest --test-dir build-asan -j "$jobs" --output-on-failure --label-exclude 'data|cluster'
 fi
 
 if ((fuzz)); then

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <sstream>
 
@@ -55,6 +56,17 @@ pathing::Cell parseCell(std::string_view text, std::string_view option) {
   }
   throw BadInput{std::string(option) + ": expected X,Y (column,row), got '" + std::string(text) +
                  "'"};
+}
+
+void prepareOutputPath(const std::string& file, const std::string& option) {
+  if (file.empty()) return;
+  const std::filesystem::path parent = std::filesystem::path(file).parent_path();
+  std::error_code error;
+  if (!parent.empty()) std::filesystem::create_directories(parent, error);
+  if (error) {
+    throw BadInput{option + ": cannot create the folder '" + parent.string() +
+                   "': " + error.message()};
+  }
 }
 
 pathing::GridMap loadMapOrThrow(const std::string& file) {

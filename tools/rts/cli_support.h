@@ -38,6 +38,10 @@ CLI::Validator positiveNumberUpTo(double hi);
 // "X,Y" with integers; throws BadInput naming `option` otherwise.
 pathing::Cell parseCell(std::string_view text, std::string_view option);
 
+// Creates an output file's folder before a run, so that a bad path fails at once (exit 2)
+// instead of after a long simulation; throws BadInput naming `option`. Nothing for "".
+void prepareOutputPath(const std::string& file, const std::string& option);
+
 // Loads a MovingAI map or throws BadInput with file, line and problem.
 pathing::GridMap loadMapOrThrow(const std::string& file);
 

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <string>
@@ -89,19 +88,6 @@ class Progress {
   bool tty_;
   bool drawn_ = false;
 };
-
-// Creates an output file's folder before the run, so that a bad path fails at once (exit 2)
-// instead of after a long simulation.
-void prepareOutputPath(const std::string& file, const std::string& option) {
-  if (file.empty()) return;
-  const std::filesystem::path parent = std::filesystem::path(file).parent_path();
-  std::error_code error;
-  if (!parent.empty()) std::filesystem::create_directories(parent, error);
-  if (error) {
-    throw BadInput{option + ": cannot create the folder '" + parent.string() +
-                   "': " + error.message()};
-  }
-}
 
 // Whether the run is a battle: the scenario has victory conditions or an end_battle, or combat
 // is on with two teams or more and an armed unit type. Travel-only runs print no battle summary.

@@ -20,16 +20,22 @@ extern "C" void onSignal(int) {
   gInterrupted.store(true);
 }
 
-// inf (a percentile of units that never arrived) has no JSON form: null.
-nlohmann::json finiteOrNull(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
-
 nlohmann::json secondsOrNull(double v) {
   return v < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(v);
 }
 
 }  // namespace
+
+nlohmann::json finiteOrNull(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+nlohmann::json expectationsJson(const std::vector<engine::ExpectationResult>& expectations) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const engine::ExpectationResult& e : expectations)
+    list.push_back({{"text", e.text}, {"actual", finiteOrNull(e.actual)}, {"pass", e.pass}});
+  return list;
+}
 
 engine::Scenario loadScenarioOrThrow(const std::string& file, engine::ReplaySource* source) {
   Result<engine::Scenario> loaded =
@@ -162,11 +168,7 @@ nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& 
   j["end_tick"] = r.endTick < 0 ? json(nullptr) : json(r.endTick);
   j["triggers_fired"] = r.triggersFired;
 
-  json expectations = json::array();
-  for (const engine::ExpectationResult& e : r.expectations)
-    expectations.push_back(
-        {{"text", e.text}, {"actual", finiteOrNull(e.actual)}, {"pass", e.pass}});
-  j["expectations"] = expectations;
+  j["expectations"] = expectationsJson(r.expectations);
   j["passed"] = r.passed();
 
   // Wall time per tick, by phase: a measurement, never an input to the simulation.

@@ -6,6 +6,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <vector>
 
 #include "engine/replay.h"
 #include "engine/scenario.h"
@@ -37,6 +38,11 @@ struct RunOutcome {
 // Steps `run` until it is done (its duration ran out or the battle ended), the tick limit or
 // an interrupt.
 RunOutcome runToEnd(engine::ScenarioRun& run, const RunLimits& limits);
+
+// inf (a percentile of units that never arrived) has no JSON form: null.
+nlohmann::json finiteOrNull(double v);
+// The report's "expectations": text, actual value (null for inf) and pass of each.
+nlohmann::json expectationsJson(const std::vector<engine::ExpectationResult>& expectations);
 
 nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& run);
 

@@ -9,8 +9,10 @@
 
 namespace warpath::tools {
 
-// `text` with &, <, >, " and ' replaced by entities: safe in element content and in quoted
-// attributes of HTML and SVG alike.
+// `text` with &, <, >, " and ' replaced by entities, and newline, tab and CR as character
+// references: safe in element content and in quoted attributes of HTML, SVG and XML alike (the
+// JUnit file of `rts test` too). Characters XML 1.0 forbids become '?', bytes that are not
+// UTF-8 U+FFFD, so the text is always well-formed.
 std::string escapeXml(std::string_view text);
 
 // One <svg class="chart"> element each, with a <title>, axes, tick labels and a legend.
