@@ -81,7 +81,6 @@ int scanLine(const std::uint64_t* line, const std::uint64_t* sideA, const std::u
 struct JumpPointSearch::Query {
   const Bitmap* bits = nullptr;
   int width = 0;
-  int height = 0;
   CellRect bounds;
   Cell goal;
 
@@ -208,7 +207,6 @@ PathResult JumpPointSearch::findPath(Agent agent, Cell start, Cell goal, std::ve
   Query q;
   q.bits = &bitmapFor(agent);
   q.width = map.width();
-  q.height = map.height();
   q.bounds = limits.region.value_or(CellRect{0, 0, map.width(), map.height()});
   q.goal = goal;
   const std::uint32_t goalIndex = map.indexOf(goal);
