@@ -379,7 +379,12 @@ Result<Scenario> replayScenario(const Replay& replay) {
     if (it->second->size() > limit.maxBytes) return fileTooLarge(f.string(), limit);
     return *it->second;
   };
-  return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay);
+  // A scenario that does not say `pathing: cooperative` plays back as it was recorded: with
+  // cooperation off before it became the default.
+  WorldSettings defaults;
+  if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
+  return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
+                       defaults);
 }
 
 Result<ReplayWriter> ReplayWriter::open(const fs::path& file, const ReplaySource& source) {

@@ -9,6 +9,11 @@ namespace warpath::pathing {
 
 namespace {
 
+constexpr std::size_t kMinLaneRun = 7;  // [Unit: cells]
+// [Unit: cells] A path kept right may be at most this many cells per footprint side (plus this
+// many) longer than the path it came from.
+constexpr double kLaneDetourPerSize = 2.0;
+
 constexpr int sign(int v) {
   return (v > 0) - (v < 0);
 }
@@ -29,9 +34,9 @@ Cell rightOf(std::span<const Cell> path, std::size_t i) {
 }
 
 // How many cells along `right` the footprint at `c` moves to lie in the right half of the
-// passage across it; 0 when it does already, or the passage is too narrow or too wide.
+// passage across it (0 when it does already); -1 when the passage is too narrow or too wide.
 int laneShift(const ClearanceField& clearance, int size, Cell c, Cell right) {
-  if (right == Cell{0, 0}) return 0;
+  if (right == Cell{0, 0}) return -1;
   const auto standable = [&](int k) {
     return clearance.at({c.x + k * right.x, c.y + k * right.y}) >= size;
   };
@@ -43,7 +48,7 @@ int laneShift(const ClearanceField& clearance, int size, Cell c, Cell right) {
   while (toLeft + toRight + size <= widest && standable(toRight + 1))
     ++toRight;
   const int width = toLeft + toRight + size;  // cells across, footprint included
-  if (width < 2 * size || width > widest) return 0;
+  if (width < 2 * size || width > widest) return -1;
   const int rightHalf = (width + 1) / 2;  // its first cell, counted from the left edge
   return std::clamp(rightHalf - toLeft, 0, toRight);
 }
@@ -85,6 +90,19 @@ std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<co
     right[i] = rightOf(path, i);
     shift[i] = laneShift(clearance, agent.size, path[i], right[i]);
   }
+  // Only a passage the path runs along for kMinLaneRun cells gets lanes: through a shorter one
+  // (a gap, or a small map's whole width) local avoidance lets two units by, and a lane there
+  // only bends the path.
+  for (std::size_t i = 1; i + 1 < n;) {
+    std::size_t end = i;
+    while (end + 1 < n && shift[end] >= 0 && right[end] == right[i])
+      ++end;
+    const bool tooShort = end - i < kMinLaneRun;
+    for (std::size_t k = i; k < std::max(end, i + 1); ++k) {
+      if (tooShort || shift[k] < 0) shift[k] = 0;
+    }
+    i = std::max(end, i + 1);
+  }
   // A lane begins before its passage and ends after it: a shift carries over to the cells
   // around, a cell less each, where the anchors it crosses are standable.
   const auto carry = [&](std::size_t from, std::size_t to) {
@@ -119,7 +137,12 @@ std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<co
       const Cell to{path[i].x + shift[i] * right[i].x, path[i].y + shift[i] * right[i].y};
       if (!join(layer, map, out, to)) failed = i;
     }
-    if (failed == n) return out;
+    // A lane is worth a short detour, not a long one: a lone unit pays it for nothing. Keeping
+    // right at one passage costs about its shift there and back, a few cells.
+    if (failed == n) {
+      const double detour = pathCost(out) - pathCost(path);
+      return detour <= kLaneDetourPerSize * agent.size + kLaneDetourPerSize ? out : unchanged;
+    }
     shift[failed - 1] = 0;
     shift[failed] = 0;
   }

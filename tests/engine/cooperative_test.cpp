@@ -55,7 +55,7 @@ TEST(Cooperative, SettingsComeFromTheScenario) {
   const Scenario on = parse(kDoor);
   EXPECT_TRUE(on.settings.pathing.cooperative);
   EXPECT_EQ(on.settings.pathing.window, 16);
-  EXPECT_FALSE(
+  EXPECT_TRUE(
       parse(withPathing(kDoor, "{algo: hybrid}")).settings.pathing.cooperative);  // the default
   const Scenario off = parse(withPathing(kDoor, "{cooperative: false, window: 8}"));
   EXPECT_FALSE(off.settings.pathing.cooperative);

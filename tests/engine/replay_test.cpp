@@ -309,6 +309,41 @@ TEST_F(Replays, AFormat2ReplayOfThePreviousReleaseVerifies) {
   EXPECT_NE(r.out.find("verified 1978 ticks, 66 state hashes match"), std::string::npos) << r.out;
 }
 
+// Format 6 was recorded when cooperative movement was off by default: a scenario that does not
+// mention it plays back with it off, so such a file verifies. Read as format 7 (cooperation on
+// by default) the same records do not.
+TEST_F(Replays, AFormat6ReplayPlaysBackWithCooperationOff) {
+  ReplaySource source;
+  Result<Scenario> loaded = loadRecordedScenario(scenario(), source);
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.cooperative);  // the default now
+  s.settings.pathing.cooperative = false;       // format 6's
+  source.seed = s.settings.seed;
+  const fs::path file = dir_ / "format6.rpl";
+  {
+    Result<ReplayWriter> writer = ReplayWriter::open(file, source);
+    ASSERT_TRUE(writer.ok()) << writer.error().describe();
+    ScenarioRun run(s);
+    ASSERT_TRUE(writer.value().record(run));
+    while (!run.done()) {
+      run.step();
+      ASSERT_TRUE(writer.value().record(run));
+    }
+    ASSERT_TRUE(writer.value().finish(run, ReplayEnd::Complete));
+  }
+  std::string bytes = slurp(file);
+  ASSERT_EQ(bytes[8], 7);
+  bytes[8] = 6;
+  spit(file, bytes);
+  RtsResult r = rts("replay verify " + file.string());
+  EXPECT_EQ(r.status, 0) << r.out;
+  bytes[8] = 7;
+  spit(file, bytes);
+  r = rts("replay verify " + file.string());
+  EXPECT_EQ(r.status, 1) << r.out;
+}
+
 TEST_F(Replays, AnotherVersionIsRefused) {
   const fs::path file = record(1);
   std::string bytes = slurp(file);
@@ -317,21 +352,21 @@ TEST_F(Replays, AnotherVersionIsRefused) {
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
                                  ": replay format version 1 is not supported (this build reads "
-                                 "versions 2 to 6); it was written before battles were recorded: "
+                                 "versions 2 to 7); it was written before battles were recorded: "
                                  "record it again with rts run --replay");
   RtsResult r = rts("replay verify " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(file.string() + ": replay format version 1 is not supported"),
             std::string::npos)
       << r.out;
-  bytes[8] = 7;
+  bytes[8] = 8;
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
-                                 ": replay format version 7 is not supported (this build reads "
-                                 "versions 2 to 6)");
+                                 ": replay format version 8 is not supported (this build reads "
+                                 "versions 2 to 7)");
   r = rts("replay info " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_NE(r.out.find("version 7 is not supported"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("version 8 is not supported"), std::string::npos) << r.out;
   EXPECT_EQ(rts("replay verify " + (dir_ / "none.rpl").string()).status, 2);
 }
 
@@ -440,7 +475,7 @@ TEST_F(Replays, ABattleRecordsAndVerifies) {
 
   const RtsResult info = rts("replay info " + file.string());
   EXPECT_EQ(info.status, 0) << info.out;
-  EXPECT_NE(info.out.find("format version: 6\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("format version: 7\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("orders: 4 (2 attack_move, 1 attack, 1 reinforce)\n"), std::string::npos)
       << info.out;
   const RtsResult verify = rts("replay verify " + file.string());

@@ -186,7 +186,7 @@ TEST_F(TerrainReplay, RecordsTheChangeAndVerifies) {
 
   Result<Replay> replay = readReplay(file);
   ASSERT_TRUE(replay.ok()) << replay.error().describe();
-  EXPECT_EQ(replay.value().version, 6u);
+  EXPECT_EQ(replay.value().version, kReplayVersion);
   const auto change =
       std::find_if(replay.value().orders.begin(), replay.value().orders.end(),
                    [](const IssuedOrder& o) { return o.kind == IssuedKind::SetTerrain; });
@@ -228,6 +228,7 @@ TEST(WreckRule, OffItRunsRiverAmbushAsBefore) {
       loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/river_ambush.yaml");
   ASSERT_TRUE(s.ok()) << s.error().describe();
   s.value().settings.combat.wrecksBlock = false;
+  s.value().settings.pathing.cooperative = false;  // off by default before format 7
   ScenarioRun run(s.value());
   while (!run.done())
     run.step();

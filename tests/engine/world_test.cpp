@@ -409,6 +409,9 @@ TEST(World, AUnitThatCannotReachItsCellIsRepathedThenFlaggedStuck) {
   WorldSettings settings;
   settings.stuck.windowSeconds = 1.0;
   settings.stuck.flagAfter = 2;
+  // Independent movement's rule (progress as displacement). With cooperation the second unit
+  // does not park on the held cell either, but it is not flagged: docs/cooperative.md.
+  settings.pathing.cooperative = false;
   World world(grid, {infantry}, settings);
   const UnitId first = world.spawn(0, 0, 0, {6, 2});
   const UnitId second = world.spawn(0, 0, 0, {1, 2});

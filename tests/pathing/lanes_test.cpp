@@ -94,6 +94,31 @@ TEST(Lanes, NoLanesInTheOpenNorWhereTwoCannotPass) {
   EXPECT_EQ(keepRight(narrow, tank, east), east);
 }
 
+TEST(Lanes, NoLanesThroughAShortPassage) {
+  // A river only 4 columns wide: its 6-wide bridge is shorter than a lane's run.
+  GridMap map(40, 20);
+  for (int y = 0; y < 20; ++y) {
+    for (int x = 18; x <= 21; ++x) {
+      if (y < 7 || y >= 13) map.set({x, y}, Terrain::Water);
+    }
+  }
+  const AnnotatedGrid shortBridge(map);
+  const Agent infantry{1, kGround};
+  const std::vector<Cell> across = shortest(shortBridge, infantry, {2, 8}, {37, 8});
+  EXPECT_EQ(keepRight(shortBridge, infantry, across), across);
+  // The whole of a 30x5 map is a passage for infantry: a path along its top row moves to the
+  // right half (for a detour of two diagonals), one along its bottom row is there already.
+  const AnnotatedGrid strip{GridMap(30, 5)};
+  const std::vector<Cell> top = shortest(strip, infantry, {0, 0}, {29, 0});
+  EXPECT_NE(keepRight(strip, infantry, top), top);
+  const std::vector<Cell> bottom = shortest(strip, infantry, {0, 4}, {29, 4});
+  EXPECT_EQ(keepRight(strip, infantry, bottom), bottom);
+  // Short of a lane's run, the same strip keeps every path.
+  const AnnotatedGrid shortStrip{GridMap(8, 5)};
+  const std::vector<Cell> shortTop = shortest(shortStrip, infantry, {0, 0}, {7, 0});
+  EXPECT_EQ(keepRight(shortStrip, infantry, shortTop), shortTop);
+}
+
 TEST(Lanes, AlwaysLegalOnRandomMaps) {
   int shifted = 0;
   for (std::uint64_t seed = 1; seed <= 30; ++seed) {
@@ -105,6 +130,8 @@ TEST(Lanes, AlwaysLegalOnRandomMaps) {
       if (!astar.findPath(agent, {1, 1}, {36, 26}, &path).found()) continue;
       const std::vector<Cell> lane = keepRight(grid, agent, path);
       expectLegalBetween(grid, agent, lane, path);
+      // A lane is a short detour: a few cells per footprint side at most.
+      EXPECT_LE(pathCost(lane), pathCost(path) + 2.0 * size + 2.0 + 1e-9) << seed;
       if (lane != path) ++shifted;
     }
   }

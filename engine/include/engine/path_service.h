@@ -33,9 +33,10 @@ struct PathServiceSettings {
   // each other's reservations at chokepoints, and the movement rules that go with it hold
   // (turning-circle slow-down, stuck = no progress along the path, pushing limited to the
   // pushed unit's speed, units holding position braced). false: each unit follows its spatial
-  // path alone and Box2D settles every conflict, exactly as the first release did. Off by
-  // default until it beats that on the bundled scenarios (docs/cooperative.md).
-  bool cooperative = false;
+  // path alone and Box2D settles every conflict, exactly as the first release did. On by
+  // default since replay format 7: it passes more of the chokepoint scenarios than independent
+  // planning (docs/cooperative.md); replays of older formats play back with it off.
+  bool cooperative = true;
   // [Unit: moves] [Limit: 1..kMaxCooperativeWindow] how far ahead a unit reserves: this many
   // cardinal moves at its top speed; re-planned when half of it is left.
   int window = 16;

@@ -30,13 +30,18 @@ namespace warpath::engine {
 // 6: terrain that changes (docs/terrain_changes.md): set_terrain entries in the command stream
 // (an order record of kind set_terrain: the area, the terrain in the group field), wrecks of
 // large units blocking planning, and the hashes covering the terrain changes and wreck
-// obstacles. Version-1 files (move orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 6;
+// obstacles. 7: the same records; a scenario that leaves `pathing: cooperative` out runs with
+// cooperative movement on (the default since this format; older files play back with it off
+// unless their scenario switched it on). Version-1 files (move orders only) are refused with a
+// message saying so.
+inline constexpr std::uint32_t kReplayVersion = 7;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
 // block bodies but not plans (CombatSettings::wrecksBlock off).
 inline constexpr std::uint32_t kFirstTerrainReplayVersion = 6;
+// Formats before this one were recorded when cooperative movement was off by default.
+inline constexpr std::uint32_t kCooperativeByDefaultReplayVersion = 7;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

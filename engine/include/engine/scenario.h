@@ -178,10 +178,11 @@ using FileReader = std::function<Result<std::string>(const std::filesystem::path
 Result<std::string> readDiskFile(const std::filesystem::path& file, FileLimit limit);
 
 // `text` is read as if it were the file `file` (relative paths resolve against its folder).
-// Referenced files come from `files` (default: the disk).
+// Referenced files come from `files` (default: the disk). A setting the file leaves out keeps
+// its value in `defaults` (replays of older formats pass the defaults of their time).
 Result<Scenario> parseScenario(std::string_view text, const std::filesystem::path& file);
 Result<Scenario> parseScenario(std::string_view text, const std::filesystem::path& file,
-                               const FileReader& files);
+                               const FileReader& files, const WorldSettings& defaults = {});
 Result<Scenario> loadScenario(const std::filesystem::path& file);
 // The scenario's length in ticks (duration x tick rate, as Scenario::durationTicks()) from its
 // `duration` and `tick_rate` alone, without loading its map or anything else: what a replay's

@@ -333,8 +333,10 @@ void applySettings(const Checker& c, const raw::Settings& in, Scenario& s) {
 // Builds a Scenario from a decoded file, checking each part against what came before it.
 class Builder {
  public:
-  Builder(const fs::path& file, const FileReader& files)
-      : c_(file.string()), file_(file), files_(files) {}
+  Builder(const fs::path& file, const FileReader& files, const WorldSettings& defaults)
+      : c_(file.string()), file_(file), files_(files) {
+    s_.settings = defaults;
+  }
 
   // Takes the file's sections in the schema's order: the map, the unit types, the settings,
   // teams, groups, then what refers to them.
@@ -767,10 +769,10 @@ Result<Scenario> parseScenario(std::string_view text, const fs::path& file) {
   return parseScenario(text, file, readDiskFile);
 }
 
-Result<Scenario> parseScenario(std::string_view text, const fs::path& file,
-                               const FileReader& files) {
+Result<Scenario> parseScenario(std::string_view text, const fs::path& file, const FileReader& files,
+                               const WorldSettings& defaults) {
   try {
-    return Builder(file, files).build(decode::ScenarioFile(text, file.string()));
+    return Builder(file, files, defaults).build(decode::ScenarioFile(text, file.string()));
   } catch (const Error& e) {
     return e;
   }

@@ -269,8 +269,10 @@ std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
       if (unit.plan) releaseReservations(w, unit);
       if (unit.plannedTicks < 0) unit.plannedTicks = freeFlowTicks(w, unit, delivery);
       unit.path = delivery.path;
-      // Cooperating units keep to the right half of passages wide enough for two (lanes).
-      if (w.settings.pathing.cooperative) {
+      // Cooperating vehicles keep to the right half of passages wide enough for two (lanes).
+      // Infantry (size 1) slip past each other: lanes only bent their paths, and at the bundled
+      // bridge and crossroads they did no better with them (docs/cooperative.md).
+      if (w.settings.pathing.cooperative && w.typeOf(unit).size >= 2) {
         std::vector<Cell> lane =
             pathing::keepRight(w.grid, w.typeOf(unit).agent(), unit.path->cells);
         if (lane != unit.path->cells)

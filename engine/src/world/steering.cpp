@@ -109,7 +109,11 @@ void steerAll(Refs& w, std::vector<std::uint32_t>& touching) {
       if (!cooperative || (unit.plan && !unit.plan->timed)) {
         desired = r.desiredVelocity;
         toward = units::anchorToCentre(unit.path->cells[r.next], type.size) - unit.position;
-        if (r.reachedEnd) arrive(w, unit, type);
+        // With cooperation a unit that shoved its way onto a goal cell another holds does not
+        // park on top of it: it goes on pushing, and the stuck rule reports it.
+        if (r.reachedEnd && (!cooperative || w.state.goals.freeFor(GoalLayer::Parked, unit.goalCell,
+                                                                   type.size, unit.id)))
+          arrive(w, unit, type);
       } else if (unit.plan) {
         // Keep to the window's times; a unit still waiting for a window stands.
         const units::ScheduleResult s = followSchedule(w, unit, speed);
