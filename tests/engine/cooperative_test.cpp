@@ -187,6 +187,40 @@ TEST(Cooperative, TanksCrossABridgeBothWaysInLanes) {
   EXPECT_GT(failedWithout, 0);
 }
 
+// A jeep behind a crowd of infantry walking its way on an open road: with cooperation it may
+// not push them faster than they walk, yet it is not held to their pace either (u_trap's
+// jeeps): it veers round them and arrives long before them, and none of them is carried ahead.
+TEST(Cooperative, AVehiclePassesSlowerUnitsGoingItsWay) {
+  std::string rows;
+  for (int y = 0; y < 8; ++y)
+    rows += std::string(y > 0 ? ", '" : "'") + std::string(60, '.') + "'";
+  const std::string text =
+      "map: {rows: [" + rows + "]}\n" +
+      "catalogue: ../assets/units.yaml\n"
+      "duration: 60\n"
+      "combat: {enabled: false}\n"
+      "teams: [blue]\n"
+      "groups:\n"
+      "  - {name: crowd, team: blue, type: infantry, count: 16, spawn: {x: 6, y: 2, w: 4, h: 4},\n"
+      "     goal: {x: 54, y: 0, w: 6, h: 8}}\n"
+      "  - {name: jeep, team: blue, type: jeep, count: 1, spawn: {x: 1, y: 3, w: 2, h: 2},\n"
+      "     goal: {x: 56, y: 3, w: 2, h: 2}}\n";
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const Report r = runToEnd(parse(text), seed);
+    double jeep = -1.0;
+    double firstInfantry = -1.0;
+    for (const ArrivalStats& a : r.arrivals) {
+      ASSERT_EQ(a.arrivedAt.size(), static_cast<std::size_t>(a.units)) << a.type;
+      (a.type == "jeep" ? jeep : firstInfantry) = a.arrivedAt.front();
+    }
+    // Alone the jeep needs about 10 s (6 cells/s), the infantry about 30 s (1.5 cells/s);
+    // held behind them the jeep took 34 s, and veering without the limit it carried one
+    // soldier in at 13 s.
+    EXPECT_LT(jeep, 0.6 * firstInfantry) << "seed " << seed;
+    EXPECT_GT(firstInfantry, 24.0) << "seed " << seed;
+  }
+}
+
 // Far from any chokepoint nothing is searched or reserved: on open ground units cruise along
 // their paths; the same units through the door plan windows.
 TEST(Cooperative, OpenGroundNeedsNoWindows) {

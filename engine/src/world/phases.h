@@ -154,6 +154,7 @@ class Traffic {
     std::int64_t holderSince = 0;
     bool turning = false;        // one kept out has waited its turn: nobody new is let through
     std::uint32_t inFlight = 0;  // let through and not past it yet
+    std::uint32_t keptOut = 0;   // waiting the other way
   };
 
   static bool before(const Unit& a, const Unit& b);

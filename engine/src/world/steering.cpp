@@ -2,6 +2,7 @@
 // or halted to fight) limited by what it can do in a tick, handed to physics; and the physics
 // step itself, whose positions and velocities are read back into the units.
 
+#include <array>
 #include <limits>
 
 #include "engine/src/world/phases.h"
@@ -25,15 +26,22 @@ void arrive(Refs& w, Unit& unit, const units::UnitType& type) {
   w.log(EventKind::Parked, unit);
 }
 
+// [Unit: rad] How far from its course a vehicle veers to pass a slower unit going its way.
+constexpr double kOvertakeRadians = 0.5;
+
 // Cooperative movement: a unit pushing into another goes no faster than that one can walk,
 // so a jeep does not drive infantry ahead of it at three times their speed. Who touches whom
-// is Box2D's (its contacts after the last step); `touching` is scratch.
+// is Box2D's (its contacts after the last step); `touching` and `passing` are scratch.
 Vec2 limitPushing(const Refs& w, std::vector<std::uint32_t>& touching, const Unit& unit,
                   Vec2 desired) {
   const double speed = desired.length();
   if (speed < 1e-9) return desired;
   const Vec2 heading = desired * (1.0 / speed);
   double cap = speed;
+  double side = 0.0;  // which way to pass slower units going our way: > 0 to the left
+  // Slower units going our way (or parked): the direction to each and its walking speed.
+  std::array<std::pair<Vec2, double>, 8> passing{};
+  std::size_t passed = 0;
   w.state.physics->touching(unit.body, touching);
   for (const std::uint32_t index : touching) {
     if (index >= w.state.units.size()) continue;
@@ -41,15 +49,37 @@ Vec2 limitPushing(const Refs& w, std::vector<std::uint32_t>& touching, const Uni
     if (!other.alive()) continue;
     const units::UnitType& otherType = w.typeOf(other);
     const Vec2 offset = other.position - unit.position;
+    const double distance = offset.length();
     // Only what lies ahead (within 60° of the heading) is pushed.
-    if (offset.x * heading.x + offset.y * heading.y < 0.5 * offset.length()) continue;
+    if (distance < 1e-9 || offset.x * heading.x + offset.y * heading.y < 0.5 * distance) continue;
     const Cell under{static_cast<int>(std::floor(other.position.x)),
                      static_cast<int>(std::floor(other.position.y))};
     double walk = w.map().contains(under) ? otherType.speedOn(w.map().at(under)) : 0.0;
     if (!(walk > 0.0)) walk = otherType.maxSpeed();
+    if (walk >= speed) continue;
+    // A slower unit walking our way, or parked, is passed rather than followed at its pace: the
+    // vehicle veers round it, pressing on it no faster than it walks.
+    const Vec2 v = other.velocity;
+    if ((other.state == UnitState::Parked || v.x * heading.x + v.y * heading.y > 0.5 * walk) &&
+        passed < passing.size()) {
+      side -= heading.x * offset.y - heading.y * offset.x;
+      passing[passed++] = {offset * (1.0 / distance), walk};
+      continue;
+    }
     cap = std::min(cap, walk);
   }
-  return desired * (cap / speed);
+  Vec2 out = desired * (cap / speed);
+  if (passed == 0) return out;
+  const double turn = side >= 0.0 ? kOvertakeRadians : -kOvertakeRadians;
+  const double c = std::cos(turn);
+  const double s = std::sin(turn);
+  out = {out.x * c - out.y * s, out.x * s + out.y * c};
+  for (std::size_t i = 0; i < passed; ++i) {
+    const auto& [toward, walk] = passing[i];
+    const double pressing = out.x * toward.x + out.y * toward.y;
+    if (pressing > walk) out = out - toward * (pressing - walk);
+  }
+  return out;
 }
 
 // How fast the unit may go where it is: the speed on the terrain under its centre or, under

@@ -357,11 +357,17 @@ void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent) {
     break;
   }
   // Timed when it waits or crosses a chokepoint; a blocked unit keeps to its (short) plan, and
-  // one kept out of a passage to its window (its path runs through the passage).
+  // one kept out of a passage to its window (its path runs through the passage). A vehicle in a
+  // queue let through a passage nobody the other way waits for follows its path as a queue in
+  // the open does: keeping to schedules there only made the vehicles jostle at its mouth
+  // (narrow_pass). Alone it keeps to its window, which starts from where it stands.
+  const Gate* held = gate >= 0 ? &gates_[static_cast<std::size_t>(gate)] : nullptr;
+  const bool queueUnopposed =
+      size >= 2 && admitted && held && held->keptOut == 0 && held->inFlight > 1;
   bool timed = found.status == CooperativeStatus::Blocked || keptOut;
   for (std::size_t i = 0; i < found.steps.size() && !timed; ++i) {
     timed = (i > 0 && found.steps[i].cell == found.steps[i - 1].cell) ||
-            w.state.reservations->tracks(found.steps[i].cell, size);
+            (!queueUnopposed && w.state.reservations->tracks(found.steps[i].cell, size));
   }
   TimedPlan plan = timedPlan(std::move(found.steps), found.status, timed);
   plan.gate = gate;
@@ -469,6 +475,7 @@ void Traffic::updateGates(const Refs& w) {
   for (const Unit& unit : w.state.units) {
     if (!unit.plan || unit.plan->admitted || !gated(unit)) continue;
     Gate& gate = gates_[static_cast<std::size_t>(unit.plan->gate)];
+    ++gate.keptOut;
     if (gate.holder != kNone && now - unit.plan->gateSince > green &&
         !sameWay(headings_[unit.id.index], headings_[gate.holder]))
       gate.turning = true;
