@@ -168,10 +168,10 @@ INSTANTIATE_TEST_SUITE_P(
     BundledScenarios, GoldenHash,
     ::testing::Values(
         Golden{"demo", "003444de5e452fbd", "94f004afe1cb75f5", "268efd7eedf339cb"},
-        Golden{"river_ambush", "e8ed5940ddefe2c3", "e02f77cfc2857a8d", "5e0e2076b5bf9d94"},
+        Golden{"river_ambush", "0f13e699985a46e4", "e02f77cfc2857a8d", "5e0e2076b5bf9d94"},
         Golden{"forest_battle", "4da9b7478ae3aa08", "418269f9132f682d", "1e2811529b35473b"},
         Golden{"amphibious_landing", "40d449545294428f", "a0c07a636b15d90d", "7bb81fc9f3a1784e"},
-        Golden{"bridge_demolition", "d90d1ee7ed6c2feb", "87e5a21810de3f77", "e92b92a84829b703"}),
+        Golden{"bridge_demolition", "9d99fb3cb0b4393e", "87e5a21810de3f77", "e92b92a84829b703"}),
     [](const auto& golden) { return std::string(golden.param.scenario); });
 
 // The field list format-2 replays recorded (World::legacyStateHash) still gives the demo's

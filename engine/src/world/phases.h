@@ -165,6 +165,9 @@ class Traffic {
   // The passage the unit stands in or meets next along its path within a window's reach where
   // it could not pass another of its kind; -1 for none.
   std::int32_t passageAhead(const Refs& w, const Unit& unit);
+  // The way the unit's path crosses passage `p` (not normalised; zero when it does not within
+  // two windows' reach).
+  units::Vec2 passageHeading(const Refs& w, const Unit& unit, std::int32_t p);
   // The gates as the units' plans left them: who holds each, and whether it is turning.
   void updateGates(const Refs& w);
   // The gate of passage `p` lets the unit through now: it is free, or held by units going the
@@ -203,7 +206,9 @@ class Traffic {
   std::vector<std::vector<std::uint32_t>> streams_;  // per passage: cells of the stream out
   std::vector<std::uint8_t> keepOut_;  // per cell: a request's keepOut, zero between searches
   std::vector<std::uint32_t> candidates_;
-  std::vector<units::Vec2> headings_;  // per unit index: unit vector toward its goal, this tick
+  // Per unit index, this tick: unit vector toward its goal, or the way it crosses the passage
+  // ahead.
+  std::vector<units::Vec2> headings_;
   std::vector<std::uint8_t> sharing_;  // per unit index: the request's `sharing`
   std::vector<std::uint8_t> planned_;
   std::vector<std::uint32_t> waitFor_;

@@ -449,6 +449,27 @@ std::int32_t Traffic::passageAhead(const Refs& w, const Unit& unit) {
   return -1;
 }
 
+units::Vec2 Traffic::passageHeading(const Refs& w, const Unit& unit, std::int32_t p) {
+  // From the path's cell before the passage to its cell after it (within a window's reach and
+  // the passage's length past it).
+  const Agent agent = w.typeOf(unit).agent();
+  const std::vector<Cell>& cells = unit.path->cells;
+  const std::size_t from = unit.next > 0 ? unit.next - 1 : 0;
+  const std::size_t reach = static_cast<std::size_t>(2 * w.settings.pathing.window);
+  std::size_t first = cells.size();
+  std::size_t last = cells.size();
+  for (std::size_t i = from; i < std::min(cells.size(), from + reach); ++i) {
+    const bool inside = passageAt(w, agent, cells[i]) == p;
+    if (inside && first == cells.size()) first = i;
+    if (inside) last = i;
+    if (!inside && first != cells.size()) break;
+  }
+  if (first == cells.size()) return {};
+  const Cell a = cells[first > 0 ? first - 1 : 0];
+  const Cell b = cells[std::min(cells.size() - 1, last + 1)];
+  return {static_cast<double>(b.x - a.x), static_cast<double>(b.y - a.y)};
+}
+
 void Traffic::updateGates(const Refs& w) {
   gates_.assign(passages_.size(), {});
   const Tick now = w.state.tick;
@@ -607,6 +628,17 @@ void Traffic::plan(Refs& w, std::uint64_t budget) {
     if (length > 1e-9) headings_[unit.id.index] = toGoal * (1.0 / length);
   }
   findPassages(w);
+  // A vehicle with a passage ahead goes the way its path crosses it: vehicles converging on a
+  // pass from all sides of a wide field go through it the same way (narrow_pass). Infantry keep
+  // their heading to the goal: at the door, crowds judged by the way through it pressed in
+  // together.
+  for (const Unit& unit : all) {
+    if (!following(unit) || w.typeOf(unit).size < 2) continue;
+    if (const std::int32_t p = passageAhead(w, unit); p >= 0) {
+      const units::Vec2 through = passageHeading(w, unit, p);
+      if (through.length() > 1e-9) headings_[unit.id.index] = through * (1.0 / through.length());
+    }
+  }
   updateGates(w);
   for (Unit& unit : all) {
     // Far from any chokepoint a unit needs no window: Box2D alone keeps it apart from others
