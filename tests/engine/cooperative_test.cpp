@@ -221,6 +221,23 @@ TEST(Cooperative, AVehiclePassesSlowerUnitsGoingItsWay) {
   }
 }
 
+// The bundled narrow_pass (scenarios/narrow_pass.yaml): 8 tanks from a field 32 cells tall
+// queue through a pass one tank wide, infantry among them. Those converging on the pass from
+// its two sides go through it the same way, so they queue as without cooperation instead of
+// arbitrating the pass between them: every seed passes (1-5 here; 3 of them failed when the
+// tanks' ways were judged by their goals).
+TEST(Cooperative, TanksFromAWideFieldQueueThroughAPassTogether) {
+  Result<Scenario> loaded =
+      loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/narrow_pass.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  ASSERT_TRUE(loaded.value().settings.pathing.cooperative);
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const Report r = runToEnd(loaded.value(), seed);
+    EXPECT_TRUE(r.passed()) << "seed " << seed;
+    EXPECT_EQ(r.movement.counters.deadlocksBroken, 0) << "seed " << seed;
+  }
+}
+
 // Far from any chokepoint nothing is searched or reserved: on open ground units cruise along
 // their paths; the same units through the door plan windows.
 TEST(Cooperative, OpenGroundNeedsNoWindows) {
