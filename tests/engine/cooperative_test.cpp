@@ -238,6 +238,20 @@ TEST(Cooperative, TanksFromAWideFieldQueueThroughAPassTogether) {
   }
 }
 
+// The bundled U-shaped trap and 200 infantry through a 3-cell gap (scenarios/chokepoints): with
+// cooperation, the default, every unit arrives by the bound and none is flagged stuck at seeds
+// 1-3 (u_trap's jeeps pass the infantry going their way round the U).
+TEST(Cooperative, TheUTrapAndTheGapPassAtEverySeed) {
+  for (const char* file : {"u_trap.yaml", "gap_200.yaml"}) {
+    Result<Scenario> loaded =
+        loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/chokepoints/" + file);
+    ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+    ASSERT_TRUE(loaded.value().settings.pathing.cooperative);
+    for (std::uint64_t seed = 1; seed <= 3; ++seed)
+      EXPECT_TRUE(runToEnd(loaded.value(), seed).passed()) << file << " seed " << seed;
+  }
+}
+
 // Far from any chokepoint nothing is searched or reserved: on open ground units cruise along
 // their paths; the same units through the door plan windows.
 TEST(Cooperative, OpenGroundNeedsNoWindows) {
