@@ -161,10 +161,14 @@ class Traffic {
   // The passages of the tracked cells, found again when the table tracks more.
   void findPassages(const Refs& w);
   // The passage of an anchor where an agent of this kind could not pass another; -1 for none.
-  std::int32_t passageAt(const Refs& w, pathing::Agent agent, pathing::Cell anchor);
+  // `passing`: the agent's passingRoom (looked up once by the loops that scan many anchors).
+  std::int32_t passageAt(const pathing::GridMap& map, const std::vector<std::uint8_t>& passing,
+                         pathing::Cell anchor) const;
   // The passage the unit stands in or meets next along its path within a window's reach where
   // it could not pass another of its kind; -1 for none.
   std::int32_t passageAhead(const Refs& w, const Unit& unit);
+  // passageAhead, found once a tick per unit (the unit follows a path).
+  std::int32_t aheadOf(const Refs& w, const Unit& unit);
   // The way the unit's path crosses passage `p` (not normalised; zero when it does not within
   // two windows' reach).
   units::Vec2 passageHeading(const Refs& w, const Unit& unit, std::int32_t p);
@@ -209,6 +213,8 @@ class Traffic {
   // Per unit index, this tick: unit vector toward its goal, or the way it crosses the passage
   // ahead.
   std::vector<units::Vec2> headings_;
+  static constexpr std::int32_t kUnknown = -2;
+  std::vector<std::int32_t> ahead_;    // per unit index: aheadOf this tick, kUnknown before
   std::vector<std::uint8_t> sharing_;  // per unit index: the request's `sharing`
   std::vector<std::uint8_t> planned_;
   std::vector<std::uint32_t> waitFor_;

@@ -280,7 +280,7 @@ bool Traffic::needsWindow(const Refs& w, const Unit& unit) {
 void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent) {
   // The gate of the passage ahead: a unit let through keeps its turn from window to window;
   // one kept out plans around the passage and its mouth.
-  const std::int32_t gate = passageAhead(w, unit);
+  const std::int32_t gate = aheadOf(w, unit);
   const Tick now = w.state.tick;
   bool admitted = false;
   Tick gateSince = now;
@@ -427,24 +427,33 @@ void Traffic::findPassages(const Refs& w) {
   gates_.assign(passages_.size(), {});
 }
 
-std::int32_t Traffic::passageAt(const Refs& w, Agent agent, Cell anchor) {
-  const GridMap& map = w.map();
-  if (!map.contains(anchor) || passingRoom(w, agent)[map.indexOf(anchor)] != 0) return -1;
+std::int32_t Traffic::passageAt(const GridMap& map, const std::vector<std::uint8_t>& passing,
+                                Cell anchor) const {
+  if (!map.contains(anchor) || passing[map.indexOf(anchor)] != 0) return -1;
   return passageOf_[map.indexOf(anchor)];
+}
+
+std::int32_t Traffic::aheadOf(const Refs& w, const Unit& unit) {
+  std::int32_t& known = ahead_[unit.id.index];
+  // A passage is tracked: a unit with no tracked cell ahead has none (and chokepointAhead
+  // remembers what it scanned).
+  if (known == kUnknown) known = chokepointAhead(w, unit) ? passageAhead(w, unit) : -1;
+  return known;
 }
 
 std::int32_t Traffic::passageAhead(const Refs& w, const Unit& unit) {
   const units::UnitType& type = w.typeOf(unit);
-  const Agent agent = type.agent();
+  const GridMap& map = w.map();
+  const std::vector<std::uint8_t>& passing = passingRoom(w, type.agent());
   if (const std::int32_t here =
-          passageAt(w, agent, units::centreToAnchor(unit.position, type.size));
+          passageAt(map, passing, units::centreToAnchor(unit.position, type.size));
       here >= 0)
     return here;
   const std::vector<Cell>& cells = unit.path->cells;
   const std::size_t from = unit.next > 0 ? unit.next - 1 : 0;
   const std::size_t reach = static_cast<std::size_t>(w.settings.pathing.window + type.size + 2);
   for (std::size_t i = from; i < std::min(cells.size(), from + reach); ++i) {
-    if (const std::int32_t p = passageAt(w, agent, cells[i]); p >= 0) return p;
+    if (const std::int32_t p = passageAt(map, passing, cells[i]); p >= 0) return p;
   }
   return -1;
 }
@@ -452,14 +461,14 @@ std::int32_t Traffic::passageAhead(const Refs& w, const Unit& unit) {
 units::Vec2 Traffic::passageHeading(const Refs& w, const Unit& unit, std::int32_t p) {
   // From the path's cell before the passage to its cell after it (within a window's reach and
   // the passage's length past it).
-  const Agent agent = w.typeOf(unit).agent();
+  const std::vector<std::uint8_t>& passing = passingRoom(w, w.typeOf(unit).agent());
   const std::vector<Cell>& cells = unit.path->cells;
   const std::size_t from = unit.next > 0 ? unit.next - 1 : 0;
   const std::size_t reach = static_cast<std::size_t>(2 * w.settings.pathing.window);
   std::size_t first = cells.size();
   std::size_t last = cells.size();
   for (std::size_t i = from; i < std::min(cells.size(), from + reach); ++i) {
-    const bool inside = passageAt(w, agent, cells[i]) == p;
+    const bool inside = passageAt(w.map(), passing, cells[i]) == p;
     if (inside && first == cells.size()) first = i;
     if (inside) last = i;
     if (!inside && first != cells.size()) break;
@@ -478,7 +487,7 @@ void Traffic::updateGates(const Refs& w) {
   const auto gated = [&](const Unit& unit) {
     return following(unit) && unit.plan && unit.plan->gate >= 0 &&
            static_cast<std::size_t>(unit.plan->gate) < gates_.size() &&
-           passageAhead(w, unit) == unit.plan->gate;
+           aheadOf(w, unit) == unit.plan->gate;
   };
   streams_.resize(gates_.size());
   for (std::vector<std::uint32_t>& stream : streams_)
@@ -511,10 +520,11 @@ void Traffic::addStream(const Refs& w, const Unit& unit, std::vector<std::uint32
   const std::size_t from = unit.next > 0 ? unit.next - 1 : 0;
   const std::size_t reach =
       static_cast<std::size_t>(w.settings.pathing.window + type.size + 2 + kStream);
+  const std::vector<std::uint8_t>& passing = passingRoom(w, type.agent());
   int left = -1;  // moves since the passage, -1 before its end
   for (std::size_t i = from; i < std::min(cells.size(), from + reach) && left < kStream; ++i) {
     const Cell a = cells[i];
-    if (passageAt(w, type.agent(), a) == unit.plan->gate) {
+    if (passageAt(map, passing, a) == unit.plan->gate) {
       left = 0;
       continue;
     }
@@ -628,13 +638,14 @@ void Traffic::plan(Refs& w, std::uint64_t budget) {
     if (length > 1e-9) headings_[unit.id.index] = toGoal * (1.0 / length);
   }
   findPassages(w);
+  ahead_.assign(all.size(), kUnknown);
   // A vehicle with a passage ahead goes the way its path crosses it: vehicles converging on a
   // pass from all sides of a wide field go through it the same way (narrow_pass). Infantry keep
   // their heading to the goal: at the door, crowds judged by the way through it pressed in
   // together.
   for (const Unit& unit : all) {
     if (!following(unit) || w.typeOf(unit).size < 2) continue;
-    if (const std::int32_t p = passageAhead(w, unit); p >= 0) {
+    if (const std::int32_t p = aheadOf(w, unit); p >= 0) {
       const units::Vec2 through = passageHeading(w, unit, p);
       if (through.length() > 1e-9) headings_[unit.id.index] = through * (1.0 / through.length());
     }
