@@ -70,8 +70,8 @@ struct World::Phases {
   explicit Phases(int maxUnitSize) : combat(maxUnitSize) {}
   world::Combat combat;
   world::Traffic traffic;
-  std::vector<std::uint32_t> touching;  // steering's scratch: who touches a unit
-  std::vector<bool> contestedTracked;   // per catalogue type: its chokepoints are tracked
+  world::SteeringScratch steering;
+  std::vector<bool> contestedTracked;  // per catalogue type: its chokepoints are tracked
   std::vector<PathDelivery> deliveries;
   world::PhaseTimer timer;
 };
@@ -227,7 +227,7 @@ void World::step() {
   const bool combat = settings_.combat.enabled;
   if (combat) phases_->combat.chooseTargets(w);
   timer.mark(Phase::Combat);
-  world::steerAll(w, phases_->touching);
+  world::steerAll(w, phases_->steering);
   timer.mark(Phase::Steering);
   if (combat) phases_->combat.fire(w);
   timer.mark(Phase::Combat);

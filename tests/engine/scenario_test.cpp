@@ -167,9 +167,9 @@ TEST_P(GoldenHash, OfTheWholeRun) {
 INSTANTIATE_TEST_SUITE_P(
     BundledScenarios, GoldenHash,
     ::testing::Values(
-        Golden{"demo", "003444de5e452fbd", "94f004afe1cb75f5", "268efd7eedf339cb"},
-        Golden{"river_ambush", "0f13e699985a46e4", "e02f77cfc2857a8d", "5e0e2076b5bf9d94"},
-        Golden{"forest_battle", "4da9b7478ae3aa08", "418269f9132f682d", "1e2811529b35473b"},
+        Golden{"demo", "457b29e264804829", "94f004afe1cb75f5", "268efd7eedf339cb"},
+        Golden{"river_ambush", "8775c6603fcabc52", "e02f77cfc2857a8d", "5e0e2076b5bf9d94"},
+        Golden{"forest_battle", "f070f49f47f75b20", "418269f9132f682d", "1e2811529b35473b"},
         Golden{"amphibious_landing", "40d449545294428f", "a0c07a636b15d90d", "7bb81fc9f3a1784e"},
         Golden{"bridge_demolition", "9d99fb3cb0b4393e", "87e5a21810de3f77", "e92b92a84829b703"}),
     [](const auto& golden) { return std::string(golden.param.scenario); });

@@ -223,8 +223,16 @@ class Traffic {
 };
 
 // --- Steering: desired velocities into physics (engine/src/world/steering.cpp) ---
-// `touching` is scratch (the bodies touching each unit, with cooperative movement).
-void steerAll(Refs& w, std::vector<std::uint32_t>& touching);
+// Steering's scratch, with cooperative movement: who touches each vehicle, and which vehicle
+// each unit of the lightest kind steps aside for.
+struct SteeringScratch {
+  static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  std::vector<std::uint32_t> touching;      // each vehicle's contacts, one run per unit index
+  std::vector<std::uint32_t> start;         // per unit index: its run's start; one past the end
+  std::vector<std::uint32_t> stepAsideFor;  // per unit index: a vehicle's index, or kNone
+  std::vector<std::uint32_t> contact;       // one body's contacts
+};
+void steerAll(Refs& w, SteeringScratch& scratch);
 
 // --- Physics: Box2D steps, positions read back ---
 void stepPhysics(Refs& w);

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <limits>
+#include <span>
 
 #include "engine/src/world/phases.h"
 
@@ -31,8 +32,8 @@ constexpr double kOvertakeRadians = 0.5;
 
 // Cooperative movement: a unit pushing into another goes no faster than that one can walk,
 // so a jeep does not drive infantry ahead of it at three times their speed. Who touches whom
-// is Box2D's (its contacts after the last step); `touching` and `passing` are scratch.
-Vec2 limitPushing(const Refs& w, std::vector<std::uint32_t>& touching, const Unit& unit,
+// is Box2D's (its contacts after the last step, `touching`).
+Vec2 limitPushing(const Refs& w, std::span<const std::uint32_t> touching, const Unit& unit,
                   Vec2 desired) {
   const double speed = desired.length();
   if (speed < 1e-9) return desired;
@@ -42,7 +43,6 @@ Vec2 limitPushing(const Refs& w, std::vector<std::uint32_t>& touching, const Uni
   // Slower units going our way (or parked): the direction to each and its walking speed.
   std::array<std::pair<Vec2, double>, 8> passing{};
   std::size_t passed = 0;
-  w.state.physics->touching(unit.body, touching);
   for (const std::uint32_t index : touching) {
     if (index >= w.state.units.size()) continue;
     const Unit& other = w.state.units[index];
@@ -82,6 +82,55 @@ Vec2 limitPushing(const Refs& w, std::vector<std::uint32_t>& touching, const Uni
   return out;
 }
 
+// Whether `vehicle` drives into `unit` (they touch): it moves, and the unit lies within 60° of
+// its course.
+bool drivesInto(const Unit& vehicle, const Unit& unit) {
+  const Vec2 v = vehicle.velocity;
+  const double speed = v.length();
+  const Vec2 offset = unit.position - vehicle.position;
+  const double distance = offset.length();
+  return speed >= 0.3 && distance > 1e-9 &&
+         v.x * offset.x + v.y * offset.y >= 0.5 * speed * distance;
+}
+
+// Cooperative movement: a moving unit of the lightest kind that a heavier unit drives into
+// steps off the vehicle's course at its own top speed, keeping what it was doing along it:
+// vehicles are not held to infantry's pace by infantry that would let them by. (Parked units
+// steer back to their cells; vehicles veer round them.)
+Vec2 stepAside(const Refs& w, const Unit& unit, const Unit& vehicle, Vec2 desired) {
+  const Vec2 heading = vehicle.velocity * (1.0 / vehicle.velocity.length());
+  const Vec2 left{heading.y, -heading.x};
+  const Vec2 offset = unit.position - vehicle.position;
+  // Sideways from the vehicle's course, on the side the unit already is.
+  const double side = offset.x * left.x + offset.y * left.y >= 0.0 ? 1.0 : -1.0;
+  const double along = desired.x * heading.x + desired.y * heading.y;
+  return heading * along + left * (side * w.typeOf(unit).maxSpeed());
+}
+
+// Each vehicle's contacts (Box2D's, after the last step) into s.touching, and for each moving
+// unit of the lightest kind the first vehicle (by id) that drives into it.
+void findContacts(const Refs& w, double lightest, SteeringScratch& s) {
+  const std::vector<Unit>& all = w.state.units;
+  s.start.assign(all.size() + 1, 0);
+  s.touching.clear();
+  s.stepAsideFor.assign(all.size(), SteeringScratch::kNone);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    s.start[i] = static_cast<std::uint32_t>(s.touching.size());
+    const Unit& vehicle = all[i];
+    if (!vehicle.alive() || !(w.typeOf(vehicle).radius > lightest)) continue;
+    w.state.physics->touching(vehicle.body, s.contact);
+    s.touching.insert(s.touching.end(), s.contact.begin(), s.contact.end());
+    for (const std::uint32_t index : s.contact) {
+      if (index >= all.size() || s.stepAsideFor[index] != SteeringScratch::kNone) continue;
+      const Unit& other = all[index];
+      if (other.alive() && other.state == UnitState::Moving && !other.engaged &&
+          !(w.typeOf(other).radius > lightest) && drivesInto(vehicle, other))
+        s.stepAsideFor[index] = static_cast<std::uint32_t>(i);
+    }
+  }
+  s.start[all.size()] = static_cast<std::uint32_t>(s.touching.size());
+}
+
 // How fast the unit may go where it is: the speed on the terrain under its centre or, under
 // terrain costs, on the slowest terrain under its footprint (the speed its plan assumed, so
 // that a plan's cost is its travel time; docs/terrain_costs.md). Its top speed where it
@@ -109,12 +158,13 @@ double speedHere(const Refs& w, const Unit& unit, const units::UnitType& type) {
 
 }  // namespace
 
-void steerAll(Refs& w, std::vector<std::uint32_t>& touching) {
+void steerAll(Refs& w, SteeringScratch& scratch) {
   const double dt = 1.0 / w.settings.tickRate;
   const bool cooperative = w.settings.pathing.cooperative;
   double lightest = std::numeric_limits<double>::infinity();
   for (const units::UnitType& type : w.catalogue)
     lightest = std::min(lightest, type.radius);
+  if (cooperative) findContacts(w, lightest, scratch);
   for (Unit& unit : w.state.units) {
     if (!unit.alive()) continue;
     const units::UnitType& type = w.typeOf(unit);
@@ -162,7 +212,14 @@ void steerAll(Refs& w, std::vector<std::uint32_t>& touching) {
       const double turnCap = units::turnLimitedSpeed(unit.velocity, toward, type.turnRate);
       if (speed > turnCap) desired = desired * (turnCap / speed);
       // Mass grows with area: only a unit heavier than the lightest kind can drive another.
-      if (type.radius > lightest) desired = limitPushing(w, touching, unit, desired);
+      const std::size_t i = unit.id.index;
+      if (type.radius > lightest) {
+        const std::span<const std::uint32_t> touching(scratch.touching.data() + scratch.start[i],
+                                                      scratch.start[i + 1] - scratch.start[i]);
+        desired = limitPushing(w, touching, unit, desired);
+      } else if (scratch.stepAsideFor[i] != SteeringScratch::kNone) {
+        desired = stepAside(w, unit, w.state.units[scratch.stepAsideFor[i]], desired);
+      }
     }
     const Vec2 v =
         units::limitVelocity(unit.velocity, desired, type.acceleration, type.turnRate, dt);
