@@ -9,9 +9,10 @@ namespace warpath::pathing {
 
 namespace {
 
-constexpr std::size_t kMinLaneRun = 7;  // [Unit: cells]
-// [Unit: cells] A path kept right may be at most this many cells per footprint side (plus this
-// many) longer than the path it came from.
+// [Unit: cells] The shortest run of a path along one passage that gets a lane.
+constexpr std::size_t kMinLaneRun = 7;
+// [Unit: cells] A path kept right may be at most this much longer than the path it came from,
+// per cell of footprint side plus one: 4 cells for infantry, 8 for a size-3 tank.
 constexpr double kLaneDetourPerSize = 2.0;
 
 constexpr int sign(int v) {
@@ -94,14 +95,15 @@ std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<co
   // (a gap, or a small map's whole width) local avoidance lets two units by, and a lane there
   // only bends the path.
   for (std::size_t i = 1; i + 1 < n;) {
-    std::size_t end = i;
+    if (shift[i] < 0) {
+      shift[i++] = 0;
+      continue;
+    }
+    std::size_t end = i + 1;  // the run is [i, end)
     while (end + 1 < n && shift[end] >= 0 && right[end] == right[i])
       ++end;
-    const bool tooShort = end - i < kMinLaneRun;
-    for (std::size_t k = i; k < std::max(end, i + 1); ++k) {
-      if (tooShort || shift[k] < 0) shift[k] = 0;
-    }
-    i = std::max(end, i + 1);
+    if (end - i < kMinLaneRun) std::fill(shift.begin() + i, shift.begin() + end, 0);
+    i = end;
   }
   // A lane begins before its passage and ends after it: a shift carries over to the cells
   // around, a cell less each, where the anchors it crosses are standable.
@@ -141,7 +143,7 @@ std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<co
     // right at one passage costs about its shift there and back, a few cells.
     if (failed == n) {
       const double detour = pathCost(out) - pathCost(path);
-      return detour <= kLaneDetourPerSize * agent.size + kLaneDetourPerSize ? out : unchanged;
+      return detour <= kLaneDetourPerSize * (agent.size + 1) ? out : unchanged;
     }
     shift[failed - 1] = 0;
     shift[failed] = 0;

@@ -459,8 +459,8 @@ std::int32_t Traffic::passageAhead(const Refs& w, const Unit& unit) {
 }
 
 units::Vec2 Traffic::passageHeading(const Refs& w, const Unit& unit, std::int32_t p) {
-  // From the path's cell before the passage to its cell after it (within a window's reach and
-  // the passage's length past it).
+  // From the path's cell before the passage to its cell after it, scanning two windows' worth
+  // of path cells.
   const std::vector<std::uint8_t>& passing = passingRoom(w, w.typeOf(unit).agent());
   const std::vector<Cell>& cells = unit.path->cells;
   const std::size_t from = unit.next > 0 ? unit.next - 1 : 0;
