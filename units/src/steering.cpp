@@ -41,7 +41,7 @@ double turnLimitedSpeed(Vec2 velocity, Vec2 offset, double turnRate) {
   if (speed < 1e-6 || distance < 1e-9) return INFINITY;
   const double cross = velocity.x * offset.y - velocity.y * offset.x;
   const double sinTheta = std::abs(cross) / (speed * distance);
-  const bool ahead = velocity.x * offset.x + velocity.y * offset.y > 0.0;
+  const bool ahead = velocity.dot(offset) > 0.0;
   // Behind the unit the needed circle is the tightest one (θ near 180° has sin near 0).
   const double s = ahead ? sinTheta : 1.0;
   if (s < 0.0175) return INFINITY;  // within a degree of straight ahead

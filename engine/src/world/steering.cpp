@@ -51,7 +51,7 @@ Vec2 limitPushing(const Refs& w, std::span<const std::uint32_t> touching, const 
     const Vec2 offset = other.position - unit.position;
     const double distance = offset.length();
     // Only what lies ahead (within 60° of the heading) is pushed.
-    if (distance < 1e-9 || offset.x * heading.x + offset.y * heading.y < 0.5 * distance) continue;
+    if (distance < 1e-9 || offset.dot(heading) < 0.5 * distance) continue;
     const Cell under{static_cast<int>(std::floor(other.position.x)),
                      static_cast<int>(std::floor(other.position.y))};
     double walk = w.map().contains(under) ? otherType.speedOn(w.map().at(under)) : 0.0;
@@ -60,7 +60,7 @@ Vec2 limitPushing(const Refs& w, std::span<const std::uint32_t> touching, const 
     // A slower unit walking our way, or parked, is passed rather than followed at its pace: the
     // vehicle veers round it, pressing on it no faster than it walks.
     const Vec2 v = other.velocity;
-    if ((other.state == UnitState::Parked || v.x * heading.x + v.y * heading.y > 0.5 * walk) &&
+    if ((other.state == UnitState::Parked || v.dot(heading) > 0.5 * walk) &&
         passed < passing.size()) {
       side -= heading.x * offset.y - heading.y * offset.x;
       passing[passed++] = {offset * (1.0 / distance), walk};
@@ -76,7 +76,7 @@ Vec2 limitPushing(const Refs& w, std::span<const std::uint32_t> touching, const 
   out = {out.x * c - out.y * s, out.x * s + out.y * c};
   for (std::size_t i = 0; i < passed; ++i) {
     const auto& [toward, walk] = passing[i];
-    const double pressing = out.x * toward.x + out.y * toward.y;
+    const double pressing = out.dot(toward);
     if (pressing > walk) out = out - toward * (pressing - walk);
   }
   return out;
@@ -89,8 +89,7 @@ bool drivesInto(const Unit& vehicle, const Unit& unit) {
   const double speed = v.length();
   const Vec2 offset = unit.position - vehicle.position;
   const double distance = offset.length();
-  return speed >= 0.3 && distance > 1e-9 &&
-         v.x * offset.x + v.y * offset.y >= 0.5 * speed * distance;
+  return speed >= 0.3 && distance > 1e-9 && v.dot(offset) >= 0.5 * speed * distance;
 }
 
 // Cooperative movement: a moving unit of the lightest kind that a heavier unit drives into
@@ -102,8 +101,8 @@ Vec2 stepAside(const Refs& w, const Unit& unit, const Unit& vehicle, Vec2 desire
   const Vec2 left{heading.y, -heading.x};
   const Vec2 offset = unit.position - vehicle.position;
   // Sideways from the vehicle's course, on the side the unit already is.
-  const double side = offset.x * left.x + offset.y * left.y >= 0.0 ? 1.0 : -1.0;
-  const double along = desired.x * heading.x + desired.y * heading.y;
+  const double side = offset.dot(left) >= 0.0 ? 1.0 : -1.0;
+  const double along = desired.dot(heading);
   return heading * along + left * (side * w.typeOf(unit).maxSpeed());
 }
 

@@ -43,7 +43,7 @@ Cell cellAt(const GridMap& map, std::uint32_t index) {
 }
 
 bool sameWay(units::Vec2 a, units::Vec2 b) {
-  return a.x * b.x + a.y * b.y > kSameWay;
+  return a.dot(b) > kSameWay;
 }
 
 std::uint32_t ownerOf(const Unit& unit) {

@@ -20,6 +20,7 @@ struct Vec2 {
   constexpr Vec2 operator+(Vec2 o) const { return {x + o.x, y + o.y}; }
   constexpr Vec2 operator-(Vec2 o) const { return {x - o.x, y - o.y}; }
   constexpr Vec2 operator*(double k) const { return {x * k, y * k}; }
+  constexpr double dot(Vec2 o) const { return x * o.x + y * o.y; }
   constexpr bool operator==(const Vec2&) const = default;
   double length() const { return std::sqrt(x * x + y * y); }
 };
