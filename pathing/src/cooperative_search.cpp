@@ -1,11 +1,13 @@
 #include "pathing/cooperative_search.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <queue>
 
 #include "pathing/moves.h"
+#include "pathing/open_list.h"
 #include "pathing/search.h"
 
 namespace warpath::pathing {
@@ -95,66 +97,90 @@ CorridorDistance::CorridorDistance(const AnnotatedGrid& grid, Agent agent,
                                    std::span<const Cell> path, int radius) {
   const GridMap& map = grid.map();
   if (path.empty() || map.width() <= 0 || map.height() <= 0) return;
-  // Each path cell's square, as row runs clipped to the map; then sorted and merged.
+  // Each path cell's square, clipped to the map, marked in a bitmap over the squares' bounding
+  // box. (Sorting row runs of every square cost most of a build on long paths.)
+  int right = -1;
+  int bottom = -1;
+  int left = map.width();
+  top_ = map.height();
   for (const Cell& p : path) {
-    const int x0 = std::max(0, p.x - radius);
-    const int x1 = std::min(map.width() - 1, p.x + radius);
-    if (x0 > x1) continue;
-    for (int y = std::max(0, p.y - radius); y <= std::min(map.height() - 1, p.y + radius); ++y)
-      runs_.push_back({y, x0, x1, 0});
+    left = std::min(left, std::max(0, p.x - radius));
+    right = std::max(right, std::min(map.width() - 1, p.x + radius));
+    top_ = std::min(top_, std::max(0, p.y - radius));
+    bottom = std::max(bottom, std::min(map.height() - 1, p.y + radius));
   }
-  if (runs_.empty()) return;
-  std::sort(runs_.begin(), runs_.end(),
-            [](const Run& a, const Run& b) { return a.y != b.y ? a.y < b.y : a.x0 < b.x0; });
-  std::size_t kept = 0;
-  for (const Run& run : runs_) {
-    Run& last = runs_[kept > 0 ? kept - 1 : 0];
-    if (kept > 0 && last.y == run.y && run.x0 <= last.x1 + 1) {
-      last.x1 = std::max(last.x1, run.x1);
-    } else {
-      runs_[kept++] = run;
+  if (left > right || top_ > bottom) return;
+  const int width = right - left + 1;
+  const int height = bottom - top_ + 1;
+  const auto words = static_cast<std::size_t>(width / 64 + 1);
+  std::vector<std::uint64_t> marked(words * static_cast<std::size_t>(height), 0);
+  for (const Cell& p : path) {
+    const int x0 = std::max(0, p.x - radius - left);
+    const int x1 = std::min(right, p.x + radius) - left;
+    for (int y = std::max(top_, p.y - radius); y <= std::min(bottom, p.y + radius); ++y) {
+      std::uint64_t* row = &marked[static_cast<std::size_t>(y - top_) * words];
+      for (int w = x0 / 64; w <= x1 / 64; ++w) {
+        const int lo = std::max(x0, w * 64) - w * 64;
+        const int hi = std::min(x1, w * 64 + 63) - w * 64;
+        row[w] |= (~std::uint64_t{0} >> (63 - hi)) & (~std::uint64_t{0} << lo);
+      }
     }
   }
-  runs_.resize(kept);
-  top_ = runs_.front().y;
-  // rowRuns_[r]: the runs of rows before top_ + r, counted.
-  rowRuns_.assign(static_cast<std::size_t>(runs_.back().y - top_ + 2), 0);
-  for (const Run& run : runs_)
-    ++rowRuns_[static_cast<std::size_t>(run.y - top_ + 1)];
-  for (std::size_t r = 1; r < rowRuns_.size(); ++r)
-    rowRuns_[r] += rowRuns_[r - 1];
-  std::uint32_t offset = 0;
-  for (Run& run : runs_) {
-    run.offset = offset;
-    offset += static_cast<std::uint32_t>(run.x1 - run.x0 + 1);
+  // The corridor's runs: each row's runs of marked cells, their slots in row-major order.
+  rowRuns_.assign(static_cast<std::size_t>(height) + 1, 0);
+  std::uint32_t cells = 0;
+  for (int r = 0; r < height; ++r) {
+    rowRuns_[static_cast<std::size_t>(r)] = static_cast<std::uint32_t>(runs_.size());
+    const std::uint64_t* row = &marked[static_cast<std::size_t>(r) * words];
+    // The first cell at or after x whose bit is `set`, or width.
+    const auto next = [&](int x, bool set) {
+      while (x < width) {
+        const std::uint64_t bits = (set ? row[x / 64] : ~row[x / 64]) >> (x % 64);
+        if (bits != 0) return std::min(width, x + std::countr_zero(bits));
+        x = (x / 64 + 1) * 64;
+      }
+      return width;
+    };
+    for (int x = next(0, true); x < width; x = next(x, true)) {
+      const int end = next(x, false);
+      runs_.push_back({top_ + r, left + x, left + end - 1, cells});
+      cells += static_cast<std::uint32_t>(end - x);
+      x = end;
+    }
   }
-  distances_.assign(offset, kInfinity);
+  rowRuns_[static_cast<std::size_t>(height)] = static_cast<std::uint32_t>(runs_.size());
+  distances_.assign(cells, kInfinity);
 
   // Dijkstra from the goal over the corridor (moves are symmetric; they lead only to cells the
-  // agent may stand on).
+  // agent may stand on). Final distances do not depend on the order among equal keys: a cell's
+  // distance is the least of its closer neighbours' plus a move, and moves cost at least 1.
   if (!grid.canStand(agent, path.back())) return;
   const std::span<const std::uint8_t> moves = grid.layer(agent).moveMasks();
-  using Item = std::pair<double, std::uint32_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
-  distances_[static_cast<std::size_t>(slot(path.back()))] = 0.0;
-  open.push({0.0, map.indexOf(path.back())});
+  std::vector<Cell> cellOf(cells);
+  for (const Run& run : runs_) {
+    for (int x = run.x0; x <= run.x1; ++x)
+      cellOf[run.offset + static_cast<std::uint32_t>(x - run.x0)] = {x, run.y};
+  }
+  std::vector<bool> settled(cells, false);
+  OpenList open;
+  const auto goal = static_cast<std::uint32_t>(slot(path.back()));
+  distances_[goal] = 0.0;
+  open.push(OpenList::makeKey(0.0, 0.0), goal);
   while (!open.empty()) {
-    const auto [g, cell] = open.top();
-    open.pop();
-    const Cell here = cellAt(map, cell);
-    if (g > distances_[static_cast<std::size_t>(slot(here))]) continue;
+    const std::uint32_t current = open.pop();
+    if (settled[current]) continue;
+    settled[current] = true;
     ++expanded_;
-    const std::uint8_t mask = moves[cell];
-    for (int d = 0; d < kDirectionCount; ++d) {
-      if ((mask & (1u << d)) == 0) continue;
-      const Direction& dir = kDirections[static_cast<std::size_t>(d)];
-      const Cell next{here.x + dir.dx, here.y + dir.dy};
-      const std::ptrdiff_t at = slot(next);
+    const double g = distances_[current];
+    const Cell here = cellOf[current];
+    for (unsigned mask = moves[map.indexOf(here)]; mask != 0; mask &= mask - 1) {
+      const Direction& dir = kDirections[static_cast<std::size_t>(std::countr_zero(mask))];
+      const std::ptrdiff_t at = slot({here.x + dir.dx, here.y + dir.dy});
       if (at < 0) continue;
       double& known = distances_[static_cast<std::size_t>(at)];
       if (known <= g + dir.cost) continue;
       known = g + dir.cost;
-      open.push({known, map.indexOf(next)});
+      open.push(OpenList::makeKey(known, known), static_cast<std::uint32_t>(at));
     }
   }
 }

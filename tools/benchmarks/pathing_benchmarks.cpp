@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "pathing/aa_star.h"
+#include "pathing/cooperative_search.h"
 #include "pathing/haa_star.h"
 #include "pathing/map_generator.h"
 #include "pathing/random.h"
@@ -135,6 +136,28 @@ void BM_HierarchicalAStar(benchmark::State& state) {
   });
 }
 BENCHMARK(BM_HierarchicalAStar)->Arg(1)->Arg(3)->Unit(benchmark::kMicrosecond);
+
+// The cooperative search's heuristic (issue 12): exact distances inside a corridor of half-width
+// 4 (the default) around an infantry unit's HAA* path, as the path service builds one for each
+// unit that needs windows. Paths of 150-250 cells, like stress_2000's crossings.
+void BM_CorridorDistance(benchmark::State& state) {
+  const AnnotatedGrid grid(benchmarkMap(512));
+  const ClusterAbstraction graph =
+      ClusterAbstraction::build(grid, catalogueSpec(16, AbstractionQuality::High));
+  const Agent agent{1, kInfantry};
+  HierarchicalAStar search(graph);
+  std::vector<std::vector<Cell>> paths;
+  for (const auto& [s, g] : standableQueries(grid, agent, 150)) {
+    std::vector<Cell> path;
+    if (search.findPath(agent, s, g, &path).found() && path.size() <= 250) paths.push_back(path);
+  }
+  std::size_t next = 0;
+  for (auto _ : state) {
+    CorridorDistance field(grid, agent, paths[next++ % paths.size()], 4);
+    benchmark::DoNotOptimize(field.expanded());
+  }
+}
+BENCHMARK(BM_CorridorDistance)->Unit(benchmark::kMicrosecond);
 
 // Terrain costs (issue 13): the catalogue's infantry, 1 / (1.5, 0.8, 1.0) s per cell on ground,
 // swamp and trees.

@@ -81,8 +81,8 @@ class CorridorDistance final : public DistanceField {
   std::uint64_t expanded() const override { return expanded_; }
 
  private:
-  // The corridor as runs of cells along rows, sorted by row then column; `distances_` has a
-  // slot per cell of each run, from `offset` on. Lookups cost a scan of one row's runs.
+  // The corridor as runs of cells along rows, by row then column; `distances_` has a slot per
+  // cell of each run, from `offset` on. Lookups cost a scan of one row's runs.
   struct Run {
     int y;
     int x0;
