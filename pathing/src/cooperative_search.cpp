@@ -1,6 +1,7 @@
 #include "pathing/cooperative_search.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -412,6 +413,18 @@ CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceFie
                             ? r.startsAtRest
                             : nodes_[static_cast<std::size_t>(node.parent)].cell == node.cell;
     const std::uint8_t mask = moves[node.cell];
+    // Whether the agent may hold `here` until each leaving time asked so far: moves differ in
+    // length and terrain, but few leave at different times.
+    std::array<std::pair<Tick, bool>, kDirectionCount> leaving{};
+    std::size_t leavings = 0;
+    const auto mayLeaveBy = [&](Tick leaveBy) {
+      for (std::size_t i = 0; i < leavings; ++i) {
+        if (leaving[i].first == leaveBy) return leaving[i].second;
+      }
+      const bool ok = atStart ? freeAtStart(node.tick, leaveBy) : free(here, node.tick, leaveBy);
+      leaving[leavings++] = {leaveBy, ok};
+      return ok;
+    };
     for (int d = 0; d < kDirectionCount; ++d) {
       if ((mask & (1u << d)) == 0) continue;
       const Direction& dir = kDirections[static_cast<std::size_t>(d)];
@@ -427,9 +440,7 @@ CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceFie
       if (!std::isfinite(nextH)) continue;
       if (const int nextLevel = keptOut(next); nextLevel > 0 && nextLevel >= level) continue;
       const MoveSpan span = moveSpan(node.tick, duration);
-      if (!(atStart ? freeAtStart(node.tick, span.leaveBy) : free(here, node.tick, span.leaveBy)) ||
-          !free(next, span.enterAt, node.tick + duration))
-        continue;
+      if (!mayLeaveBy(span.leaveBy) || !free(next, span.enterAt, node.tick + duration)) continue;
       add(map.indexOf(next), node.tick + duration, index, nextH);
     }
     // Nobody waits where others cannot pass or where kept out (but one already standing there
