@@ -167,7 +167,7 @@ TEST_P(GoldenHash, OfTheWholeRun) {
 INSTANTIATE_TEST_SUITE_P(
     BundledScenarios, GoldenHash,
     ::testing::Values(
-        Golden{"demo", "457b29e264804829", "94f004afe1cb75f5", "268efd7eedf339cb"},
+        Golden{"demo", "422aa50fde9ae1ef", "94f004afe1cb75f5", "268efd7eedf339cb"},
         Golden{"river_ambush", "8775c6603fcabc52", "e02f77cfc2857a8d", "5e0e2076b5bf9d94"},
         Golden{"forest_battle", "f070f49f47f75b20", "418269f9132f682d", "1e2811529b35473b"},
         Golden{"amphibious_landing", "40d449545294428f", "a0c07a636b15d90d", "7bb81fc9f3a1784e"},

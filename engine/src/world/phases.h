@@ -231,6 +231,15 @@ struct SteeringScratch {
   std::vector<std::uint32_t> start;         // per unit index: its run's start; one past the end
   std::vector<std::uint32_t> stepAsideFor;  // per unit index: a vehicle's index, or kNone
   std::vector<std::uint32_t> contact;       // one body's contacts
+  // Vehicles' courses ahead (findVehicleLanes): body centres from where each is, about a cell
+  // apart, with the distance along to each.
+  std::vector<units::Vec2> coursePoints;
+  std::vector<double> courseAlong;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> walkers;  // (bucket, unit index), sorted
+  std::vector<double> giveWayWithin;  // per unit index: [cells] stop within this, or +inf
+  // Per unit index: the lane to step out of, walking into it toward its vehicle; side 0: none.
+  std::vector<units::Vec2> laneHeading;
+  std::vector<double> laneSide;
 };
 void steerAll(Refs& w, SteeringScratch& scratch);
 

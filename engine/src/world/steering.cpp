@@ -2,7 +2,9 @@
 // or halted to fight) limited by what it can do in a tick, handed to physics; and the physics
 // step itself, whose positions and velocities are read back into the units.
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <span>
 
@@ -92,6 +94,14 @@ bool drivesInto(const Unit& vehicle, const Unit& unit) {
   return speed >= 0.3 && distance > 1e-9 && v.dot(offset) >= 0.5 * speed * distance;
 }
 
+// Sideways off a course heading along `heading` (a unit vector), to the `side` (+1: left of
+// it, -1: right) at the unit's top speed, keeping the unit's own motion along the course.
+Vec2 stepAside(const Refs& w, const Unit& unit, Vec2 heading, double side, Vec2 desired) {
+  const Vec2 left{heading.y, -heading.x};
+  const double along = desired.dot(heading);
+  return heading * along + left * (side * w.typeOf(unit).maxSpeed());
+}
+
 // Cooperative movement: a moving unit of the lightest kind that a heavier unit drives into
 // steps off the vehicle's course at its own top speed, keeping what it was doing along it:
 // vehicles are not held to infantry's pace by infantry that would let them by. (Parked units
@@ -101,9 +111,7 @@ Vec2 stepAside(const Refs& w, const Unit& unit, const Unit& vehicle, Vec2 desire
   const Vec2 left{heading.y, -heading.x};
   const Vec2 offset = unit.position - vehicle.position;
   // Sideways from the vehicle's course, on the side the unit already is.
-  const double side = offset.dot(left) >= 0.0 ? 1.0 : -1.0;
-  const double along = desired.dot(heading);
-  return heading * along + left * (side * w.typeOf(unit).maxSpeed());
+  return stepAside(w, unit, heading, offset.dot(left) >= 0.0 ? 1.0 : -1.0, desired);
 }
 
 // Each vehicle's contacts (Box2D's, after the last step) into s.touching, and for each moving
@@ -128,6 +136,153 @@ void findContacts(const Refs& w, double lightest, SteeringScratch& s) {
     }
   }
   s.start[all.size()] = static_cast<std::uint32_t>(s.touching.size());
+}
+
+// [Unit: s] How far ahead a vehicle's lane reaches at its top speed.
+constexpr double kLaneSeconds = 3.0;
+// [Unit: cells] How far ahead a walking unit looks for a vehicle's lane, and the room it keeps.
+constexpr double kLaneLookahead = 2.0;
+constexpr double kLaneMargin = 0.3;
+// [Unit: cells] Side of the buckets walking units are sorted into.
+constexpr int kWalkerBucket = 8;
+
+// Cooperative movement: the lane of a moving vehicle is its path over the next kLaneSeconds,
+// as wide as its body and a walker's. A moving unit of the lightest kind of another team
+// - about to walk into such a lane across it (within kLaneLookahead) stops short of it until
+//   the vehicle has gone by;
+// - in the lane ahead of the vehicle, walking toward it, steps out of it sideways.
+// One crossing the lane already walks on (and steps aside if the vehicle reaches it), and one
+// going the vehicle's way follows it. A stream of infantry across a bridge's exit otherwise
+// holds a tank there until the whole stream has passed (bridge_two_way, crossroads). Giving
+// way to one's own team's vehicles too made convoys' riflemen wait for their vehicles at every
+// merge (measured: river_ambush's ambush then met only the rearguard). Walkers firing on the
+// move, and vehicles standing in a queue or chasing a target, are not traffic here. Vehicles
+// never wait for walkers here, so no cycle of waits forms. Decided from the state at the start
+// of the tick.
+void findVehicleLanes(const Refs& w, double lightest, SteeringScratch& s) {
+  const std::vector<Unit>& all = w.state.units;
+  s.giveWayWithin.assign(all.size(), std::numeric_limits<double>::infinity());
+  s.laneHeading.assign(all.size(), Vec2{});
+  s.laneSide.assign(all.size(), 0.0);
+  const auto walks = [&](const Unit& u) {
+    return u.alive() && u.state == UnitState::Moving && !u.engaged && !u.target.valid() && u.path &&
+           !(w.typeOf(u).radius > lightest);
+  };
+  // Walking units by bucket (rows of kWalkerBucket cells, then columns), to find those near
+  // a vehicle without looking at all of them.
+  const auto bucketOf = [](double x, double y) {
+    const auto bx = static_cast<std::uint32_t>(static_cast<int>(std::floor(x)) / kWalkerBucket);
+    const auto by = static_cast<std::uint32_t>(static_cast<int>(std::floor(y)) / kWalkerBucket);
+    return static_cast<std::uint64_t>(by) << 32 | bx;
+  };
+  s.walkers.clear();
+  for (const Unit& unit : all) {
+    if (walks(unit) && unit.position.x >= 0.0 && unit.position.y >= 0.0)
+      s.walkers.push_back({bucketOf(unit.position.x, unit.position.y), unit.id.index});
+  }
+  if (s.walkers.empty()) return;
+  std::sort(s.walkers.begin(), s.walkers.end());
+  // Calls visit(walker index) for the walkers in the buckets that cover [x0, x1] × [y0, y1],
+  // until it returns false; false when it did.
+  const auto forWalkersIn = [&](double x0, double x1, double y0, double y1, auto visit) {
+    const std::uint64_t low = bucketOf(std::max(0.0, x0), std::max(0.0, y0));
+    const std::uint64_t high = bucketOf(std::max(0.0, x1), std::max(0.0, y1));
+    const std::uint64_t columns = 0xFFFFFFFFu;
+    for (std::uint64_t row = low >> 32; row <= high >> 32; ++row) {
+      const std::uint64_t first = row << 32 | (low & columns);
+      const std::uint64_t last = row << 32 | (high & columns);
+      for (auto it = std::lower_bound(s.walkers.begin(), s.walkers.end(),
+                                      std::pair<std::uint64_t, std::uint32_t>{first, 0});
+           it != s.walkers.end() && it->first <= last; ++it) {
+        if (!visit(it->second)) return false;
+      }
+    }
+    return true;
+  };
+  for (const Unit& vehicle : all) {
+    if (!vehicle.alive() || vehicle.state != UnitState::Moving || vehicle.engaged || !vehicle.path)
+      continue;
+    const units::UnitType& type = w.typeOf(vehicle);
+    // A vehicle standing in a queue claims no lane yet, nor one chasing a target (its path
+    // follows the target, re-planned every second).
+    if (!(type.radius > lightest) || vehicle.velocity.length() < 0.25 ||
+        vehicle.order == OrderKind::Attack)
+      continue;
+    // The lane: the body, then the path's waypoints ahead.
+    const double horizon = type.maxSpeed() * kLaneSeconds + type.size;
+    const double far = horizon + type.radius + lightest + kLaneMargin + kLaneLookahead;
+    if (forWalkersIn(vehicle.position.x - far, vehicle.position.x + far, vehicle.position.y - far,
+                     vehicle.position.y + far, [](std::uint32_t) { return false; }))
+      continue;  // nobody walking near
+    const std::vector<Cell>& cells = vehicle.path->cells;
+    s.coursePoints.assign(1, vehicle.position);
+    double along = 0.0;
+    double x0 = vehicle.position.x;
+    double x1 = x0;
+    double y0 = vehicle.position.y;
+    double y1 = y0;
+    for (std::size_t k = vehicle.next; k < cells.size() && along < horizon; ++k) {
+      const Vec2 p = units::anchorToCentre(cells[k], type.size);
+      along += (p - s.coursePoints.back()).length();
+      s.coursePoints.push_back(p);
+      x0 = std::min(x0, p.x);
+      x1 = std::max(x1, p.x);
+      y0 = std::min(y0, p.y);
+      y1 = std::max(y1, p.y);
+    }
+    if (s.coursePoints.size() < 2) continue;
+    const double reach = type.radius + lightest + kLaneMargin;
+    // The lane point nearest `p` within `reach`, or none.
+    const auto laneAt = [&](Vec2 p) -> std::optional<std::size_t> {
+      std::optional<std::size_t> nearest;
+      double best = reach * reach;
+      for (std::size_t k = 0; k < s.coursePoints.size(); ++k) {
+        const Vec2 gap = p - s.coursePoints[k];
+        if (gap.dot(gap) < best) {
+          best = gap.dot(gap);
+          nearest = k;
+        }
+      }
+      return nearest;
+    };
+    const double pad = reach + kLaneLookahead;
+    forWalkersIn(x0 - pad, x1 + pad, y0 - pad, y1 + pad, [&](std::uint32_t index) {
+      const Unit& walker = all[index];
+      if (walker.team == vehicle.team) return true;
+      const Vec2 p = walker.position;
+      if (p.x < x0 - pad || p.x > x1 + pad || p.y < y0 - pad || p.y > y1 + pad) return true;
+      const Vec2 v = walker.velocity;
+      const double speed = v.length();
+      if (speed < 1e-6) return true;
+      const Vec2 heading = v * (1.0 / speed);
+      if (const std::optional<std::size_t> k = laneAt(p)) {
+        // In the lane ahead, walking toward the vehicle: out of it, on the side it is.
+        if (*k == 0 || s.laneSide[walker.id.index] != 0.0) return true;
+        const Vec2 way = s.coursePoints[*k] - s.coursePoints[*k - 1];
+        const double length = way.length();
+        if (length < 1e-9 || heading.dot(way) > -0.5 * length) return true;
+        const Vec2 ahead = way * (1.0 / length);
+        const Vec2 offset = p - s.coursePoints[*k];
+        s.laneHeading[walker.id.index] = ahead;
+        s.laneSide[walker.id.index] = offset.dot(Vec2{ahead.y, -ahead.x}) >= 0.0 ? 1.0 : -1.0;
+        return true;
+      }
+      // Where along its way ahead the walker would step into the lane; one going the
+      // vehicle's way joins its queue instead.
+      for (double d = 0.25; d <= kLaneLookahead + 1e-9; d += 0.25) {
+        const std::optional<std::size_t> k = laneAt(p + heading * d);
+        if (!k) continue;
+        const Vec2 way = s.coursePoints[std::max<std::size_t>(*k, 1)] -
+                         s.coursePoints[std::max<std::size_t>(*k, 1) - 1];
+        if (heading.dot(way) <= 0.5 * way.length()) {
+          double& within = s.giveWayWithin[walker.id.index];
+          within = std::min(within, d);
+        }
+        break;
+      }
+      return true;
+    });
+  }
 }
 
 // How fast the unit may go where it is: the speed on the terrain under its centre or, under
@@ -163,7 +318,10 @@ void steerAll(Refs& w, SteeringScratch& scratch) {
   double lightest = std::numeric_limits<double>::infinity();
   for (const units::UnitType& type : w.catalogue)
     lightest = std::min(lightest, type.radius);
-  if (cooperative) findContacts(w, lightest, scratch);
+  if (cooperative) {
+    findContacts(w, lightest, scratch);
+    findVehicleLanes(w, lightest, scratch);
+  }
   for (Unit& unit : w.state.units) {
     if (!unit.alive()) continue;
     const units::UnitType& type = w.typeOf(unit);
@@ -218,6 +376,14 @@ void steerAll(Refs& w, SteeringScratch& scratch) {
         desired = limitPushing(w, touching, unit, desired);
       } else if (scratch.stepAsideFor[i] != SteeringScratch::kNone) {
         desired = stepAside(w, unit, w.state.units[scratch.stepAsideFor[i]], desired);
+      } else if (scratch.laneSide[i] != 0.0) {
+        desired = stepAside(w, unit, scratch.laneHeading[i], scratch.laneSide[i], desired);
+      } else if (const double within = scratch.giveWayWithin[i]; std::isfinite(within)) {
+        // Giving way to a vehicle: stop short of its lane; a wait on purpose, not a jam.
+        const double cap = std::sqrt(2.0 * type.acceleration * std::max(0.0, within - kLaneMargin));
+        const double speedNow = desired.length();
+        if (speedNow > cap) desired = desired * (cap / speedNow);
+        unit.progress.restartWindow(unit.position, w.state.tick);
       }
     }
     const Vec2 v =
