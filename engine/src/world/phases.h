@@ -185,6 +185,8 @@ class Traffic {
   pathing::DistanceField& fieldFor(const Refs& w, const Unit& unit);
   void hold(Refs& w, Unit& unit);
   bool chokepointAhead(const Refs& w, const Unit& unit);
+  // chokepointAhead, scanned once a tick: nothing it reads changes within Traffic::plan.
+  bool chokepointAheadNow(const Refs& w, const Unit& unit);
   // Marks a unit with no chokepoint ahead as cruising: it follows its path, holding nothing.
   void cruise(Refs& w, Unit& unit);
   bool needsWindow(const Refs& w, const Unit& unit);
@@ -214,8 +216,9 @@ class Traffic {
   // ahead.
   std::vector<units::Vec2> headings_;
   static constexpr std::int32_t kUnknown = -2;
-  std::vector<std::int32_t> ahead_;    // per unit index: aheadOf this tick, kUnknown before
-  std::vector<std::uint8_t> sharing_;  // per unit index: the request's `sharing`
+  std::vector<std::int32_t> ahead_;      // per unit index: aheadOf this tick, kUnknown before
+  std::vector<std::int8_t> chokepoint_;  // per unit index: chokepointAheadNow, -1 before
+  std::vector<std::uint8_t> sharing_;    // per unit index: the request's `sharing`
   std::vector<std::uint8_t> planned_;
   std::vector<std::uint32_t> waitFor_;
   std::vector<std::uint32_t> walk_;

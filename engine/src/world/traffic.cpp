@@ -239,6 +239,12 @@ bool Traffic::chokepointAhead(const Refs& w, const Unit& unit) {
   return false;
 }
 
+bool Traffic::chokepointAheadNow(const Refs& w, const Unit& unit) {
+  std::int8_t& known = chokepoint_[unit.id.index];
+  if (known < 0) known = chokepointAhead(w, unit) ? 1 : 0;
+  return known != 0;
+}
+
 void Traffic::cruise(Refs& w, Unit& unit) {
   if (unit.plan && unit.plan->cruising) return;
   releaseReservations(w, unit);
@@ -437,7 +443,7 @@ std::int32_t Traffic::aheadOf(const Refs& w, const Unit& unit) {
   std::int32_t& known = ahead_[unit.id.index];
   // A passage is tracked: a unit with no tracked cell ahead has none (and chokepointAhead
   // remembers what it scanned).
-  if (known == kUnknown) known = chokepointAhead(w, unit) ? passageAhead(w, unit) : -1;
+  if (known == kUnknown) known = chokepointAheadNow(w, unit) ? passageAhead(w, unit) : -1;
   return known;
 }
 
@@ -639,6 +645,7 @@ void Traffic::plan(Refs& w, std::uint64_t budget) {
   }
   findPassages(w);
   ahead_.assign(all.size(), kUnknown);
+  chokepoint_.assign(all.size(), -1);
   // A vehicle with a passage ahead goes the way its path crosses it: vehicles converging on a
   // pass from all sides of a wide field go through it the same way (narrow_pass). Infantry keep
   // their heading to the goal: at the door, crowds judged by the way through it pressed in
@@ -654,7 +661,7 @@ void Traffic::plan(Refs& w, std::uint64_t budget) {
   for (Unit& unit : all) {
     // Far from any chokepoint a unit needs no window: Box2D alone keeps it apart from others
     // there, as nothing is reserved in the open (docs/cooperative.md).
-    if (following(unit) && (!unit.plan || !unit.plan->timed) && !chokepointAhead(w, unit)) {
+    if (following(unit) && (!unit.plan || !unit.plan->timed) && !chokepointAheadNow(w, unit)) {
       cruise(w, unit);
       unit.waitSince = -1;
       continue;
