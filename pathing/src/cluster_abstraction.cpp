@@ -471,6 +471,7 @@ class AbstractionBuilder {
       members[static_cast<std::size_t>(g_.clusterOf(nodeCells_[n]))].push_back(n);
 
     ClusterDijkstra dijkstra;
+    RegionMoves moves;
     RegionComponents parts;
     std::vector<Cell> targets;
     std::vector<std::uint32_t> targetNodes;
@@ -487,7 +488,8 @@ class AbstractionBuilder {
           const AgentLayer& layer = grid_.layer({size, capability});
           // Targets the search cannot reach inside the cluster are left out, and sources that
           // reach none are not searched from: it finds the same paths, sooner.
-          parts.label(map_, layer, region);
+          moves.load(map_, layer, region);
+          parts.label(moves);
           for (std::size_t i = 0; i < nodes.size(); ++i) {
             const Cell source = nodeCells_[nodes[i]];
             if (truncated(ci, source) < size || coveredTo[i] >= size) continue;
@@ -503,7 +505,7 @@ class AbstractionBuilder {
               targetNodes.push_back(nodes[j]);
             }
             if (targets.empty()) continue;
-            dijkstra.run(map_, layer, region, source, targets, costs_);
+            dijkstra.run(moves, source, targets, costs_);
             expanded_ += dijkstra.expanded();
             int covers = maxSize_;
             for (std::size_t t = 0; t < targets.size(); ++t) {

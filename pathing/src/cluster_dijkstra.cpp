@@ -25,20 +25,40 @@ constexpr std::array<std::uint8_t, 16> kInsideMasks = [] {
 
 }  // namespace
 
-void ClusterDijkstra::run(const GridMap& map, const AgentLayer& layer, CellRect region, Cell source,
-                          std::span<const Cell> targets, const CostField* costs) {
-  if (costs) {
-    search(map, layer, region, source, targets,
-           [costs](Cell from, int d) { return costs->moveCost(from, d); });
-  } else {
-    search(map, layer, region, source, targets,
-           [](Cell, int d) { return kDirections[static_cast<std::size_t>(d)].cost; });
+void RegionMoves::load(const GridMap& map, const AgentLayer& layer, CellRect region) {
+  region_ = region;
+  masks_.resize(static_cast<std::size_t>(region.width) * region.height);
+  const std::uint8_t* all = layer.moveMasks().data();
+  std::size_t i = 0;
+  for (int ly = 0; ly < region.height; ++ly) {
+    const std::uint8_t* row = all + map.indexOf({region.x, region.y + ly});
+    const unsigned rowEdges = (ly == 0 ? 4u : 0u) | (ly == region.height - 1 ? 8u : 0u);
+    for (int lx = 0; lx < region.width; ++lx) {
+      const unsigned edges = rowEdges | (lx == 0 ? 1u : 0u) | (lx == region.width - 1 ? 2u : 0u);
+      masks_[i++] = static_cast<std::uint8_t>(row[lx] & kInsideMasks[edges]);
+    }
   }
 }
 
-template <class MoveCost>
-void ClusterDijkstra::search(const GridMap& map, const AgentLayer& layer, CellRect region,
-                             Cell source, std::span<const Cell> targets, MoveCost moveCost) {
+void ClusterDijkstra::run(const GridMap& map, const AgentLayer& layer, CellRect region, Cell source,
+                          std::span<const Cell> targets, const CostField* costs) {
+  ownMoves_.load(map, layer, region);
+  run(ownMoves_, source, targets, costs);
+}
+
+void ClusterDijkstra::run(const RegionMoves& moves, Cell source, std::span<const Cell> targets,
+                          const CostField* costs) {
+  if (costs) {
+    search<true>(moves, source, targets, costs);
+  } else {
+    search<false>(moves, source, targets, nullptr);
+  }
+}
+
+template <bool kWeighted>
+void ClusterDijkstra::search(const RegionMoves& moves, Cell source, std::span<const Cell> targets,
+                             const CostField* costs) {
+  const CellRect region = moves.region();
   region_ = region;
   expanded_ = 0;
   generated_ = 1;  // the source
@@ -71,7 +91,7 @@ void ClusterDijkstra::search(const GridMap& map, const AgentLayer& layer, CellRe
   }
 
   open_.clear();
-  const std::uint8_t* masks = layer.moveMasks().data();
+  const std::uint8_t* masks = moves.masks().data();
   const std::size_t start = local(source);
   stamp_[start] = openStamp;
   g_[start] = 0.0;
@@ -88,21 +108,25 @@ void ClusterDijkstra::search(const GridMap& map, const AgentLayer& layer, CellRe
     stamp_[current] = settled;
     ++expanded_;
     if (target_[current] == generation_ && --targetsLeft == 0 && !targets.empty()) break;
-    const int lx = static_cast<int>(current % static_cast<std::uint32_t>(width));
-    const int ly = static_cast<int>(current / static_cast<std::uint32_t>(width));
-    const Cell here{region.x + lx, region.y + ly};
     const double g = g_[current];
-    const unsigned edges = (lx == 0 ? 1u : 0u) | (lx == width - 1 ? 2u : 0u) | (ly == 0 ? 4u : 0u) |
-                           (ly == region.height - 1 ? 8u : 0u);
+    Cell here{};
+    if constexpr (kWeighted) {
+      here = {region.x + static_cast<int>(current % static_cast<std::uint32_t>(width)),
+              region.y + static_cast<int>(current / static_cast<std::uint32_t>(width))};
+    }
     // Directions in increasing order, as the open list's tie-breaking expects.
-    for (unsigned mask = masks[map.indexOf(here)] & kInsideMasks[edges]; mask != 0;
-         mask &= mask - 1) {
+    for (unsigned mask = masks[current]; mask != 0; mask &= mask - 1) {
       const int d = std::countr_zero(mask);
       const auto next = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(current) +
                                                  step[static_cast<std::size_t>(d)]);
       const std::uint32_t stamp = stamp_[next];
       if (stamp == settled) continue;
-      const double ng = g + moveCost(here, d);
+      double ng = g;
+      if constexpr (kWeighted) {
+        ng += costs->moveCost(here, d);
+      } else {
+        ng += kDirections[static_cast<std::size_t>(d)].cost;
+      }
       if (stamp == openStamp && ng >= g_[next]) continue;
       stamp_[next] = openStamp;
       g_[next] = ng;
@@ -126,34 +150,27 @@ void ClusterDijkstra::appendSteps(Cell target, std::vector<std::uint8_t>* steps)
   std::reverse(steps->begin() + static_cast<std::ptrdiff_t>(first), steps->end());
 }
 
-void RegionComponents::label(const GridMap& map, const AgentLayer& layer, CellRect region) {
-  region_ = region;
-  const std::size_t cells = static_cast<std::size_t>(region.width) * region.height;
+void RegionComponents::label(const RegionMoves& moves) {
+  region_ = moves.region();
+  const std::span<const std::uint8_t> masks = moves.masks();
+  const std::size_t cells = masks.size();
   part_.assign(cells, 0);
-  const std::uint8_t* masks = layer.moveMasks().data();
-  const int width = region.width;
+  const int width = region_.width;
   std::uint32_t parts = 0;
   // Cardinal moves suffice: a diagonal move needs both cells beside it, so its ends are also
   // joined by two cardinal moves, inside the block's rectangle.
   for (std::size_t seed = 0; seed < cells; ++seed) {
-    const int sx = static_cast<int>(seed % static_cast<std::size_t>(width));
-    const int sy = static_cast<int>(seed / static_cast<std::size_t>(width));
-    if (part_[seed] != 0 || masks[map.indexOf({region.x + sx, region.y + sy})] == 0) continue;
+    if (part_[seed] != 0 || masks[seed] == 0) continue;
     part_[seed] = ++parts;
     stack_.assign(1, static_cast<std::uint32_t>(seed));
     while (!stack_.empty()) {
       const std::uint32_t current = stack_.back();
       stack_.pop_back();
-      const int lx = static_cast<int>(current % static_cast<std::uint32_t>(width));
-      const int ly = static_cast<int>(current / static_cast<std::uint32_t>(width));
-      const unsigned mask = masks[map.indexOf({region.x + lx, region.y + ly})] & 0xFu;
-      for (unsigned m = mask; m != 0; m &= m - 1) {
+      for (unsigned m = masks[current] & 0xFu; m != 0; m &= m - 1) {
         const Direction& dir = kDirections[static_cast<std::size_t>(std::countr_zero(m))];
-        const int nx = lx + dir.dx;
-        const int ny = ly + dir.dy;
-        if (nx < 0 || ny < 0 || nx >= width || ny >= region.height) continue;
-        const std::size_t next = static_cast<std::size_t>(ny) * static_cast<std::size_t>(width) +
-                                 static_cast<std::size_t>(nx);
+        const auto next =
+            static_cast<std::size_t>(static_cast<std::ptrdiff_t>(current) +
+                                     static_cast<std::ptrdiff_t>(dir.dy) * width + dir.dx);
         if (part_[next] != 0) continue;
         part_[next] = parts;
         stack_.push_back(static_cast<std::uint32_t>(next));

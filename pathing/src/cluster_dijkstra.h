@@ -15,6 +15,29 @@
 
 namespace warpath::pathing {
 
+// The index of cell c in block r, row by row. [Limit: c in r]
+inline std::size_t regionIndex(CellRect r, Cell c) {
+  return static_cast<std::size_t>(c.y - r.y) * static_cast<std::size_t>(r.width) +
+         static_cast<std::size_t>(c.x - r.x);
+}
+
+// The moves of one agent kind inside one block of cells, copied once into a block-sized array
+// (bit d set when the move in direction d is legal and stays inside the block), so that the
+// searches over the block, one per transition, read them by local index without testing the
+// block's edges on every expansion.
+class RegionMoves {
+ public:
+  // [Limit: region inside the map]
+  void load(const GridMap& map, const AgentLayer& layer, CellRect region);
+
+  CellRect region() const { return region_; }
+  std::span<const std::uint8_t> masks() const { return masks_; }
+
+ private:
+  CellRect region_;
+  std::vector<std::uint8_t> masks_;
+};
+
 class ClusterDijkstra {
  public:
   // Settles cells of `region` reachable from `source` (inside it) in cost order, and stops
@@ -23,6 +46,10 @@ class ClusterDijkstra {
   // [Limit: region inside the map, source in region]
   void run(const GridMap& map, const AgentLayer& layer, CellRect region, Cell source,
            std::span<const Cell> targets, const CostField* costs = nullptr);
+  // The same over moves loaded beforehand, for several searches over one block.
+  // [Limit: source in moves.region()]
+  void run(const RegionMoves& moves, Cell source, std::span<const Cell> targets,
+           const CostField* costs = nullptr);
 
   bool reached(Cell c) const { return region_.contains(c) && stamp_[local(c)] == settledStamp(); }
   // [Limit: reached(c)]
@@ -34,16 +61,14 @@ class ClusterDijkstra {
 
  private:
   // run() for one model of move costs, so the uniform one's inner loop has no branch on it.
-  template <class MoveCost>
-  void search(const GridMap& map, const AgentLayer& layer, CellRect region, Cell source,
-              std::span<const Cell> targets, MoveCost moveCost);
+  template <bool kWeighted>
+  void search(const RegionMoves& moves, Cell source, std::span<const Cell> targets,
+              const CostField* costs);
 
-  std::size_t local(Cell c) const {
-    return static_cast<std::size_t>(c.y - region_.y) * static_cast<std::size_t>(region_.width) +
-           static_cast<std::size_t>(c.x - region_.x);
-  }
+  std::size_t local(Cell c) const { return regionIndex(region_, c); }
   std::uint32_t settledStamp() const { return generation_ * 4 + 2; }
 
+  RegionMoves ownMoves_;  // for run() on a layer
   CellRect region_;
   std::vector<std::uint32_t> stamp_;  // generation*4 + {1 open, 2 settled}, +3 target marker
   std::vector<std::uint32_t> target_;
@@ -60,16 +85,11 @@ class ClusterDijkstra {
 // block need not look for them. Owns its scratch memory.
 class RegionComponents {
  public:
-  // [Limit: region inside the map]
-  void label(const GridMap& map, const AgentLayer& layer, CellRect region);
-  // 0 where the agent has no move (cannot stand, or stands walled in); equal non-zero parts
-  // <=> joined inside the region.
+  void label(const RegionMoves& moves);
+  // 0 where the agent has no move inside the region (cannot stand, or stands walled in);
+  // equal non-zero parts <=> joined inside the region.
   // [Limit: c in the labelled region]
-  std::uint32_t partOf(Cell c) const {
-    return part_[static_cast<std::size_t>(c.y - region_.y) *
-                     static_cast<std::size_t>(region_.width) +
-                 static_cast<std::size_t>(c.x - region_.x)];
-  }
+  std::uint32_t partOf(Cell c) const { return part_[regionIndex(region_, c)]; }
 
  private:
   CellRect region_;
