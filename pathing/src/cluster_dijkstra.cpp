@@ -60,8 +60,6 @@ void ClusterDijkstra::search(const RegionMoves& moves, Cell source, std::span<co
                              const CostField* costs) {
   const CellRect region = moves.region();
   region_ = region;
-  expanded_ = 0;
-  generated_ = 1;  // the source
   const std::size_t cells = static_cast<std::size_t>(region.width) * region.height;
   if (stamp_.size() < cells) {
     stamp_.assign(cells, 0);
@@ -90,25 +88,50 @@ void ClusterDijkstra::search(const RegionMoves& moves, Cell source, std::span<co
     }
   }
 
-  open_.clear();
-  const std::uint8_t* masks = moves.masks().data();
+  // Uniform moves: the two-cost open list, which pops what OpenList would.
+  const auto push = [&](int d, double g, std::size_t cell) {
+    const std::uint64_t key = OpenList::makeKey(g, g);
+    if constexpr (kWeighted) {
+      open_.push(key, static_cast<std::uint32_t>(cell));
+    } else {
+      twoCost_.push(isDiagonal(d), key, static_cast<std::uint32_t>(cell));
+    }
+  };
+  const auto pop = [&] {
+    if constexpr (kWeighted) return open_.empty() ? TwoCostOpenList::kEmpty : open_.pop();
+    return twoCost_.pop();
+  };
+  if constexpr (kWeighted) {
+    open_.clear();
+  } else {
+    twoCost_.clear();
+  }
+  // Raw pointers: the byte stores to via would otherwise make the compiler reload every
+  // vector's data pointer (a char store may alias them).
+  const std::uint8_t* const masks = moves.masks().data();
+  std::uint32_t* const stamp = stamp_.data();
+  const std::uint32_t* const target = target_.data();
+  double* const g = g_.data();
+  std::uint8_t* const via = via_.data();
+  const std::uint32_t generation = generation_;
+  std::uint64_t expanded = 0;
+  std::uint64_t generated = 1;  // the source
   const std::size_t start = local(source);
-  stamp_[start] = openStamp;
-  g_[start] = 0.0;
-  open_.push(OpenList::makeKey(0.0, 0.0), static_cast<std::uint32_t>(start));
+  stamp[start] = openStamp;
+  g[start] = 0.0;
+  push(0, 0.0, start);
   const int width = region.width;
   std::array<std::ptrdiff_t, kDirectionCount> step{};  // local index offset of each direction
   for (int d = 0; d < kDirectionCount; ++d) {
     const Direction& dir = kDirections[static_cast<std::size_t>(d)];
     step[static_cast<std::size_t>(d)] = static_cast<std::ptrdiff_t>(dir.dy) * width + dir.dx;
   }
-  while (!open_.empty()) {
-    const std::uint32_t current = open_.pop();
-    if (stamp_[current] == settled) continue;
-    stamp_[current] = settled;
-    ++expanded_;
-    if (target_[current] == generation_ && --targetsLeft == 0 && !targets.empty()) break;
-    const double g = g_[current];
+  for (std::uint32_t current; (current = pop()) != TwoCostOpenList::kEmpty;) {
+    if (stamp[current] == settled) continue;
+    stamp[current] = settled;
+    ++expanded;
+    if (target[current] == generation && --targetsLeft == 0 && !targets.empty()) break;
+    const double gHere = g[current];
     Cell here{};
     if constexpr (kWeighted) {
       here = {region.x + static_cast<int>(current % static_cast<std::uint32_t>(width)),
@@ -119,22 +142,24 @@ void ClusterDijkstra::search(const RegionMoves& moves, Cell source, std::span<co
       const int d = std::countr_zero(mask);
       const auto next = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(current) +
                                                  step[static_cast<std::size_t>(d)]);
-      const std::uint32_t stamp = stamp_[next];
-      if (stamp == settled) continue;
-      double ng = g;
+      const std::uint32_t stampNext = stamp[next];
+      if (stampNext == settled) continue;
+      double ng = gHere;
       if constexpr (kWeighted) {
         ng += costs->moveCost(here, d);
       } else {
         ng += kDirections[static_cast<std::size_t>(d)].cost;
       }
-      if (stamp == openStamp && ng >= g_[next]) continue;
-      stamp_[next] = openStamp;
-      g_[next] = ng;
-      via_[next] = static_cast<std::uint8_t>(d);
-      open_.push(OpenList::makeKey(ng, ng), static_cast<std::uint32_t>(next));
-      ++generated_;
+      if (stampNext == openStamp && ng >= g[next]) continue;
+      stamp[next] = openStamp;
+      g[next] = ng;
+      via[next] = static_cast<std::uint8_t>(d);
+      push(d, ng, next);
+      ++generated;
     }
   }
+  expanded_ = expanded;
+  generated_ = generated;
 }
 
 void ClusterDijkstra::appendSteps(Cell target, std::vector<std::uint8_t>* steps) const {
