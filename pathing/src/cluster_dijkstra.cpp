@@ -27,15 +27,15 @@ constexpr std::array<std::uint8_t, 16> kInsideMasks = [] {
 
 void RegionMoves::load(const GridMap& map, const AgentLayer& layer, CellRect region) {
   region_ = region;
-  masks_.resize(static_cast<std::size_t>(region.width) * region.height);
+  masks_.assign(static_cast<std::size_t>(region.width + 2) * (region.height + 2), 0);
   const std::uint8_t* all = layer.moveMasks().data();
-  std::size_t i = 0;
   for (int ly = 0; ly < region.height; ++ly) {
     const std::uint8_t* row = all + map.indexOf({region.x, region.y + ly});
+    std::uint8_t* out = masks_.data() + regionIndex(region, {region.x, region.y + ly});
     const unsigned rowEdges = (ly == 0 ? 4u : 0u) | (ly == region.height - 1 ? 8u : 0u);
     for (int lx = 0; lx < region.width; ++lx) {
       const unsigned edges = rowEdges | (lx == 0 ? 1u : 0u) | (lx == region.width - 1 ? 2u : 0u);
-      masks_[i++] = static_cast<std::uint8_t>(row[lx] & kInsideMasks[edges]);
+      out[lx] = static_cast<std::uint8_t>(row[lx] & kInsideMasks[edges]);
     }
   }
 }
@@ -60,12 +60,13 @@ void ClusterDijkstra::search(const RegionMoves& moves, Cell source, std::span<co
                              const CostField* costs) {
   const CellRect region = moves.region();
   region_ = region;
-  const std::size_t cells = static_cast<std::size_t>(region.width) * region.height;
+  const std::size_t cells = moves.masks().size();
   if (stamp_.size() < cells) {
     stamp_.assign(cells, 0);
     target_.assign(cells, 0);
     g_.assign(cells, 0.0);
     via_.assign(cells, 0);
+    unsettled_.assign(cells, 0);
     generation_ = 0;
   }
   // Stamps of earlier runs may have used a different region shape: a new generation
@@ -113,6 +114,11 @@ void ClusterDijkstra::search(const RegionMoves& moves, Cell source, std::span<co
   const std::uint32_t* const target = target_.data();
   double* const g = g_.data();
   std::uint8_t* const via = via_.data();
+  // The moves whose far end is not settled yet: settling a cell clears the move back to it at
+  // each of its eight neighbours (no branch; the frame takes the writes beyond the block), so
+  // expansions skip settled neighbours unread, instead of mispredicting on them.
+  std::copy(masks, masks + cells, unsettled_.begin());
+  std::uint8_t* const unsettled = unsettled_.data();
   const std::uint32_t generation = generation_;
   std::uint64_t expanded = 0;
   std::uint64_t generated = 1;  // the source
@@ -120,30 +126,34 @@ void ClusterDijkstra::search(const RegionMoves& moves, Cell source, std::span<co
   stamp[start] = openStamp;
   g[start] = 0.0;
   push(0, 0.0, start);
-  const int width = region.width;
+  const int width = region.width + 2;                  // of the arrays, frame included
   std::array<std::ptrdiff_t, kDirectionCount> step{};  // local index offset of each direction
+  std::array<std::uint8_t, kDirectionCount> back{};    // all but the bit of the opposite move
   for (int d = 0; d < kDirectionCount; ++d) {
     const Direction& dir = kDirections[static_cast<std::size_t>(d)];
     step[static_cast<std::size_t>(d)] = static_cast<std::ptrdiff_t>(dir.dy) * width + dir.dx;
+    back[static_cast<std::size_t>(d)] = static_cast<std::uint8_t>(~(1u << oppositeDirection(d)));
   }
   for (std::uint32_t current; (current = pop()) != TwoCostOpenList::kEmpty;) {
     if (stamp[current] == settled) continue;
     stamp[current] = settled;
     ++expanded;
     if (target[current] == generation && --targetsLeft == 0 && !targets.empty()) break;
+    for (std::size_t d = 0; d < kDirectionCount; ++d)
+      unsettled[static_cast<std::ptrdiff_t>(current) + step[d]] &= back[d];
     const double gHere = g[current];
     Cell here{};
     if constexpr (kWeighted) {
-      here = {region.x + static_cast<int>(current % static_cast<std::uint32_t>(width)),
-              region.y + static_cast<int>(current / static_cast<std::uint32_t>(width))};
+      here = {region.x - 1 + static_cast<int>(current % static_cast<std::uint32_t>(width)),
+              region.y - 1 + static_cast<int>(current / static_cast<std::uint32_t>(width))};
     }
     // Directions in increasing order, as the open list's tie-breaking expects.
-    for (unsigned mask = masks[current]; mask != 0; mask &= mask - 1) {
+    for (unsigned mask = unsettled[current]; mask != 0; mask &= mask - 1) {
       const int d = std::countr_zero(mask);
       const auto next = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(current) +
                                                  step[static_cast<std::size_t>(d)]);
       const std::uint32_t stampNext = stamp[next];
-      if (stampNext == settled) continue;
+      WARPATH_INVARIANT(stampNext != settled, "cluster Dijkstra: moves must be symmetric");
       double ng = gHere;
       if constexpr (kWeighted) {
         ng += costs->moveCost(here, d);
@@ -180,7 +190,7 @@ void RegionComponents::label(const RegionMoves& moves) {
   const std::span<const std::uint8_t> masks = moves.masks();
   const std::size_t cells = masks.size();
   part_.assign(cells, 0);
-  const int width = region_.width;
+  const int width = region_.width + 2;  // of the arrays, frame included
   std::uint32_t parts = 0;
   // Cardinal moves suffice: a diagonal move needs both cells beside it, so its ends are also
   // joined by two cardinal moves, inside the block's rectangle.

@@ -17,16 +17,18 @@
 
 namespace warpath::pathing {
 
-// The index of cell c in block r, row by row. [Limit: c in r]
+// The index of cell c in the per-cell arrays over block r: row by row, in a frame one cell wide
+// around the block, so that every cell of the block has all eight neighbours in the arrays.
+// [Limit: c in r]
 inline std::size_t regionIndex(CellRect r, Cell c) {
-  return static_cast<std::size_t>(c.y - r.y) * static_cast<std::size_t>(r.width) +
-         static_cast<std::size_t>(c.x - r.x);
+  return static_cast<std::size_t>(c.y - r.y + 1) * static_cast<std::size_t>(r.width + 2) +
+         static_cast<std::size_t>(c.x - r.x + 1);
 }
 
-// The moves of one agent kind inside one block of cells, copied once into a block-sized array
-// (bit d set when the move in direction d is legal and stays inside the block), so that the
-// searches over the block, one per transition, read them by local index without testing the
-// block's edges on every expansion.
+// The moves of one agent kind inside one block of cells, copied once into an array over the
+// block and its frame (bit d set when the move in direction d is legal and stays inside the
+// block; none from the frame), so that the searches over the block, one per transition, read
+// them by index without testing the block's edges on every expansion.
 class RegionMoves {
  public:
   // [Limit: region inside the map]
@@ -157,9 +159,10 @@ class ClusterDijkstra {
   std::vector<std::uint32_t> stamp_;  // generation*4 + {1 open, 2 settled}, +3 target marker
   std::vector<std::uint32_t> target_;
   std::vector<double> g_;
-  std::vector<std::uint8_t> via_;  // direction of the move that reached the cell
-  OpenList open_;                  // weighted searches
-  TwoCostOpenList twoCost_;        // uniform ones
+  std::vector<std::uint8_t> via_;        // direction of the move that reached the cell
+  std::vector<std::uint8_t> unsettled_;  // moves to cells not settled yet
+  OpenList open_;                        // weighted searches
+  TwoCostOpenList twoCost_;              // uniform ones
   std::uint32_t generation_ = 0;
   std::uint64_t expanded_ = 0;
   std::uint64_t generated_ = 0;
