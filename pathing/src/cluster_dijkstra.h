@@ -59,16 +59,19 @@ class TwoCostOpenList {
   void clear() {
     for (Queue& q : queues_) {
       q.entries.clear();
-      q.begin = q.cursor = q.end = 0;
+      q.begin = q.cursor = q.end = q.lastRun = 0;
     }
-    pushes_ = 0;
   }
   // `diagonal`: pushed through a move of cost √2 (else 1).
   void push(bool diagonal, std::uint64_t key, std::uint32_t node) {
-    std::vector<Entry>& entries = queues_[diagonal ? 1 : 0].entries;
-    WARPATH_INVARIANT(entries.empty() || entries.back().key <= key,
+    Queue& q = queues_[diagonal ? 1 : 0];
+    WARPATH_INVARIANT(q.entries.empty() || q.entries.back().key <= key,
                       "two-cost open list: keys of one move cost must arrive in order");
-    entries.push_back({key, node, pushes_++});
+    // Counted at its first entry, a run of one key needs no scan when its turn comes.
+    const std::size_t at = q.entries.size();
+    q.lastRun = at != 0 && q.entries[at - 1].key == key ? q.lastRun : at;
+    q.entries.push_back({key, node, 0});
+    ++q.entries[q.lastRun].run;
   }
   // The next node, or kEmpty.
   std::uint32_t pop() {
@@ -76,13 +79,7 @@ class TwoCostOpenList {
     Queue& diagonal = queues_[1];
     if (cardinal.cursor == cardinal.begin && diagonal.cursor == diagonal.begin && !nextKey())
       return kEmpty;
-    if (cardinal.cursor > cardinal.begin) {
-      WARPATH_INVARIANT(
-          diagonal.cursor == diagonal.begin || cardinal.entries[cardinal.cursor - 1].order >
-                                                   diagonal.entries[diagonal.cursor - 1].order,
-          "two-cost open list: equal keys must pop last pushed first");
-      return cardinal.entries[--cardinal.cursor].node;
-    }
+    if (cardinal.cursor > cardinal.begin) return cardinal.entries[--cardinal.cursor].node;
     return diagonal.entries[--diagonal.cursor].node;
   }
 
@@ -90,7 +87,7 @@ class TwoCostOpenList {
   struct Entry {
     std::uint64_t key;
     std::uint32_t node;
-    std::uint32_t order;  // pushes before this one (checked in debug builds)
+    std::uint32_t run;  // at the first entry of a run of one key: its length
   };
   // Entries [begin, end) hold the key being popped, popped from cursor down to begin; entries
   // from end on are still to come.
@@ -99,6 +96,7 @@ class TwoCostOpenList {
     std::size_t begin = 0;
     std::size_t cursor = 0;
     std::size_t end = 0;
+    std::size_t lastRun = 0;  // first entry of the last run
   };
 
   // Starts on the smallest key left; false when none is.
@@ -113,15 +111,13 @@ class TwoCostOpenList {
     }
     if (!any) return false;
     for (Queue& q : queues_) {
-      while (q.end < q.entries.size() && q.entries[q.end].key == key)
-        ++q.end;
+      if (q.end < q.entries.size() && q.entries[q.end].key == key) q.end += q.entries[q.end].run;
       q.cursor = q.end;
     }
     return true;
   }
 
   std::array<Queue, 2> queues_;
-  std::uint32_t pushes_ = 0;
 };
 
 class ClusterDijkstra {
