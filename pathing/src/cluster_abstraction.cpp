@@ -473,6 +473,7 @@ class AbstractionBuilder {
     ClusterDijkstra dijkstra;
     RegionMoves moves;
     RegionComponents parts;
+    std::vector<std::uint8_t> cv;
     std::vector<Cell> targets;
     std::vector<std::uint32_t> targetNodes;
     std::vector<std::uint8_t> steps;
@@ -482,6 +483,13 @@ class AbstractionBuilder {
       const CellRect region = g_.clusterBounds(k);
       for (std::size_t ci = 0; ci < fields_.size(); ++ci) {
         const Capability capability = capabilities_[ci];
+        // The cluster's truncated clearances, indexed as the searches index cells.
+        cv.assign(static_cast<std::size_t>(region.width + 2) * (region.height + 2), 0);
+        for (int y = region.y; y < region.y + region.height; ++y) {
+          for (int x = region.x; x < region.x + region.width; ++x)
+            cv[regionIndex(region, {x, y})] = static_cast<std::uint8_t>(truncated(ci, {x, y}));
+        }
+        const auto clearanceAt = [&](Cell c) { return int{cv[regionIndex(region, c)]}; };
         // coveredTo[i]: sizes up to this are already answered for sources nodes[i].
         std::vector<int> coveredTo(nodes.size(), 0);
         for (int size = minSize_; size <= maxSize_; ++size) {
@@ -492,13 +500,13 @@ class AbstractionBuilder {
           parts.label(moves);
           for (std::size_t i = 0; i < nodes.size(); ++i) {
             const Cell source = nodeCells_[nodes[i]];
-            if (truncated(ci, source) < size || coveredTo[i] >= size) continue;
+            if (clearanceAt(source) < size || coveredTo[i] >= size) continue;
             const std::uint32_t part = parts.partOf(source);
             if (part == 0) continue;
             targets.clear();
             targetNodes.clear();
             for (std::size_t j = i + 1; j < nodes.size(); ++j) {
-              if (truncated(ci, nodeCells_[nodes[j]]) < size ||
+              if (clearanceAt(nodeCells_[nodes[j]]) < size ||
                   parts.partOf(nodeCells_[nodes[j]]) != part)
                 continue;
               targets.push_back(nodeCells_[nodes[j]]);
@@ -512,20 +520,8 @@ class AbstractionBuilder {
               if (!dijkstra.reached(targets[t])) continue;
               steps.clear();
               dijkstra.appendSteps(targets[t], &steps);
-              // The largest size for which every step stays legal: the cells walked, and
-              // for a diagonal the two cells beside it (no corner cutting).
-              int clearance = truncated(ci, source);
-              Cell at = source;
-              for (std::uint8_t d : steps) {
-                const Direction& dir = kDirections[d];
-                if (isDiagonal(d)) {
-                  clearance = std::min({clearance, truncated(ci, {at.x + dir.dx, at.y}),
-                                        truncated(ci, {at.x, at.y + dir.dy})});
-                }
-                at.x += dir.dx;
-                at.y += dir.dy;
-                clearance = std::min(clearance, truncated(ci, at));
-              }
+              // The largest size for which every step stays legal.
+              const int clearance = dijkstra.smallestAlong(targets[t], cv);
               covers = std::min(covers, clearance);
               addIntraEdge(nodes[i], targetNodes[t], dijkstra.cost(targets[t]), capability,
                            clearance, steps);

@@ -123,6 +123,7 @@ void ClusterDijkstra::search(const RegionMoves& moves, Cell source, std::span<co
   std::uint64_t expanded = 0;
   std::uint64_t generated = 1;  // the source
   const std::size_t start = local(source);
+  start_ = start;
   stamp[start] = openStamp;
   g[start] = 0.0;
   push(0, 0.0, start);
@@ -174,15 +175,31 @@ void ClusterDijkstra::search(const RegionMoves& moves, Cell source, std::span<co
 
 void ClusterDijkstra::appendSteps(Cell target, std::vector<std::uint8_t>* steps) const {
   const std::size_t first = steps->size();
-  Cell at = target;
-  std::size_t index = local(at);
-  while (g_[index] > 0.0) {
+  const std::ptrdiff_t width = region_.width + 2;
+  for (std::size_t index = local(target); index != start_;) {
     const std::uint8_t d = via_[index];
     steps->push_back(d);
-    at = {at.x - kDirections[d].dx, at.y - kDirections[d].dy};
-    index = local(at);
+    index -= static_cast<std::size_t>(kDirections[d].dy * width + kDirections[d].dx);
   }
   std::reverse(steps->begin() + static_cast<std::ptrdiff_t>(first), steps->end());
+}
+
+int ClusterDijkstra::smallestAlong(Cell target, std::span<const std::uint8_t> values) const {
+  const std::ptrdiff_t width = region_.width + 2;
+  std::size_t index = local(target);
+  int smallest = values[index];
+  while (index != start_) {
+    const std::uint8_t d = via_[index];
+    const Direction& dir = kDirections[d];
+    const std::size_t from = index - static_cast<std::size_t>(dir.dy * width + dir.dx);
+    if (isDiagonal(d)) {
+      smallest = std::min({smallest, int{values[from + static_cast<std::size_t>(dir.dx)]},
+                           int{values[from + static_cast<std::size_t>(dir.dy * width)]}});
+    }
+    smallest = std::min(smallest, int{values[from]});
+    index = from;
+  }
+  return smallest;
 }
 
 void RegionComponents::label(const RegionMoves& moves) {

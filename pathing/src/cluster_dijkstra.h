@@ -138,6 +138,11 @@ class ClusterDijkstra {
   double cost(Cell c) const { return g_[local(c)]; }
   // Directions of the moves from the source to `target`, in order. [Limit: reached(target)]
   void appendSteps(Cell target, std::vector<std::uint8_t>* steps) const;
+  // The smallest of `values` (one per cell, indexed by regionIndex) along the path to `target`:
+  // on the cells it walks, source included, and for each diagonal on the two cells beside it
+  // (no corner cutting). With clearances, the largest agent the path admits.
+  // [Limit: reached(target)]
+  int smallestAlong(Cell target, std::span<const std::uint8_t> values) const;
   std::uint64_t expanded() const { return expanded_; }
   std::uint64_t generated() const { return generated_; }
 
@@ -152,6 +157,7 @@ class ClusterDijkstra {
 
   RegionMoves ownMoves_;  // for run() on a layer
   CellRect region_;
+  std::size_t start_ = 0;             // the source's index
   std::vector<std::uint32_t> stamp_;  // generation*4 + {1 open, 2 settled}, +3 target marker
   std::vector<std::uint32_t> target_;
   std::vector<double> g_;
