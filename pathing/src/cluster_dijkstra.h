@@ -60,6 +60,7 @@ class TwoCostOpenList {
     for (Queue& q : queues_) {
       q.entries.clear();
       q.begin = q.cursor = q.end = q.lastRun = 0;
+      q.lastKey = kNoKey;
     }
   }
   // `diagonal`: pushed through a move of cost √2 (else 1).
@@ -69,7 +70,10 @@ class TwoCostOpenList {
                       "two-cost open list: keys of one move cost must arrive in order");
     // Counted at its first entry, a run of one key needs no scan when its turn comes.
     const std::size_t at = q.entries.size();
-    q.lastRun = at != 0 && q.entries[at - 1].key == key ? q.lastRun : at;
+    // Without a branch: whether a key repeats is data, and a mispredict costs more.
+    const std::size_t repeats = std::size_t{0} - static_cast<std::size_t>(q.lastKey == key);
+    q.lastRun = (q.lastRun & repeats) | (at & ~repeats);
+    q.lastKey = key;
     q.entries.push_back({key, node, 0});
     ++q.entries[q.lastRun].run;
   }
@@ -84,6 +88,7 @@ class TwoCostOpenList {
   }
 
  private:
+  static constexpr std::uint64_t kNoKey = UINT64_MAX;  // above any key of a path cost
   struct Entry {
     std::uint64_t key;
     std::uint32_t node;
@@ -96,7 +101,8 @@ class TwoCostOpenList {
     std::size_t begin = 0;
     std::size_t cursor = 0;
     std::size_t end = 0;
-    std::size_t lastRun = 0;  // first entry of the last run
+    std::size_t lastRun = 0;         // first entry of the last run
+    std::uint64_t lastKey = kNoKey;  // its key
   };
 
   // Starts on the smallest key left; false when none is.
