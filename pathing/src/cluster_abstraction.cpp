@@ -521,7 +521,7 @@ class AbstractionBuilder {
               steps.clear();
               dijkstra.appendSteps(targets[t], &steps);
               // The largest size for which every step stays legal.
-              const int clearance = dijkstra.smallestAlong(targets[t], cv);
+              const int clearance = dijkstra.smallestAlong(steps, cv);
               covers = std::min(covers, clearance);
               addIntraEdge(nodes[i], targetNodes[t], dijkstra.cost(targets[t]), capability,
                            clearance, steps);

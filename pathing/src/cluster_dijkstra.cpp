@@ -184,20 +184,19 @@ void ClusterDijkstra::appendSteps(Cell target, std::vector<std::uint8_t>* steps)
   std::reverse(steps->begin() + static_cast<std::ptrdiff_t>(first), steps->end());
 }
 
-int ClusterDijkstra::smallestAlong(Cell target, std::span<const std::uint8_t> values) const {
+int ClusterDijkstra::smallestAlong(std::span<const std::uint8_t> steps,
+                                   std::span<const std::uint8_t> values) const {
   const std::ptrdiff_t width = region_.width + 2;
-  std::size_t index = local(target);
+  std::size_t index = start_;
   int smallest = values[index];
-  while (index != start_) {
-    const std::uint8_t d = via_[index];
+  for (const std::uint8_t d : steps) {
     const Direction& dir = kDirections[d];
-    const std::size_t from = index - static_cast<std::size_t>(dir.dy * width + dir.dx);
     if (isDiagonal(d)) {
-      smallest = std::min({smallest, int{values[from + static_cast<std::size_t>(dir.dx)]},
-                           int{values[from + static_cast<std::size_t>(dir.dy * width)]}});
+      smallest = std::min({smallest, int{values[index + static_cast<std::size_t>(dir.dx)]},
+                           int{values[index + static_cast<std::size_t>(dir.dy * width)]}});
     }
-    smallest = std::min(smallest, int{values[from]});
-    index = from;
+    index += static_cast<std::size_t>(dir.dy * width + dir.dx);
+    smallest = std::min(smallest, int{values[index]});
   }
   return smallest;
 }

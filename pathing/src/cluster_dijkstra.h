@@ -144,11 +144,13 @@ class ClusterDijkstra {
   double cost(Cell c) const { return g_[local(c)]; }
   // Directions of the moves from the source to `target`, in order. [Limit: reached(target)]
   void appendSteps(Cell target, std::vector<std::uint8_t>* steps) const;
-  // The smallest of `values` (one per cell, indexed by regionIndex) along the path to `target`:
-  // on the cells it walks, source included, and for each diagonal on the two cells beside it
-  // (no corner cutting). With clearances, the largest agent the path admits.
-  // [Limit: reached(target)]
-  int smallestAlong(Cell target, std::span<const std::uint8_t> values) const;
+  // The smallest of `values` (one per cell, indexed by regionIndex) along `steps` from the
+  // source: on the cells they walk, source included, and for each diagonal on the two cells
+  // beside it (no corner cutting). With clearances, the largest agent the path admits. Walks
+  // the steps appendSteps gave, not the search tree again: no chain of dependent loads.
+  // [Limit: steps from appendSteps]
+  int smallestAlong(std::span<const std::uint8_t> steps,
+                    std::span<const std::uint8_t> values) const;
   std::uint64_t expanded() const { return expanded_; }
   std::uint64_t generated() const { return generated_; }
 
