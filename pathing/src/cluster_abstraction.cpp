@@ -563,16 +563,26 @@ class AbstractionBuilder {
   // dominate each other, the cheapest (then the first built) stays.
   void pruneSamePairDominance() {
     const bool weak = g_.spec_.quality == AbstractionQuality::Low;
+    // Candidates in (a, b, cost, id) order: counted out by a (stable), then each node's few
+    // sorted by the rest, cheaper than one sort of them all.
+    std::vector<std::uint32_t> begins(nodeCells_.size() + 1, 0);
+    for (const Candidate& e : candidates_)
+      ++begins[e.a + 1];
+    std::partial_sum(begins.begin(), begins.end(), begins.begin());
     std::vector<std::uint32_t> order(candidates_.size());
-    std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(), [&](std::uint32_t l, std::uint32_t r) {
-      const Candidate& x = candidates_[l];
-      const Candidate& y = candidates_[r];
-      if (x.a != y.a) return x.a < y.a;
-      if (x.b != y.b) return x.b < y.b;
-      if (x.cost != y.cost) return x.cost < y.cost;
-      return l < r;
-    });
+    std::vector<std::uint32_t> next(begins.begin(), begins.end() - 1);
+    for (std::uint32_t id = 0; id < candidates_.size(); ++id)
+      order[next[candidates_[id].a]++] = id;
+    for (std::size_t a = 0; a + 1 < begins.size(); ++a) {
+      std::sort(order.begin() + begins[a], order.begin() + begins[a + 1],
+                [&](std::uint32_t l, std::uint32_t r) {
+                  const Candidate& x = candidates_[l];
+                  const Candidate& y = candidates_[r];
+                  if (x.b != y.b) return x.b < y.b;
+                  if (x.cost != y.cost) return x.cost < y.cost;
+                  return l < r;
+                });
+    }
     constexpr double kSameCost = 1e-9;
     for (std::size_t begin = 0; begin < order.size();) {
       std::size_t end = begin + 1;
