@@ -62,12 +62,15 @@ class TwoCostOpenList {
       q.begin = q.cursor = q.end = q.lastRun = 0;
       q.lastKey = kNoKey;
     }
+    popping_ = kNoKey;
   }
   // `diagonal`: pushed through a move of cost √2 (else 1).
   void push(bool diagonal, std::uint64_t key, std::uint32_t node) {
     Queue& q = queues_[diagonal ? 1 : 0];
     WARPATH_INVARIANT(q.entries.empty() || q.entries.back().key <= key,
                       "two-cost open list: keys of one move cost must arrive in order");
+    WARPATH_INVARIANT(popping_ == kNoKey || key > popping_,
+                      "two-cost open list: a push must not tie the key being popped");
     // Counted at its first entry, a run of one key needs no scan when its turn comes.
     const std::size_t at = q.entries.size();
     // Without a branch: whether a key repeats is data, and a mispredict costs more.
@@ -116,6 +119,7 @@ class TwoCostOpenList {
       any = true;
     }
     if (!any) return false;
+    popping_ = key;
     for (Queue& q : queues_) {
       if (q.end < q.entries.size() && q.entries[q.end].key == key) q.end += q.entries[q.end].run;
       q.cursor = q.end;
@@ -124,6 +128,7 @@ class TwoCostOpenList {
   }
 
   std::array<Queue, 2> queues_;
+  std::uint64_t popping_ = kNoKey;  // the key being popped, kNoKey before the first
 };
 
 class ClusterDijkstra {
