@@ -13,22 +13,22 @@ namespace warpath::pathing {
 namespace {
 
 // Bit d set when an agent of `size` anchored at (x, y) may step in direction d: it stands at
-// both ends and, on a diagonal, beside it (no corner cutting).
+// both ends and, on a diagonal, beside it (no corner cutting). Reads the eight neighbours once
+// (the inner loop of every layer update), then combines their bits.
 std::uint8_t movesFrom(const ClearanceField& clearance, int size, int x, int y) {
-  const auto stands = [&](int cx, int cy) { return clearance.at({cx, cy}) >= size; };
-  if (!stands(x, y)) return 0;
-  std::uint8_t mask = 0;
+  if (clearance.at({x, y}) < size) return 0;
+  unsigned stands = 0;  // bit d: the agent stands on the neighbour in direction d
   for (int d = 0; d < kDirectionCount; ++d) {
     const Direction& dir = kDirections[static_cast<std::size_t>(d)];
-    if (!stands(x + dir.dx, y + dir.dy)) continue;
-    if (isDiagonal(d)) {
-      const Direction& a = kDirections[static_cast<std::size_t>(dir.cardinalA)];
-      const Direction& b = kDirections[static_cast<std::size_t>(dir.cardinalB)];
-      if (!stands(x + a.dx, y + a.dy) || !stands(x + b.dx, y + b.dy)) continue;
-    }
-    mask = static_cast<std::uint8_t>(mask | (1u << d));
+    stands |= (clearance.at({x + dir.dx, y + dir.dy}) >= size ? 1u : 0u) << d;
   }
-  return mask;
+  unsigned mask = stands & 0xFu;
+  for (int d = 4; d < kDirectionCount; ++d) {
+    const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+    const unsigned needs = (1u << d) | (1u << dir.cardinalA) | (1u << dir.cardinalB);
+    if ((stands & needs) == needs) mask |= 1u << d;
+  }
+  return static_cast<std::uint8_t>(mask);
 }
 
 // Calls visit(neighbour) for each cardinal move `mask` allows from `cell` (an index in a map

@@ -471,7 +471,9 @@ class AbstractionBuilder {
       members[static_cast<std::size_t>(g_.clusterOf(nodeCells_[n]))].push_back(n);
 
     ClusterDijkstra dijkstra;
+    RegionMoves moves;
     RegionComponents parts;
+    std::vector<std::uint8_t> cv;
     std::vector<Cell> targets;
     std::vector<std::uint32_t> targetNodes;
     std::vector<std::uint8_t> steps;
@@ -481,49 +483,45 @@ class AbstractionBuilder {
       const CellRect region = g_.clusterBounds(k);
       for (std::size_t ci = 0; ci < fields_.size(); ++ci) {
         const Capability capability = capabilities_[ci];
+        // The cluster's truncated clearances, indexed as the searches index cells.
+        cv.assign(static_cast<std::size_t>(region.width + 2) * (region.height + 2), 0);
+        for (int y = region.y; y < region.y + region.height; ++y) {
+          for (int x = region.x; x < region.x + region.width; ++x)
+            cv[regionIndex(region, {x, y})] = static_cast<std::uint8_t>(truncated(ci, {x, y}));
+        }
+        const auto clearanceAt = [&](Cell c) { return int{cv[regionIndex(region, c)]}; };
         // coveredTo[i]: sizes up to this are already answered for sources nodes[i].
         std::vector<int> coveredTo(nodes.size(), 0);
         for (int size = minSize_; size <= maxSize_; ++size) {
           const AgentLayer& layer = grid_.layer({size, capability});
           // Targets the search cannot reach inside the cluster are left out, and sources that
           // reach none are not searched from: it finds the same paths, sooner.
-          parts.label(map_, layer, region);
+          moves.load(map_, layer, region);
+          parts.label(moves);
           for (std::size_t i = 0; i < nodes.size(); ++i) {
             const Cell source = nodeCells_[nodes[i]];
-            if (truncated(ci, source) < size || coveredTo[i] >= size) continue;
+            if (clearanceAt(source) < size || coveredTo[i] >= size) continue;
             const std::uint32_t part = parts.partOf(source);
             if (part == 0) continue;
             targets.clear();
             targetNodes.clear();
             for (std::size_t j = i + 1; j < nodes.size(); ++j) {
-              if (truncated(ci, nodeCells_[nodes[j]]) < size ||
+              if (clearanceAt(nodeCells_[nodes[j]]) < size ||
                   parts.partOf(nodeCells_[nodes[j]]) != part)
                 continue;
               targets.push_back(nodeCells_[nodes[j]]);
               targetNodes.push_back(nodes[j]);
             }
             if (targets.empty()) continue;
-            dijkstra.run(map_, layer, region, source, targets, costs_);
+            dijkstra.run(moves, source, targets, costs_);
             expanded_ += dijkstra.expanded();
             int covers = maxSize_;
             for (std::size_t t = 0; t < targets.size(); ++t) {
               if (!dijkstra.reached(targets[t])) continue;
               steps.clear();
               dijkstra.appendSteps(targets[t], &steps);
-              // The largest size for which every step stays legal: the cells walked, and
-              // for a diagonal the two cells beside it (no corner cutting).
-              int clearance = truncated(ci, source);
-              Cell at = source;
-              for (std::uint8_t d : steps) {
-                const Direction& dir = kDirections[d];
-                if (isDiagonal(d)) {
-                  clearance = std::min({clearance, truncated(ci, {at.x + dir.dx, at.y}),
-                                        truncated(ci, {at.x, at.y + dir.dy})});
-                }
-                at.x += dir.dx;
-                at.y += dir.dy;
-                clearance = std::min(clearance, truncated(ci, at));
-              }
+              // The largest size for which every step stays legal.
+              const int clearance = dijkstra.smallestAlong(steps, cv);
               covers = std::min(covers, clearance);
               addIntraEdge(nodes[i], targetNodes[t], dijkstra.cost(targets[t]), capability,
                            clearance, steps);
@@ -565,16 +563,26 @@ class AbstractionBuilder {
   // dominate each other, the cheapest (then the first built) stays.
   void pruneSamePairDominance() {
     const bool weak = g_.spec_.quality == AbstractionQuality::Low;
+    // Candidates in (a, b, cost, id) order: counted out by a (stable), then each node's few
+    // sorted by the rest, cheaper than one sort of them all.
+    std::vector<std::uint32_t> begins(nodeCells_.size() + 1, 0);
+    for (const Candidate& e : candidates_)
+      ++begins[e.a + 1];
+    std::partial_sum(begins.begin(), begins.end(), begins.begin());
     std::vector<std::uint32_t> order(candidates_.size());
-    std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(), [&](std::uint32_t l, std::uint32_t r) {
-      const Candidate& x = candidates_[l];
-      const Candidate& y = candidates_[r];
-      if (x.a != y.a) return x.a < y.a;
-      if (x.b != y.b) return x.b < y.b;
-      if (x.cost != y.cost) return x.cost < y.cost;
-      return l < r;
-    });
+    std::vector<std::uint32_t> next(begins.begin(), begins.end() - 1);
+    for (std::uint32_t id = 0; id < candidates_.size(); ++id)
+      order[next[candidates_[id].a]++] = id;
+    for (std::size_t a = 0; a + 1 < begins.size(); ++a) {
+      std::sort(order.begin() + begins[a], order.begin() + begins[a + 1],
+                [&](std::uint32_t l, std::uint32_t r) {
+                  const Candidate& x = candidates_[l];
+                  const Candidate& y = candidates_[r];
+                  if (x.b != y.b) return x.b < y.b;
+                  if (x.cost != y.cost) return x.cost < y.cost;
+                  return l < r;
+                });
+    }
     constexpr double kSameCost = 1e-9;
     for (std::size_t begin = 0; begin < order.size();) {
       std::size_t end = begin + 1;
