@@ -238,7 +238,9 @@ struct SteeringScratch {
   // apart, with the distance along to each.
   std::vector<units::Vec2> coursePoints;
   std::vector<double> courseAlong;
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> walkers;  // (bucket, unit index), sorted
+  std::vector<std::uint32_t> walkers;      // walking units' indices, bucket by bucket
+  std::vector<std::uint32_t> bucketStart;  // per bucket: its first entry in walkers; one past
+  std::vector<std::uint32_t> bucketFill;
   std::vector<double> giveWayWithin;  // per unit index: [cells] stop within this, or +inf
   // Per unit index: the lane to step out of, walking into it toward its vehicle; side 0: none.
   std::vector<units::Vec2> laneHeading;

@@ -168,33 +168,43 @@ void findVehicleLanes(const Refs& w, double lightest, SteeringScratch& s) {
     return u.alive() && u.state == UnitState::Moving && !u.engaged && !u.target.valid() && u.path &&
            !(w.typeOf(u).radius > lightest);
   };
-  // Walking units by bucket (rows of kWalkerBucket cells, then columns), to find those near
-  // a vehicle without looking at all of them.
-  const auto bucketOf = [](double x, double y) {
-    const auto bx = static_cast<std::uint32_t>(static_cast<int>(std::floor(x)) / kWalkerBucket);
-    const auto by = static_cast<std::uint32_t>(static_cast<int>(std::floor(y)) / kWalkerBucket);
-    return static_cast<std::uint64_t>(by) << 32 | bx;
+  // Walking units by bucket of kWalkerBucket² cells (a counting sort, in id order within a
+  // bucket), to find those near a vehicle without looking at all of them. Units off the map
+  // count in the nearest bucket.
+  const int columns = std::max(1, (w.map().width() + kWalkerBucket - 1) / kWalkerBucket);
+  const int rows = std::max(1, (w.map().height() + kWalkerBucket - 1) / kWalkerBucket);
+  const auto bucketAt = [](double v, int count) {
+    return std::clamp(static_cast<int>(std::floor(std::max(0.0, v) / kWalkerBucket)), 0, count - 1);
   };
-  s.walkers.clear();
+  const auto bucketOf = [&](Vec2 p) {
+    return static_cast<std::size_t>(bucketAt(p.y, rows)) * static_cast<std::size_t>(columns) +
+           static_cast<std::size_t>(bucketAt(p.x, columns));
+  };
+  s.bucketStart.assign(static_cast<std::size_t>(rows) * static_cast<std::size_t>(columns) + 1, 0);
+  std::size_t walking = 0;
   for (const Unit& unit : all) {
-    if (walks(unit) && unit.position.x >= 0.0 && unit.position.y >= 0.0)
-      s.walkers.push_back({bucketOf(unit.position.x, unit.position.y), unit.id.index});
+    if (!walks(unit)) continue;
+    ++s.bucketStart[bucketOf(unit.position) + 1];
+    ++walking;
   }
-  if (s.walkers.empty()) return;
-  std::sort(s.walkers.begin(), s.walkers.end());
+  if (walking == 0) return;
+  for (std::size_t b = 1; b < s.bucketStart.size(); ++b)
+    s.bucketStart[b] += s.bucketStart[b - 1];
+  s.walkers.resize(walking);
+  s.bucketFill.assign(s.bucketStart.begin(), s.bucketStart.end() - 1);
+  for (const Unit& unit : all) {
+    if (walks(unit)) s.walkers[s.bucketFill[bucketOf(unit.position)]++] = unit.id.index;
+  }
   // Calls visit(walker index) for the walkers in the buckets that cover [x0, x1] × [y0, y1],
   // until it returns false; false when it did.
   const auto forWalkersIn = [&](double x0, double x1, double y0, double y1, auto visit) {
-    const std::uint64_t low = bucketOf(std::max(0.0, x0), std::max(0.0, y0));
-    const std::uint64_t high = bucketOf(std::max(0.0, x1), std::max(0.0, y1));
-    const std::uint64_t columns = 0xFFFFFFFFu;
-    for (std::uint64_t row = low >> 32; row <= high >> 32; ++row) {
-      const std::uint64_t first = row << 32 | (low & columns);
-      const std::uint64_t last = row << 32 | (high & columns);
-      for (auto it = std::lower_bound(s.walkers.begin(), s.walkers.end(),
-                                      std::pair<std::uint64_t, std::uint32_t>{first, 0});
-           it != s.walkers.end() && it->first <= last; ++it) {
-        if (!visit(it->second)) return false;
+    const int bx0 = bucketAt(x0, columns);
+    const int bx1 = bucketAt(x1, columns);
+    for (int by = bucketAt(y0, rows); by <= bucketAt(y1, rows); ++by) {
+      const std::size_t row = static_cast<std::size_t>(by) * static_cast<std::size_t>(columns);
+      for (std::uint32_t i = s.bucketStart[row + static_cast<std::size_t>(bx0)];
+           i < s.bucketStart[row + static_cast<std::size_t>(bx1) + 1]; ++i) {
+        if (!visit(s.walkers[i])) return false;
       }
     }
     return true;
