@@ -5,7 +5,6 @@
 #include <bit>
 #include <cmath>
 #include <limits>
-#include <queue>
 
 #include "pathing/moves.h"
 #include "pathing/open_list.h"

@@ -234,10 +234,8 @@ struct SteeringScratch {
   std::vector<std::uint32_t> start;         // per unit index: its run's start; one past the end
   std::vector<std::uint32_t> stepAsideFor;  // per unit index: a vehicle's index, or kNone
   std::vector<std::uint32_t> contact;       // one body's contacts
-  // Vehicles' courses ahead (findVehicleLanes): body centres from where each is, about a cell
-  // apart, with the distance along to each.
+  // One vehicle's lane (findVehicleLanes): its body centre, then its path's waypoints ahead.
   std::vector<units::Vec2> coursePoints;
-  std::vector<double> courseAlong;
   std::vector<std::uint32_t> walkers;      // walking units' indices, bucket by bucket
   std::vector<std::uint32_t> bucketStart;  // per bucket: its first entry in walkers; one past
   std::vector<std::uint32_t> bucketFill;

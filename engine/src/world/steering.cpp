@@ -282,8 +282,8 @@ void findVehicleLanes(const Refs& w, double lightest, SteeringScratch& s) {
       for (double d = 0.25; d <= kLaneLookahead + 1e-9; d += 0.25) {
         const std::optional<std::size_t> k = laneAt(p + heading * d);
         if (!k) continue;
-        const Vec2 way = s.coursePoints[std::max<std::size_t>(*k, 1)] -
-                         s.coursePoints[std::max<std::size_t>(*k, 1) - 1];
+        const std::size_t to = std::max<std::size_t>(*k, 1);  // the lane's step at k
+        const Vec2 way = s.coursePoints[to] - s.coursePoints[to - 1];
         if (heading.dot(way) <= 0.5 * way.length()) {
           double& within = s.giveWayWithin[walker.id.index];
           within = std::min(within, d);
