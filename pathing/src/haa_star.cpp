@@ -174,8 +174,8 @@ class StraightWalker {
 
 }  // namespace
 
-PathResult HierarchicalAStar::findPath(Agent agent, Cell start, Cell goal,
-                                       std::vector<Cell>* path) {
+PathResult HierarchicalAStar::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
+                                       const EdgeSurcharge* surcharge) {
   const QueryClock clock;
   PathResult result;
   if (path) path->clear();
@@ -203,7 +203,8 @@ PathResult HierarchicalAStar::findPath(Agent agent, Cell start, Cell goal,
     // The grid's components say a path exists and the abstraction is complete, so both
     // failures below are bugs (checked as invariants). Release builds answer Unreachable
     // rather than return a path that is not there or is broken.
-    if (!searchAbstract(agent, start, goal, metrics)) return finish(PathStatus::Unreachable);
+    if (!searchAbstract(agent, start, goal, surcharge, metrics))
+      return finish(PathStatus::Unreachable);
     if (!refine(agent, start, metrics)) return finish(PathStatus::Unreachable);
     WARPATH_INVARIANT(
         cells.front() == start && cells.back() == goal && isLegalWalk(grid, layer, cells),
@@ -275,7 +276,8 @@ void HierarchicalAStar::insertEndpoints(const AgentLayer& layer, Cell start, Cel
 // Abstract A* with the octile heuristic over the edges this agent may use, from the start
 // (node nodeCount()) to the goal (nodeCount() + 1) through their links. When the goal is
 // reached, leaves the node sequence start..goal in `abstractPath` and returns true.
-bool HierarchicalAStar::searchAbstract(Agent agent, Cell start, Cell goal, SearchMetrics& metrics) {
+bool HierarchicalAStar::searchAbstract(Agent agent, Cell start, Cell goal,
+                                       const EdgeSurcharge* surcharge, SearchMetrics& metrics) {
   Scratch& s = *scratch_;
   const std::uint32_t startNode = abstraction_.nodeCount();
   const std::uint32_t goalNode = startNode + 1;
@@ -314,7 +316,9 @@ bool HierarchicalAStar::searchAbstract(Agent agent, Cell start, Cell goal, Searc
       continue;
     }
     for (const AbstractEdge& e : abstraction_.edgesOf(u)) {
-      if (e.usableBy(agent)) relax(u, e.target, e.cost, &e, abstraction_.nodeCell(e.target));
+      if (!e.usableBy(agent)) continue;
+      const double cost = surcharge ? e.cost + surcharge->on(abstraction_, u, e, s.g[u]) : e.cost;
+      relax(u, e.target, cost, &e, abstraction_.nodeCell(e.target));
     }
     if (s.goalLinkStamp[u] == s.generation) relax(u, goalNode, s.goalLinkCost[u], nullptr, goal);
   }
@@ -470,7 +474,8 @@ HybridPlanner::HybridPlanner(const ClusterAbstraction& abstraction, HybridOption
       shortQueryDistance_(std::sqrt(static_cast<double>(hybrid.tau)) / 2.0),
       hierarchical_(abstraction, haa) {}
 
-PathResult HybridPlanner::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path) {
+PathResult HybridPlanner::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
+                                   const EdgeSurcharge* surcharge) {
   const double dx = goal.x - start.x;
   const double dy = goal.y - start.y;
   if (std::sqrt(dx * dx + dy * dy) <= shortQueryDistance_) {
@@ -482,14 +487,14 @@ PathResult HybridPlanner::findPath(Agent agent, Cell start, Cell goal, std::vect
     quick.metrics.gridExpanded = quick.metrics.expanded;
     quick.metrics.usedGridSearch = true;
     if (quick.status != PathStatus::BudgetExhausted) return quick;
-    PathResult full = hierarchical_.findPath(agent, start, goal, path);
+    PathResult full = hierarchical_.findPath(agent, start, goal, path, surcharge);
     full.metrics.gridExpanded += quick.metrics.expanded;
     full.metrics.expanded += quick.metrics.expanded;
     full.metrics.generated += quick.metrics.generated;
     full.metrics.microseconds += quick.metrics.microseconds;
     return full;
   }
-  return hierarchical_.findPath(agent, start, goal, path);
+  return hierarchical_.findPath(agent, start, goal, path, surcharge);
 }
 
 }  // namespace warpath::pathing

@@ -69,9 +69,14 @@ Planner::Planner(const AnnotatedGrid& grid, Algorithm algorithm,
         return Impl(std::in_place_type<AnnotatedAStar>, grid);
       }()) {}
 
-PathResult Planner::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path) {
+PathResult Planner::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
+                             const EdgeSurcharge* surcharge) {
   if (auto* grid = std::get_if<AnnotatedAStar>(&impl_); grid && costs_)
     return grid->findPath(agent, start, goal, path, *costs_);
+  if (auto* hierarchical = std::get_if<HierarchicalAStar>(&impl_))
+    return hierarchical->findPath(agent, start, goal, path, surcharge);
+  if (auto* hybrid = std::get_if<HybridPlanner>(&impl_))
+    return hybrid->findPath(agent, start, goal, path, surcharge);
   return std::visit([&](auto& planner) { return planner.findPath(agent, start, goal, path); },
                     impl_);
 }

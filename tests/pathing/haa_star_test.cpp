@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -298,6 +299,66 @@ TEST(HaaStarTest, SameClusterQueries) {
       EXPECT_EQ(result.cost, 0.0);
       EXPECT_EQ(path, (std::vector<Cell>{{3, 3}}));
     }
+  }
+}
+
+// A wall across the map with two gaps: a surcharge on the edges through the near gap (the
+// engine's wait at a crowded bridge) sends the route through the far one; a zero surcharge
+// changes nothing.
+TEST(HaaStarTest, ASurchargeOnEdgesSendsTheRouteAnotherWay) {
+  std::string rows;
+  for (int y = 0; y < 48; ++y) {
+    std::string row(64, '.');
+    if (y >= 22 && y <= 25) {
+      for (int x = 0; x < 64; ++x)
+        if (!((x >= 10 && x <= 12) || (x >= 50 && x <= 52))) row[static_cast<std::size_t>(x)] = '@';
+    }
+    rows += row + "\n";
+  }
+  const AnnotatedGrid grid(mapFromRows("type octile\nheight 48\nwidth 64\nmap\n" + rows));
+  const Agent agent{1, kGround};
+  const ClusterAbstraction abstraction = ClusterAbstraction::build(
+      grid, AbstractionSpec{.clusterSize = 16, .maxAgentSize = 1, .capabilities = {kGround}});
+  const auto throughNearGap = [](const std::vector<Cell>& path) {
+    return std::any_of(path.begin(), path.end(), [](Cell c) { return c.y == 23 && c.x < 32; });
+  };
+  struct Flat final : EdgeSurcharge {
+    double amount = 0.0;
+    bool nearGapOnly = false;
+    mutable int calls = 0;
+    double on(const ClusterAbstraction& graph, std::uint32_t from, const AbstractEdge& edge,
+              double g) const override {
+      EXPECT_GE(g, 0.0);
+      ++calls;
+      std::vector<Cell> cells{graph.nodeCell(from)};
+      graph.appendEdgeCells(from, edge, &cells);
+      const bool near = std::any_of(cells.begin(), cells.end(),
+                                    [](Cell c) { return c.y >= 22 && c.y <= 25 && c.x < 32; });
+      return !nearGapOnly || near ? amount : 0.0;
+    }
+  };
+  for (const bool hybrid : {false, true}) {
+    Planner planner(grid, hybrid ? Algorithm::Hybrid : Algorithm::HaaHigh, &abstraction);
+    std::vector<Cell> plain, zero, detour;
+    const PathResult base = planner.findPath(agent, {11, 3}, {11, 44}, &plain);
+    ASSERT_TRUE(base.found());
+    EXPECT_TRUE(throughNearGap(plain));
+    Flat none;
+    const PathResult same = planner.findPath(agent, {11, 3}, {11, 44}, &zero, &none);
+    EXPECT_GT(none.calls, 0);
+    EXPECT_EQ(zero, plain);
+    EXPECT_EQ(same.cost, base.cost);
+    EXPECT_EQ(same.metrics.expanded, base.metrics.expanded);
+    Flat crowded;
+    crowded.amount = 500.0;
+    crowded.nearGapOnly = true;
+    const PathResult around = planner.findPath(agent, {11, 3}, {11, 44}, &detour, &crowded);
+    ASSERT_TRUE(around.found());
+    EXPECT_FALSE(throughNearGap(detour));
+    EXPECT_EQ(findIllegalStep(grid, agent, detour), "");
+    // The cost is the path's own, without the surcharge: the detour's length.
+    EXPECT_GT(around.cost, base.cost + 40.0);
+    EXPECT_LT(around.cost, 500.0);
   }
 }
 

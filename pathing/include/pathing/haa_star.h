@@ -14,6 +14,21 @@
 
 namespace warpath::pathing {
 
+// A surcharge on abstract edges, so that long routes can avoid congestion (the engine's
+// expected wait at a crowded bridge): the abstract search adds it to an edge's cost when it
+// relaxes the edge. The search stays exact for the surcharged costs as long as reaching an
+// edge later never gets past it earlier (g + surcharge(g) does not fall as g grows), which a
+// queue's wait satisfies; a surcharge is never negative, so the heuristic stays admissible.
+// Start and goal links (inside their clusters) and the same-cluster search carry none.
+class EdgeSurcharge {
+ public:
+  virtual ~EdgeSurcharge() = default;
+  // [Unit: the graph's cost unit] the surcharge on `edge`, taken from node `from` of `graph`,
+  // reached at cost `g` from the start.
+  virtual double on(const ClusterAbstraction& graph, std::uint32_t from, const AbstractEdge& edge,
+                    double g) const = 0;
+};
+
 struct HaaOptions {
   // Shorten the refined path with straight, capability- and clearance-legal segments.
   bool smooth = true;
@@ -39,8 +54,10 @@ class HierarchicalAStar {
   HierarchicalAStar& operator=(const HierarchicalAStar&) = delete;
 
   // When found and `path` is not null, it receives every cell from start to goal inclusive;
-  // each step is a legal move for the agent.
-  PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path);
+  // each step is a legal move for the agent. `surcharge` (may be null) adds to the abstract
+  // edges' costs; result.cost stays the path's own cost.
+  PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
+                      const EdgeSurcharge* surcharge = nullptr);
 
  private:
   friend class HybridPlanner;
@@ -49,7 +66,8 @@ class HierarchicalAStar {
   // output in the scratch (the refined path in `refined`).
   bool searchSameCluster(Agent agent, Cell start, Cell goal, SearchMetrics& metrics);
   void insertEndpoints(const AgentLayer& layer, Cell start, Cell goal, SearchMetrics& metrics);
-  bool searchAbstract(Agent agent, Cell start, Cell goal, SearchMetrics& metrics);
+  bool searchAbstract(Agent agent, Cell start, Cell goal, const EdgeSurcharge* surcharge,
+                      SearchMetrics& metrics);
   bool refine(Agent agent, Cell start, SearchMetrics& metrics);
   void smooth(const AgentLayer& layer);
   // AA* on the grid for an agent the graph serves: under the graph's costs when it has them.
@@ -79,7 +97,9 @@ class HybridPlanner {
   // [Limit: problemWith(hybrid).empty(), else std::invalid_argument]
   HybridPlanner(const ClusterAbstraction& abstraction, HybridOptions hybrid = {},
                 HaaOptions haa = {});
-  PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path);
+  // Short queries answered by AA* carry no surcharge (HierarchicalAStar::findPath).
+  PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
+                      const EdgeSurcharge* surcharge = nullptr);
 
  private:
   HybridOptions options_;

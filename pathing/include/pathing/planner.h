@@ -57,7 +57,10 @@ class Planner {
           HybridOptions hybrid = {}, HaaOptions haa = {}, const CostField* costs = nullptr);
 
   Algorithm algorithm() const { return algorithm_; }
-  PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path);
+  // `surcharge` (may be null) is taken by the hierarchical algorithms' abstract search
+  // (EdgeSurcharge); AA* and JPS plan without it.
+  PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
+                      const EdgeSurcharge* surcharge = nullptr);
 
  private:
   Algorithm algorithm_;
