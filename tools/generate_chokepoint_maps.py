@@ -2,7 +2,7 @@
 """Writes the chokepoint maps of issue 12 under assets/maps/ (MovingAI .map format): corridors,
 a door, bridges, a crossroads, a U-shaped trap and a gap, for the scenarios
 scenarios/chokepoints/{corridor_tanks_4,corridor_tanks_5,door_30v30,bridge_two_way,crossroads,u_trap,
-gap_200,bridge_2000}.yaml. Deterministic (no randomness): run it again and the files come out
+gap_200,bridge_2000,two_bridges}.yaml. Deterministic (no randomness): run it again and the files come out
 byte for byte the same. Standard library only. Usage: tools/generate_chokepoint_maps.py
 
 Coordinates below are cells, x the column and y the row from the top-left; rect() fills
@@ -64,6 +64,16 @@ def gap():
     return g
 
 
+def two_bridges():
+    # 104x64: a river 8 cells wide (columns 52-59) with two bridges, a near one 2 cells wide
+    # (rows 22-23) and a far one 3 cells wide (rows 38-40).
+    g = blank(104, 64)
+    rect(g, 52, 0, 60, 64, "W")
+    rect(g, 52, 22, 60, 24, ".")
+    rect(g, 52, 38, 60, 41, ".")
+    return g
+
+
 def bridge512():
     # 512x512 open ground cut by a river 16 cells wide (columns 248-263) with one bridge 16
     # cells wide (rows 248-263). Symmetric under a half turn about the centre.
@@ -77,5 +87,6 @@ if __name__ == "__main__":
     for name, make in [("corridor4.map", lambda: corridor(4)),
                        ("corridor5.map", lambda: corridor(5)), ("door.map", door),
                        ("bridge.map", bridge), ("crossroads.map", crossroads),
-                       ("u_trap.map", u_trap), ("gap.map", gap), ("bridge512.map", bridge512)]:
+                       ("u_trap.map", u_trap), ("gap.map", gap), ("bridge512.map", bridge512),
+                       ("two_bridges.map", two_bridges)]:
         save(name, make())

@@ -86,6 +86,8 @@ PathService::PathService(const AnnotatedGrid& grid, const PathServiceSettings& s
   // graph and none was built).
   planner_.emplace(grid, abstraction_ || !quality ? settings.algorithm : Algorithm::AStar,
                    abstraction_.get());
+  if (settings.cooperative && settings.congestion && quality)
+    congestion_.emplace(grid, settings.clusterSize);
   present_ = grid.map().terrainsPresent();
   costProfiles_ = std::move(costProfiles);
   mergeCostProfiles();
@@ -176,6 +178,7 @@ void PathService::changeTerrain(const TerrainChange& change) {
   for (const auto& w : weighted_) {
     if (w->field) w->field->update(grid_, change.area);
   }
+  if (congestion_) congestion_->terrainChanged();
   // A path that crosses the change (its footprints grown by the agent's size) may no longer be
   // legal, and a failed answer may now succeed; answers elsewhere stay legal (a shortcut the
   // change opened is not looked for).
@@ -208,6 +211,7 @@ void PathService::request(const PathRequest& request) {
 
 void PathService::cancel(UnitId unit) {
   std::erase_if(queue_, [&](const PathRequest& r) { return r.unit == unit; });
+  if (congestion_) congestion_->cancel(unit);
 }
 
 std::uint64_t PathService::repairChunk() {
@@ -225,7 +229,7 @@ std::uint64_t PathService::repairChunk() {
   return spent;
 }
 
-std::uint64_t PathService::serve(std::vector<PathDelivery>& out) {
+std::uint64_t PathService::serve(std::vector<PathDelivery>& out, double now) {
   std::uint64_t spent = 0;
   // The graphs first: at least one chunk a tick, more while the budget lasts.
   for (bool first = true; !pendingRepairs_.empty() && (first || spent < settings_.expansionBudget);
@@ -238,26 +242,40 @@ std::uint64_t PathService::serve(std::vector<PathDelivery>& out) {
                   front.start.x,    front.start.y,
                   front.goal.x,     front.goal.y,
                   front.costProfile};
+    // Congestion-aware: the unit's own bookings go (its next path books again), and a cached
+    // path that now meets a queue is planned again around it.
+    Congestion* congestion = congestion_ && front.speed > 0.0 ? &*congestion_ : nullptr;
+    if (congestion) congestion->cancel(front.unit);
     auto hit = cache_.find(key);
+    if (congestion && hit != cache_.end() && hit->second.path &&
+        congestion->waitAlong(front.agent, front.speed, hit->second.path->cells, now) > 0.0)
+      hit = cache_.end();
     // Cached answers cost no budget, so duplicates queued behind a search ride along with it.
     if (hit == cache_.end() && spent >= settings_.expansionBudget) break;
     const PathRequest request = front;
     queue_.pop_front();
+    Answer answer;
     if (hit != cache_.end()) {
       ++metrics_.cacheHits;
+      answer = hit->second;
     } else {
       std::vector<Cell> cells;
       const bool weighted = request.costProfile >= 0 &&
                             static_cast<std::size_t>(request.costProfile) < distinctOf_.size();
+      const std::optional<Congestion::Surcharge> surcharge =
+          congestion ? std::optional<Congestion::Surcharge>(
+                           std::in_place, *congestion, request.agent, request.speed, now, weighted)
+                     : std::nullopt;
+      const EdgeSurcharge* waits = surcharge ? &*surcharge : nullptr;
       PathResult result;
       double seconds = -1.0;
       if (weighted) {
         // The profile's agent: the request's may differ on terrains the map does not have.
         WeightedPlanner& w = weightedPlanner(request.costProfile);
-        result = w.planner->findPath(w.agent, request.start, request.goal, &cells);
+        result = w.planner->findPath(w.agent, request.start, request.goal, &cells, waits);
         seconds = result.cost;
       } else {
-        result = planner_->findPath(request.agent, request.start, request.goal, &cells);
+        result = planner_->findPath(request.agent, request.start, request.goal, &cells, waits);
       }
       ++metrics_.searches;
       metrics_.expanded += result.metrics.expanded;
@@ -267,17 +285,29 @@ std::uint64_t PathService::serve(std::vector<PathDelivery>& out) {
         ++metrics_.found;
       else
         ++metrics_.failed;
-      if (cache_.size() >= settings_.cacheCapacity && !cacheOrder_.empty()) {
-        cache_.erase(cacheOrder_.front());
-        cacheOrder_.pop_front();
+      // A path that meets a queue is this moment's answer, not one to hand out later.
+      const bool meetsQueue = congestion && result.found() &&
+                              congestion->waitAlong(request.agent, request.speed, cells, now) > 0.0;
+      if (meetsQueue) ++metrics_.congestedSearches;
+      answer.status = result.status;
+      if (result.found())
+        answer.path = std::make_shared<const PlannedPath>(planned(std::move(cells)));
+      answer.seconds = seconds;
+      if (const auto stale = cache_.find(key); stale != cache_.end()) {
+        // Planned again because the cached path met a queue: this answer replaces it.
+        if (!meetsQueue) stale->second = answer;
+      } else if (!meetsQueue) {
+        if (cache_.size() >= settings_.cacheCapacity && !cacheOrder_.empty()) {
+          cache_.erase(cacheOrder_.front());
+          cacheOrder_.pop_front();
+        }
+        cache_.emplace(key, answer);
+        cacheOrder_.push_back(key);
       }
-      SharedPath path;
-      if (result.found()) path = std::make_shared<const PlannedPath>(planned(std::move(cells)));
-      hit = cache_.emplace(key, Answer{result.status, std::move(path), seconds}).first;
-      cacheOrder_.push_back(key);
     }
-    out.push_back(
-        {request.unit, request.serial, hit->second.status, hit->second.path, hit->second.seconds});
+    if (congestion && answer.path)
+      congestion->book(request.unit, request.agent, request.speed, answer.path->cells, now);
+    out.push_back({request.unit, request.serial, answer.status, answer.path, answer.seconds});
   }
   return spent;
 }

@@ -380,19 +380,27 @@ Result<Scenario> replayScenario(const Replay& replay) {
     return *it->second;
   };
   // A scenario that does not say `pathing: cooperative` plays back as it was recorded: with
-  // cooperation off before it became the default.
+  // cooperation off before it became the default, and without congestion-aware routes before
+  // they came (no older scenario can name them).
   WorldSettings defaults;
   if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
+  if (replay.version < kFirstCongestionReplayVersion) defaults.pathing.congestion = false;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }
 
-Result<ReplayWriter> ReplayWriter::open(const fs::path& file, const ReplaySource& source) {
+Result<ReplayWriter> ReplayWriter::open(const fs::path& file, const ReplaySource& source,
+                                        std::uint32_t format) {
+  if (format < 3 || format > kReplayVersion)
+    return Error{file.string(), 0, 0,
+                 "cannot write replay format " + std::to_string(format) + " (3 to " +
+                     std::to_string(kReplayVersion) + ")"};
   std::unique_ptr<std::FILE, Closer> out(std::fopen(file.c_str(), "wb"));
   if (!out) return Error{file.string(), 0, 0, "cannot create the replay"};
-  ReplayWriter writer(file.string(), std::move(out), std::max<std::int64_t>(source.hashEvery, 1));
+  ReplayWriter writer(file.string(), std::move(out), std::max<std::int64_t>(source.hashEvery, 1),
+                      format);
   Encoder head;
-  head.u32(kReplayVersion);
+  head.u32(format);
   if (std::fwrite(kMagic.data(), 1, kMagic.size(), writer.out_.get()) != kMagic.size() ||
       std::fwrite(head.bytes().data(), 1, 4, writer.out_.get()) != 4) {
     return Error{file.string(), 0, 0, "cannot write the replay"};
@@ -424,7 +432,7 @@ Status ReplayWriter::record(const ScenarioRun& run) {
   }
   const std::int64_t tick = run.world().tick();
   if (tick > lastHashed_ && tick % every_ == 0) {
-    if (Status s = append('H', hashPayload({tick, run.stateHash()})); !s) return s;
+    if (Status s = append('H', hashPayload({tick, run.stateHash(format_)})); !s) return s;
     lastHashed_ = tick;
   }
   // Flushed every tick: a run killed between ticks leaves whole records behind.
@@ -434,7 +442,8 @@ Status ReplayWriter::record(const ScenarioRun& run) {
 
 Status ReplayWriter::finish(const ScenarioRun& run, ReplayEnd reason) {
   if (Status s = record(run); !s) return s;
-  if (Status s = append('E', endPayload({reason, {run.world().tick(), run.stateHash()}})); !s)
+  if (Status s = append('E', endPayload({reason, {run.world().tick(), run.stateHash(format_)}}));
+      !s)
     return s;
   if (std::fflush(out_.get()) != 0) return Error{file_, 0, 0, "cannot write the replay"};
   return Status::success();

@@ -124,6 +124,8 @@ nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& 
                   {"failed", m.failed},
                   {"expanded", m.expanded},
                   {"max_queue", m.maxQueue},
+                  {"congestion", ps.cooperative && ps.congestion},
+                  {"congested_searches", m.congestedSearches},
                   {"search_us", m.microseconds},
                   {"preprocess_ms", m.preprocessMilliseconds}};
 

@@ -15,6 +15,7 @@
 #include <tuple>
 #include <vector>
 
+#include "engine/congestion.h"
 #include "engine/handle.h"
 #include "pathing/aa_star.h"
 #include "pathing/annotated_grid.h"
@@ -44,7 +45,13 @@ struct PathServiceSettings {
   // unit's HAA* path, with exact distances in the corridor as the heuristic; false: WHCA* with
   // a reverse resumable A* (exact distances on the whole map) as the heuristic.
   bool corridorSearch = true;
-  int corridor = 4;  // [Unit: cells] [Limit: 1..64] the CPRA*(k) corridor's half-width k
+  int corridor = 4;
+  // Congestion-aware routes (engine/congestion.h), with cooperation and a hierarchical
+  // algorithm: each delivered path books its unit at the narrow places it crosses, and a long
+  // route's abstract search adds the wait expected there, so that it takes a free bridge when
+  // the detour costs less than the wait. Cached answers are used only where they meet no
+  // queue, and answers that meet one are not cached.
+  bool congestion = true;  // [Unit: cells] [Limit: 1..64] the CPRA*(k) corridor's half-width k
   // Terrain costs (docs/terrain_costs.md): each unit type plans the fastest route for its own
   // speeds (cost = 1 / speed per terrain) instead of the shortest in cells, with any algorithm
   // (the hierarchical ones on a weighted graph per cost profile). Off by default, so scenarios
@@ -62,6 +69,9 @@ struct PathRequest {
   pathing::Cell start;
   pathing::Cell goal;
   int costProfile = -1;  // index into the service's cost profiles; -1: every cell costs 1
+  // [Unit: cells/s] the unit's top speed, for the waits of congestion-aware routes; 0: the
+  // request neither meets nor joins a queue.
+  double speed = 0.0;
 };
 
 // What one kind of unit plans by under terrain costs: its agent and its cost per terrain.
@@ -105,11 +115,16 @@ struct PathServiceMetrics {
   std::uint64_t repairChunks = 0;
   std::uint64_t repairExpanded = 0;  // cells the graph repairs' searches expanded
   double repairMilliseconds = 0.0;   // wall time of graph repairs: measurement only
+  // Searches that met a queue on the way (congestion-aware routes): planned with the waits as
+  // surcharges, the cache passed by.
+  std::uint64_t congestedSearches = 0;
   bool operator==(const PathServiceMetrics& o) const {  // wall-clock fields excluded
     return std::tie(requests, cacheHits, searches, found, failed, expanded, maxQueue,
-                    terrainChanges, cacheDropped, repairChunks, repairExpanded) ==
-           std::tie(o.requests, o.cacheHits, o.searches, o.found, o.failed, o.expanded, o.maxQueue,
-                    o.terrainChanges, o.cacheDropped, o.repairChunks, o.repairExpanded);
+                    terrainChanges, cacheDropped, repairChunks, repairExpanded,
+                    congestedSearches) == std::tie(o.requests, o.cacheHits, o.searches, o.found,
+                                                   o.failed, o.expanded, o.maxQueue,
+                                                   o.terrainChanges, o.cacheDropped, o.repairChunks,
+                                                   o.repairExpanded, o.congestedSearches);
   }
 };
 
@@ -148,7 +163,8 @@ class PathService {
   void cancel(UnitId unit);
   // Serves queued requests in order within the budget, appending one delivery each. Returns
   // the node expansions spent (what is left of the budget goes to cooperative windows).
-  std::uint64_t serve(std::vector<PathDelivery>& out);
+  // `now` [Unit: s of simulated time] dates the bookings of congestion-aware routes.
+  std::uint64_t serve(std::vector<PathDelivery>& out, double now = 0.0);
 
   std::size_t queued() const { return queue_.size(); }
   // The requests waiting, in the order they will be served.
@@ -198,7 +214,8 @@ class PathService {
   std::deque<PathRequest> queue_;
   std::deque<pathing::CellRect> pendingRepairs_;
   std::map<Key, Answer> cache_;
-  std::deque<Key> cacheOrder_;  // insertion order, for eviction
+  std::deque<Key> cacheOrder_;            // insertion order, for eviction
+  std::optional<Congestion> congestion_;  // with settings_.congestion in force
   PathServiceMetrics metrics_;
 };
 

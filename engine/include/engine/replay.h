@@ -32,9 +32,11 @@ namespace warpath::engine {
 // large units blocking planning, and the hashes covering the terrain changes and wreck
 // obstacles. 7: the same records; a scenario that leaves `pathing: cooperative` out runs with
 // cooperative movement on (the default since this format; older files play back with it off
-// unless their scenario switched it on). Version-1 files (move orders only) are refused with a
-// message saying so.
-inline constexpr std::uint32_t kReplayVersion = 7;
+// unless their scenario switched it on). 8: the same records; with cooperation, routes avoid
+// queues at narrow places (congestion-aware routes, engine/congestion.h; older files play back
+// without them), and the hashes cover each queued request's speed. Version-1 files (move orders
+// only) are refused with a message saying so.
+inline constexpr std::uint32_t kReplayVersion = 8;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -42,6 +44,8 @@ inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 inline constexpr std::uint32_t kFirstTerrainReplayVersion = 6;
 // Formats before this one were recorded when cooperative movement was off by default.
 inline constexpr std::uint32_t kCooperativeByDefaultReplayVersion = 7;
+// Formats before this one were recorded before congestion-aware routes: they play back without.
+inline constexpr std::uint32_t kFirstCongestionReplayVersion = 8;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.
@@ -110,7 +114,11 @@ Result<Scenario> replayScenario(const Replay& replay);
 // finish() at the end. Each call flushes. Errors name the file.
 class ReplayWriter {
  public:
-  static Result<ReplayWriter> open(const std::filesystem::path& file, const ReplaySource& source);
+  // `format`: the version written and the state layout hashed, for files an older build could
+  // have written (tests of compatibility); the run must be set up as that format plays back
+  // (ReplayPlayback::open). [Limit: 3..kReplayVersion, else an error]
+  static Result<ReplayWriter> open(const std::filesystem::path& file, const ReplaySource& source,
+                                   std::uint32_t format = kReplayVersion);
   // The orders given since the last call and, when the tick is a multiple of hashEvery, the
   // world's hash.
   Status record(const ScenarioRun& run);
@@ -120,13 +128,15 @@ class ReplayWriter {
   struct Closer {
     void operator()(std::FILE* f) const { std::fclose(f); }
   };
-  ReplayWriter(std::string file, std::unique_ptr<std::FILE, Closer> out, std::int64_t every)
-      : file_(std::move(file)), out_(std::move(out)), every_(every) {}
+  ReplayWriter(std::string file, std::unique_ptr<std::FILE, Closer> out, std::int64_t every,
+               std::uint32_t format)
+      : file_(std::move(file)), out_(std::move(out)), every_(every), format_(format) {}
   Status append(char kind, const std::string& payload);
 
   std::string file_;
   std::unique_ptr<std::FILE, Closer> out_;
   std::int64_t every_ = 1;
+  std::uint32_t format_ = kReplayVersion;
   std::size_t ordersWritten_ = 0;
   std::int64_t lastHashed_ = 0;
 };

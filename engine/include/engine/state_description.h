@@ -21,7 +21,7 @@ namespace warpath::engine {
 struct Since {
   std::uint32_t format;
 };
-inline constexpr std::uint32_t kStateFormat = 6;
+inline constexpr std::uint32_t kStateFormat = 8;  // the newest layout (format 7 kept 6's)
 
 template <class V>
 void describe(V& v, const pathing::Cell& c) {
@@ -178,6 +178,7 @@ void describe(V& v, const PathRequest& r) {
   v("start", r.start);
   v("goal", r.goal);
   v(Since{5}, "costProfile", r.costProfile);
+  v(Since{8}, "speed", r.speed);
 }
 // Box2D's own state (contacts, warm starts) is not reachable; the bodies' positions and
 // velocities are, through the units they move (read back every step), and so is the count.
@@ -186,7 +187,9 @@ void describe(V& v, const Physics& physics) {
   v("bodies", physics.stats().bodies);
 }
 // The queue decides future answers; the answer cache does not (a cached answer equals a fresh
-// search), and its hits are counted in the metrics. Wall-clock metrics are left out.
+// search), and its hits are counted in the metrics. The bookings of congestion-aware routes
+// (engine/congestion.h) follow from the paths delivered, dated by tick, and are left out like
+// the cache; the searches they caused are counted. Wall-clock metrics are left out.
 template <class V>
 void describe(V& v, const PathService& paths) {
   v("queue", paths.queue());
@@ -198,6 +201,7 @@ void describe(V& v, const PathService& paths) {
   v("failed", m.failed);
   v("expanded", m.expanded);
   v("maxQueue", m.maxQueue);
+  v(Since{8}, "congestedSearches", m.congestedSearches);
 }
 template <class V>
 void describe(V& v, const TerrainEdit& e) {

@@ -104,6 +104,7 @@ struct Pathing {
   Maybe<int> window;
   Maybe<bool> corridorSearch;  // cooperative_search: cpra (true) or whca
   Maybe<int> corridor;
+  Maybe<bool> congestion;
   Maybe<bool> terrainCosts;
 };
 

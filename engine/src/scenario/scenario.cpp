@@ -276,6 +276,7 @@ void applyPathing(const Checker& c, const raw::Pathing& in, PathServiceSettings&
   if (in.window) out.window = c.range(*in.window, "window", 1, kMaxCooperativeWindow);
   if (in.corridorSearch) out.corridorSearch = in.corridorSearch->value;
   if (in.corridor) out.corridor = c.range(*in.corridor, "corridor", 1, 64);
+  if (in.congestion) out.congestion = in.congestion->value;
   if (in.terrainCosts) out.terrainCosts = in.terrainCosts->value;
 }
 

@@ -252,14 +252,15 @@ void pursue(Refs& w, Unit& unit, bool force) {
 
 void requestPath(Refs& w, Unit& unit) {
   ++unit.pathSerial;
-  w.state.paths->request({unit.id, unit.pathSerial, w.typeOf(unit).agent(),
-                          nearestStandable(w, unit), unit.goalCell,
-                          w.settings.pathing.terrainCosts ? unit.type : -1});
+  w.state.paths->request(
+      {unit.id, unit.pathSerial, w.typeOf(unit).agent(), nearestStandable(w, unit), unit.goalCell,
+       w.settings.pathing.terrainCosts ? unit.type : -1, w.typeOf(unit).maxSpeed()});
 }
 
 std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
   scratch.clear();
-  const std::uint64_t spent = w.state.paths->serve(scratch);
+  const std::uint64_t spent =
+      w.state.paths->serve(scratch, static_cast<double>(w.state.tick) / w.settings.tickRate);
   for (const PathDelivery& delivery : scratch) {
     if (!(delivery.unit.index < w.state.units.size())) continue;
     Unit& unit = w.unit(delivery.unit);
