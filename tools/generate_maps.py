@@ -1,8 +1,13 @@
 #!/usr/bin/env python3
 """Writes the scenario maps under assets/maps/ (MovingAI .map format). Deterministic: run it
-again and the files come out byte for byte the same. Usage: tools/generate_maps.py"""
+again and the files come out byte for byte the same. Usage: tools/generate_maps.py
+
+tools/generate_maps.py --large SIZE FILE writes a SIZE x SIZE map like stress512.map (the same
+mix of lakes, forests, swamps and rocks per area, open lanes every 64 cells) to FILE, for the
+scaling benchmarks of docs/benchmarks.md (2048 and 4096: too big to keep in the repository)."""
 import os
 import random
+import sys
 
 OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "assets", "maps")
 
@@ -31,11 +36,15 @@ def blob(g, cx, cy, r, c, rng):
                     g[y][x] = c
 
 
-def save(name, g):
-    with open(os.path.join(OUT, name), "w") as f:
+def save_to(path, g):
+    with open(path, "w") as f:
         f.write("type octile\nheight %d\nwidth %d\nmap\n" % (len(g), len(g[0])))
         for row in g:
             f.write("".join(row) + "\n")
+
+
+def save(name, g):
+    save_to(os.path.join(OUT, name), g)
 
 
 def river():
@@ -83,18 +92,21 @@ def demo():
     return g
 
 
-def stress():
+def stress(size=512):
     # 512x512: lakes, forests, swamps and rocks scattered with a fixed seed; open lanes
-    # along rows and columns every 64 cells keep every region connected for every unit.
-    rng = random.Random(512)
-    g = blank(512, 512)
+    # along rows and columns every 64 cells keep every region connected for every unit. Larger
+    # sizes scatter as many per area (seeded by the size).
+    rng = random.Random(size)
+    g = blank(size, size)
+    scale = (size // 512) ** 2
     for kind, count, rmin, rmax in [("W", 40, 6, 14), ("T", 60, 5, 12), ("S", 40, 5, 12),
                                     ("@", 120, 2, 5)]:
-        for _ in range(count):
-            blob(g, rng.randint(8, 503), rng.randint(8, 503), rng.randint(rmin, rmax), kind, rng)
-    for k in range(32, 512, 64):
-        rect(g, 1, k - 3, 511, k + 4, ".")
-        rect(g, k - 3, 1, k + 4, 511, ".")
+        for _ in range(count * scale):
+            blob(g, rng.randint(8, size - 9), rng.randint(8, size - 9), rng.randint(rmin, rmax),
+                 kind, rng)
+    for k in range(32, size, 64):
+        rect(g, 1, k - 3, size - 1, k + 4, ".")
+        rect(g, k - 3, 1, k + 4, size - 1, ".")
     return g
 
 
@@ -140,7 +152,12 @@ def landing():
     return g
 
 
-if __name__ == "__main__":
+if __name__ == "__main__" and len(sys.argv) == 4 and sys.argv[1] == "--large":
+    size = int(sys.argv[2])
+    if size < 512 or size % 512 != 0:
+        sys.exit("generate_maps: --large SIZE must be a multiple of 512")
+    save_to(sys.argv[3], stress(size))
+elif __name__ == "__main__":
     for name, make in [("river.map", river), ("forest.map", forest), ("pass.map", narrow_pass),
                        ("swamp.map", swamp), ("demo.map", demo), ("stress512.map", stress),
                        ("ambush.map", ambush), ("forest_battle.map", forest_battle),
