@@ -1,6 +1,7 @@
 #include "engine/congestion.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 
 #include "pathing/moves.h"
@@ -41,39 +42,31 @@ Congestion::Layer& Congestion::layerFor(pathing::Capability capability) {
   const int width = map.width();
   const int height = map.height();
   const pathing::ClearanceField& clearance = grid_.clearance(capability);
-  const auto open = [&](int x, int y) { return clearance.at({x, y}) >= 1; };
-  // Each cell's run across: the shorter of its row's and its column's runs of open cells.
-  std::vector<int> across(map.cellCount(), 0);
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width;) {
-      if (!open(x, y)) {
-        ++x;
-        continue;
+  // Each cell's run across: the shorter of its row's and its column's runs of open cells (0
+  // where the capability cannot stand), by one pass along the rows and one along the columns.
+  std::vector<int> across(map.cellCount(), INT32_MAX);
+  const auto measureRuns = [&](int lines, int length, bool rows) {
+    for (int line = 0; line < lines; ++line) {
+      const auto at = [&](int k) { return rows ? Cell{k, line} : Cell{line, k}; };
+      for (int k = 0; k < length;) {
+        if (clearance.at(at(k)) < 1) {
+          across[map.indexOf(at(k))] = 0;
+          ++k;
+          continue;
+        }
+        int end = k;
+        while (end < length && clearance.at(at(end)) >= 1)
+          ++end;
+        for (int i = k; i < end; ++i) {
+          int& run = across[map.indexOf(at(i))];
+          run = std::min(run, end - k);
+        }
+        k = end;
       }
-      int end = x;
-      while (end < width && open(end, y))
-        ++end;
-      for (int i = x; i < end; ++i)
-        across[map.indexOf({i, y})] = end - x;
-      x = end;
     }
-  }
-  for (int x = 0; x < width; ++x) {
-    for (int y = 0; y < height;) {
-      if (!open(x, y)) {
-        ++y;
-        continue;
-      }
-      int end = y;
-      while (end < height && open(x, end))
-        ++end;
-      for (int i = y; i < end; ++i) {
-        int& run = across[map.indexOf({x, i})];
-        run = std::min(run, end - y);
-      }
-      y = end;
-    }
-  }
+  };
+  measureRuns(height, width, true);
+  measureRuns(width, height, false);
   Layer layer;
   layer.capability = capability.mask();
   layer.placeOf.assign(map.cellCount(), -1);

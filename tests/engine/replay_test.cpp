@@ -309,6 +309,33 @@ TEST_F(Replays, AFormat2ReplayOfThePreviousReleaseVerifies) {
   EXPECT_NE(r.out.find("verified 1978 ticks, 66 state hashes match"), std::string::npos) << r.out;
 }
 
+// Records `s` as replay format `format` (hashes laid out as that format's) until `lastTick` or
+// its end, then checks that the file verifies as that format and does not read as the next
+// (which plays the scenario back under a later default).
+void expectVerifiesOnlyAsItsFormat(const Scenario& s, const ReplaySource& source,
+                                   const fs::path& file, std::uint32_t format,
+                                   std::int64_t lastTick) {
+  {
+    Result<ReplayWriter> writer = ReplayWriter::open(file, source, format);
+    ASSERT_TRUE(writer.ok()) << writer.error().describe();
+    ScenarioRun run(s);
+    ASSERT_TRUE(writer.value().record(run));
+    while (!run.done() && run.world().tick() < lastTick) {
+      run.step();
+      ASSERT_TRUE(writer.value().record(run));
+    }
+    ASSERT_TRUE(writer.value().finish(run, run.done() ? ReplayEnd::Complete : ReplayEnd::Stopped));
+  }
+  std::string bytes = slurp(file);
+  ASSERT_EQ(static_cast<std::uint32_t>(bytes[8]), format);
+  RtsResult r = rts("replay verify " + file.string());
+  EXPECT_EQ(r.status, 0) << r.out;
+  bytes[8] = static_cast<char>(format + 1);
+  spit(file, bytes);
+  r = rts("replay verify " + file.string());
+  EXPECT_EQ(r.status, 1) << r.out;
+}
+
 // Format 6 was recorded when cooperative movement was off by default: a scenario that does not
 // mention it plays back with it off, so such a file verifies. Read as format 7 (cooperation on
 // by default) the same records do not.
@@ -320,26 +347,7 @@ TEST_F(Replays, AFormat6ReplayPlaysBackWithCooperationOff) {
   ASSERT_TRUE(s.settings.pathing.cooperative);  // the default now
   s.settings.pathing.cooperative = false;       // format 6's
   source.seed = s.settings.seed;
-  const fs::path file = dir_ / "format6.rpl";
-  {
-    Result<ReplayWriter> writer = ReplayWriter::open(file, source, 6);
-    ASSERT_TRUE(writer.ok()) << writer.error().describe();
-    ScenarioRun run(s);
-    ASSERT_TRUE(writer.value().record(run));
-    while (!run.done()) {
-      run.step();
-      ASSERT_TRUE(writer.value().record(run));
-    }
-    ASSERT_TRUE(writer.value().finish(run, ReplayEnd::Complete));
-  }
-  std::string bytes = slurp(file);
-  ASSERT_EQ(bytes[8], 6);
-  RtsResult r = rts("replay verify " + file.string());
-  EXPECT_EQ(r.status, 0) << r.out;
-  bytes[8] = 7;
-  spit(file, bytes);
-  r = rts("replay verify " + file.string());
-  EXPECT_EQ(r.status, 1) << r.out;
+  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format6.rpl", 6, INT64_MAX);
 }
 
 // Format 7 was recorded before congestion-aware routes: it plays back without them, so such a
@@ -354,26 +362,7 @@ TEST_F(Replays, AFormat7ReplayPlaysBackWithoutCongestionAwareRoutes) {
   ASSERT_TRUE(s.settings.pathing.cooperative && s.settings.pathing.congestion);  // the defaults
   s.settings.pathing.congestion = false;                                         // format 7's
   source.seed = s.settings.seed;
-  const fs::path file = dir_ / "format7.rpl";
-  {
-    Result<ReplayWriter> writer = ReplayWriter::open(file, source, 7);
-    ASSERT_TRUE(writer.ok()) << writer.error().describe();
-    ScenarioRun run(s);
-    ASSERT_TRUE(writer.value().record(run));
-    while (run.world().tick() < 300) {
-      run.step();
-      ASSERT_TRUE(writer.value().record(run));
-    }
-    ASSERT_TRUE(writer.value().finish(run, ReplayEnd::Stopped));
-  }
-  std::string bytes = slurp(file);
-  ASSERT_EQ(bytes[8], 7);
-  RtsResult r = rts("replay verify " + file.string());
-  EXPECT_EQ(r.status, 0) << r.out;
-  bytes[8] = 8;
-  spit(file, bytes);
-  r = rts("replay verify " + file.string());
-  EXPECT_EQ(r.status, 1) << r.out;
+  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format7.rpl", 7, 300);
   // Formats before 3 hash another way, and none after this build's can be written.
   EXPECT_FALSE(ReplayWriter::open(dir_ / "x.rpl", source, 2).ok());
   EXPECT_FALSE(ReplayWriter::open(dir_ / "x.rpl", source, kReplayVersion + 1).ok());
