@@ -147,6 +147,16 @@ auto beginUniform() {
   };
 }
 
+// A toll on the edges between clusters (congestion at the borders): constant per edge, so the
+// abstract search stays exact for it.
+class BorderToll : public EdgeSurcharge {
+ public:
+  double on(const ClusterAbstraction&, std::uint32_t, const AbstractEdge& edge,
+            double) const override {
+    return edge.intra ? 0.0 : 2.5;
+  }
+};
+
 AbstractionSpec spec(int clusterSize, AbstractionQuality quality, bool cachePaths) {
   return AbstractionSpec{.clusterSize = clusterSize,
                          .maxAgentSize = 3,
@@ -189,6 +199,36 @@ TEST(SlicedSearch, EveryAlgorithmSlicedReturnsExactlyWhatTheUnslicedReturns) {
                                  std::make_shared<HierarchicalAStar>(*graph),
                                  beginUniform<HierarchicalAStar>(), insertion));
     }
+    // With a surcharge on abstract edges, through HAA* and the Planner's hybrid.
+    const auto toll = std::make_shared<BorderToll>();
+    subjects.push_back(subject(
+        "haa-hq-toll", std::make_shared<HierarchicalAStar>(*high),
+        std::make_shared<HierarchicalAStar>(*high),
+        [toll](HierarchicalAStar& search, Agent agent, Cell start, Cell goal) {
+          return search.beginPath(agent, start, goal, toll.get());
+        },
+        insertion));
+    const auto wholeToll = std::make_shared<HierarchicalAStar>(*high);
+    subjects.back().whole = [wholeToll, toll](Agent agent, Cell start, Cell goal) {
+      Answer answer;
+      answer.result = wholeToll->findPath(agent, start, goal, &answer.path, toll.get());
+      return answer;
+    };
+    subjects.push_back(subject(
+        "planner-hybrid-toll",
+        std::make_shared<Planner>(grid, Algorithm::Hybrid, high.get(), HybridOptions{64}),
+        std::make_shared<Planner>(grid, Algorithm::Hybrid, high.get(), HybridOptions{64}),
+        [toll](Planner& search, Agent agent, Cell start, Cell goal) {
+          return search.beginPath(agent, start, goal, toll.get());
+        },
+        insertion));
+    const auto wholeHybrid =
+        std::make_shared<Planner>(grid, Algorithm::Hybrid, high.get(), HybridOptions{64});
+    subjects.back().whole = [wholeHybrid, toll](Agent agent, Cell start, Cell goal) {
+      Answer answer;
+      answer.result = wholeHybrid->findPath(agent, start, goal, &answer.path, toll.get());
+      return answer;
+    };
     for (const std::uint64_t tau : {64u, 4096u}) {
       subjects.push_back(subject("hybrid-" + std::to_string(tau),
                                  std::make_shared<HybridPlanner>(*high, HybridOptions{tau}),
