@@ -261,6 +261,12 @@ std::optional<PathResult> PathService::search(const PathRequest& request, std::u
       planner.beginPath(agent, request.start, request.goal, waits);
       inFlight_ = &planner;
     }
+    // A step that cannot be split (an HAA* insertion) and does not fit in what is left of the
+    // tick's budget waits for the next tick, unless the tick has spent nothing yet.
+    if (spent > 0 && planner.nextStepExpansions() > budget) {
+      ++metrics_.slices;
+      return std::nullopt;
+    }
     const std::uint64_t before = planner.expandedSoFar();
     const PathStatus status = planner.updatePath(budget);
     spent += planner.expandedSoFar() - before;

@@ -110,6 +110,17 @@ std::uint64_t HierarchicalAStar::expandedSoFar() const {
   return scratch_->expandedSoFar;
 }
 
+std::uint64_t HierarchicalAStar::nextStepExpansions() const {
+  const Scratch& s = *scratch_;
+  if (s.result.status != PathStatus::Pending ||
+      (s.phase != Phase::InsertStart && s.phase != Phase::InsertGoal))
+    return 1;
+  // The Dijkstra settles each cell of the cluster at most once.
+  const CellRect bounds = abstraction_.clusterBounds(
+      abstraction_.clusterOf(s.phase == Phase::InsertGoal ? s.goal : s.start));
+  return static_cast<std::uint64_t>(bounds.width) * static_cast<std::uint64_t>(bounds.height);
+}
+
 PathStatus HierarchicalAStar::beginGridSearch(Agent agent, Cell start, Cell goal,
                                               const SearchLimits& limits) {
   if (const CostField* costs = abstraction_.costs())
@@ -243,10 +254,15 @@ PathStatus HierarchicalAStar::beginPath(Agent agent, Cell start, Cell goal,
 }
 
 PathStatus HierarchicalAStar::updatePath(std::uint64_t maxExpansions) {
+  return advance(maxExpansions, true);
+}
+
+PathStatus HierarchicalAStar::advance(std::uint64_t maxExpansions, bool mayOverrun) {
   Scratch& s = *scratch_;
   if (s.result.status != PathStatus::Pending || maxExpansions == 0) return s.result.status;
   const QueryClock clock;
   for (std::uint64_t left = maxExpansions; s.result.status == PathStatus::Pending && left > 0;) {
+    if (nextStepExpansions() > left && !(mayOverrun && left == maxExpansions)) break;
     const std::uint64_t spent = step(left);
     s.expandedSoFar += spent;
     left -= std::min(left, spent);
@@ -646,9 +662,14 @@ PathStatus HybridPlanner::updatePath(std::uint64_t maxExpansions) {
     const std::uint64_t spent = attempt.expandedSoFar() - before;
     const PathStatus status = afterAttempt(attemptStatus);  // may begin HAA*
     if (stage_ != Stage::Hierarchical || spent >= maxExpansions) return status;
-    maxExpansions -= spent;
+    // The rest of the slice: no insertion larger than it (the attempt spent part of it).
+    return hierarchical_.advance(maxExpansions - spent, spent == 0);
   }
   return hierarchical_.updatePath(maxExpansions);
+}
+
+std::uint64_t HybridPlanner::nextStepExpansions() const {
+  return stage_ == Stage::Hierarchical ? hierarchical_.nextStepExpansions() : 1;
 }
 
 std::uint64_t HybridPlanner::expandedSoFar() const {

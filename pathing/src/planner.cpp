@@ -98,4 +98,8 @@ std::uint64_t Planner::expandedSoFar() const {
   return std::visit([](const auto& planner) { return planner.expandedSoFar(); }, impl_);
 }
 
+std::uint64_t Planner::nextStepExpansions() const {
+  return std::visit([](const auto& planner) { return planner.nextStepExpansions(); }, impl_);
+}
+
 }  // namespace warpath::pathing

@@ -59,10 +59,11 @@ struct PathServiceSettings {
   // plan as they always did.
   bool terrainCosts = false;
   // Sliced searches (issue 15): the search of the request at the head of the queue stops when
-  // the tick's budget is spent and resumes next tick, so a tick's requests never spend more than
-  // the budget plus one unsplittable unit (an HAA* insertion: one cluster, clusterSize^2
-  // cells). Answers are the same as unsliced, delivered when done. Off by default: the request
-  // that crosses the budget runs to its end, as scenarios always have.
+  // the tick's budget is spent and resumes next tick, and an HAA* insertion (one step of up to
+  // clusterSize^2 cells) that does not fit in what is left waits for the next tick, so a tick's
+  // requests never spend more than the budget (or one insertion, when the budget is smaller).
+  // Answers are the same as unsliced, delivered when done. Off by default: the request that
+  // crosses the budget runs to its end, as scenarios always have.
   bool sliced = false;
 };
 inline constexpr int kMaxCooperativeWindow = 256;

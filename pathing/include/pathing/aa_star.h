@@ -37,6 +37,7 @@ class AnnotatedAStar {
   PathStatus updatePath(std::uint64_t maxExpansions);
   PathResult finalizePath(std::vector<Cell>* path);
   std::uint64_t expandedSoFar() const { return result_.metrics.expanded; }
+  std::uint64_t nextStepExpansions() const { return 1; }
 
  private:
   // Per-cell search state, split so that the common checks touch 4 bytes a cell: the stamp

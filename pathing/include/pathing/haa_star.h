@@ -62,16 +62,18 @@ class HierarchicalAStar {
   // The same query sliced (search.h). Expansions are those metrics.expanded counts: grid cells
   // of the searches on the grid and abstract nodes alike. Every phase stops between two
   // expansions but insertion: the Dijkstra over the start's cluster, and then the goal's, is
-  // one unit each (splitting its tuned inner loop would cost every query), begun whenever the
-  // slice has an expansion left, so an updatePath may overrun its slice by less than one
-  // cluster's cells (clusterSize^2). Refining an edge whose path is not cached, and the
-  // same-cluster attempt, are AA* searches sliced like any other.
+  // one step each (splitting its tuned inner loop would cost every query), of at most its
+  // cluster's cells (nextStepExpansions()). It is begun only when the slice has room for it, or
+  // as the update's first step: an updatePath spends at most max(maxExpansions, clusterSize^2).
+  // Refining an edge whose path is not cached, and the same-cluster attempt, are AA* searches
+  // sliced like any other.
   // `surcharge` must outlive the query.
   PathStatus beginPath(Agent agent, Cell start, Cell goal,
                        const EdgeSurcharge* surcharge = nullptr);
   PathStatus updatePath(std::uint64_t maxExpansions);
   PathResult finalizePath(std::vector<Cell>* path);
   std::uint64_t expandedSoFar() const;
+  std::uint64_t nextStepExpansions() const;
 
  private:
   friend class HybridPlanner;
@@ -86,7 +88,10 @@ class HierarchicalAStar {
     Abstract,     // A* over the abstract graph
     Refine,       // abstract edges to grid cells, then smoothing
   };
-  // Advances the phase under way by at most `budget` expansions (insertion: one unit);
+  // updatePath; `mayOverrun`: a step larger than the slice may be its first (the hybrid's
+  // attempt may have spent part of the caller's slice already).
+  PathStatus advance(std::uint64_t maxExpansions, bool mayOverrun);
+  // Advances the phase under way by at most `budget` expansions (insertion: one step);
   // returns the expansions spent.
   std::uint64_t step(std::uint64_t budget);
   // A sub-search on the grid (gridSearch_) advanced within `budget`: the expansions spent;
@@ -135,6 +140,7 @@ class HybridPlanner {
   PathStatus updatePath(std::uint64_t maxExpansions);
   PathResult finalizePath(std::vector<Cell>* path);
   std::uint64_t expandedSoFar() const;
+  std::uint64_t nextStepExpansions() const;
 
  private:
   enum class Stage : std::uint8_t {

@@ -33,6 +33,7 @@ class JumpPointSearch {
   PathStatus updatePath(std::uint64_t maxExpansions);
   PathResult finalizePath(std::vector<Cell>* path);
   std::uint64_t expandedSoFar() const { return result_.metrics.expanded; }
+  std::uint64_t nextStepExpansions() const { return 1; }
 
   // [Unit: bytes] the bit maps kept for the agent kinds asked about so far: where each can
   // stand, by rows and by columns (2 bits a cell a kind), built at its first query and again

@@ -67,6 +67,7 @@ class Planner {
   PathStatus updatePath(std::uint64_t maxExpansions);
   PathResult finalizePath(std::vector<Cell>* path);
   std::uint64_t expandedSoFar() const;
+  std::uint64_t nextStepExpansions() const;
 
  private:
   Algorithm algorithm_;

@@ -70,15 +70,20 @@ struct PathResult {
 //   beginPath(agent, start, goal, ...)  starts a query, abandoning any unfinished one, and
 //                                       answers at once what needs no search;
 //   updatePath(maxExpansions)           advances it by at most that many expansions
-//                                       [Limit: >= 1; 0 advances nothing];
+//                                       [Limit: >= 1; 0 advances nothing], but for a step
+//                                       that cannot be split (an HAA* insertion) larger than
+//                                       that, taken whole when it is the update's first, so
+//                                       that every slice makes progress;
 //   finalizePath(path)                  its result: what findPath returns for the same query
 //                                       (status, cells, cost, metrics; microseconds sums the
 //                                       calls' wall time).
 // beginPath and updatePath return PathStatus::Pending until the query is done, then its final
 // status (again on later calls, without work); finalizePath answers Pending and no cells while
 // it is unfinished. expandedSoFar() is the query's expansions so far, for budgets spread over
-// calls. findPath is begin, one unbounded update and finalize. Nothing the query reads may
-// change while it is unfinished (the grid's terrain, a graph repair): begin it again after.
+// calls; nextStepExpansions() the most the query's next unsplittable step may spend (1 but
+// before an insertion), so that a caller with less budget left can wait for the next one. findPath
+// is begin, one unbounded update and finalize. Nothing the query reads may change while it is
+// unfinished (the grid's terrain, a graph repair): begin it again after.
 inline constexpr std::uint64_t kUnboundedExpansions = UINT64_MAX;
 
 // The expansion count at which a slice of `maxExpansions` begun at `expanded` ends (saturating).
