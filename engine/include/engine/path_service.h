@@ -62,8 +62,9 @@ struct PathServiceSettings {
   // the tick's budget is spent and resumes next tick, and an HAA* insertion (one step of up to
   // clusterSize^2 cells) that does not fit in what is left waits for the next tick, so a tick's
   // requests never spend more than the budget (or one insertion, when the budget is smaller).
-  // Answers are the same as unsliced, delivered when done. Off by default: the request that
-  // crosses the budget runs to its end, as scenarios always have.
+  // Answers are planned as unsliced ones, delivered when done (congestion waits: those expected
+  // when the search began, read as the queues stand while it runs). Off by default: the request
+  // that crosses the budget runs to its end, as scenarios always have.
   bool sliced = false;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
