@@ -149,8 +149,14 @@ const ClusterAbstraction* PathService::abstraction() const {
 
 PathService::~PathService() = default;
 
+std::uint64_t PathService::slicedExpanded() const {
+  return inFlight_ ? inFlight_->expandedSoFar() : 0;
+}
+
 void PathService::changeTerrain(const TerrainChange& change) {
   if (!change.changed) return;
+  // A search under way read the old terrain (and graphs about to be repaired): begun again.
+  inFlight_ = nullptr;
   const auto began = std::chrono::steady_clock::now();
   ++metrics_.terrainChanges;
   // The graphs catch up in chunks a few clusters a side, within the ticks' budgets (serve()):
@@ -210,6 +216,7 @@ void PathService::request(const PathRequest& request) {
 }
 
 void PathService::cancel(UnitId unit) {
+  if (inFlight_ && queue_.front().unit == unit) inFlight_ = nullptr;
   std::erase_if(queue_, [&](const PathRequest& r) { return r.unit == unit; });
   if (congestion_) congestion_->cancel(unit);
 }
@@ -229,13 +236,61 @@ std::uint64_t PathService::repairChunk() {
   return spent;
 }
 
+std::optional<PathResult> PathService::search(const PathRequest& request, std::uint64_t budget,
+                                              double now, Congestion* congestion,
+                                              std::uint64_t& spent, std::vector<Cell>& cells,
+                                              double& seconds) {
+  const bool weighted = request.costProfile >= 0 &&
+                        static_cast<std::size_t>(request.costProfile) < distinctOf_.size();
+  // The profile's agent: the request's may differ on terrains the map does not have.
+  WeightedPlanner* w = weighted ? &weightedPlanner(request.costProfile) : nullptr;
+  const Agent agent = w ? w->agent : request.agent;
+  Planner& planner = w ? *w->planner : *planner_;
+  PathResult result;
+  if (inFlight_ != &planner) {
+    // The waits are those expected when the search begins; a sliced one keeps them to its end.
+    surcharge_.reset();
+    if (congestion) surcharge_.emplace(*congestion, request.agent, request.speed, now, weighted);
+  }
+  const EdgeSurcharge* waits = surcharge_ ? &*surcharge_ : nullptr;
+  if (!settings_.sliced) {
+    result = planner.findPath(agent, request.start, request.goal, &cells, waits);
+    spent += result.metrics.expanded;
+  } else {
+    if (inFlight_ != &planner) {
+      planner.beginPath(agent, request.start, request.goal, waits);
+      inFlight_ = &planner;
+    }
+    // A step that cannot be split (an HAA* insertion) and does not fit in what is left of the
+    // tick's budget waits for the next tick, unless the tick has spent nothing yet.
+    if (spent > 0 && planner.nextStepExpansions() > budget) {
+      ++metrics_.slices;
+      return std::nullopt;
+    }
+    const std::uint64_t before = planner.expandedSoFar();
+    const PathStatus status = planner.updatePath(budget);
+    spent += planner.expandedSoFar() - before;
+    if (status == PathStatus::Pending) {
+      ++metrics_.slices;
+      return std::nullopt;
+    }
+    inFlight_ = nullptr;
+    result = planner.finalizePath(&cells);
+  }
+  if (w) seconds = result.cost;
+  return result;
+}
+
 std::uint64_t PathService::serve(std::vector<PathDelivery>& out, double now) {
   std::uint64_t spent = 0;
   // The graphs first: at least one chunk a tick, more while the budget lasts.
   for (bool first = true; !pendingRepairs_.empty() && (first || spent < settings_.expansionBudget);
        first = false)
     spent += repairChunk();
-  if (!pendingRepairs_.empty()) return spent;
+  if (!pendingRepairs_.empty()) {
+    metrics_.maxTickExpanded = std::max(metrics_.maxTickExpanded, spent);
+    return spent;
+  }
   while (!queue_.empty()) {
     const PathRequest& front = queue_.front();
     const Key key{front.agent.size, front.agent.capability.mask(),
@@ -252,45 +307,29 @@ std::uint64_t PathService::serve(std::vector<PathDelivery>& out, double now) {
       hit = cache_.end();
     // Cached answers cost no budget, so duplicates queued behind a search ride along with it.
     if (hit == cache_.end() && spent >= settings_.expansionBudget) break;
-    const PathRequest request = front;
-    queue_.pop_front();
     Answer answer;
     if (hit != cache_.end()) {
       ++metrics_.cacheHits;
       answer = hit->second;
     } else {
       std::vector<Cell> cells;
-      const bool weighted = request.costProfile >= 0 &&
-                            static_cast<std::size_t>(request.costProfile) < distinctOf_.size();
-      const std::optional<Congestion::Surcharge> surcharge =
-          congestion ? std::optional<Congestion::Surcharge>(
-                           std::in_place, *congestion, request.agent, request.speed, now, weighted)
-                     : std::nullopt;
-      const EdgeSurcharge* waits = surcharge ? &*surcharge : nullptr;
-      PathResult result;
       double seconds = -1.0;
-      if (weighted) {
-        // The profile's agent: the request's may differ on terrains the map does not have.
-        WeightedPlanner& w = weightedPlanner(request.costProfile);
-        result = w.planner->findPath(w.agent, request.start, request.goal, &cells, waits);
-        seconds = result.cost;
-      } else {
-        result = planner_->findPath(request.agent, request.start, request.goal, &cells, waits);
-      }
+      const std::optional<PathResult> result =
+          search(front, settings_.expansionBudget - spent, now, congestion, spent, cells, seconds);
+      if (!result) break;  // sliced: resumed next tick
       ++metrics_.searches;
-      metrics_.expanded += result.metrics.expanded;
-      metrics_.microseconds += result.metrics.microseconds;
-      spent += result.metrics.expanded;
-      if (result.found())
+      metrics_.expanded += result->metrics.expanded;
+      metrics_.microseconds += result->metrics.microseconds;
+      if (result->found())
         ++metrics_.found;
       else
         ++metrics_.failed;
       // A path that meets a queue is this moment's answer, not one to hand out later.
-      const bool meetsQueue = congestion && result.found() &&
-                              congestion->waitAlong(request.agent, request.speed, cells, now) > 0.0;
+      const bool meetsQueue = congestion && result->found() &&
+                              congestion->waitAlong(front.agent, front.speed, cells, now) > 0.0;
       if (meetsQueue) ++metrics_.congestedSearches;
-      answer.status = result.status;
-      if (result.found())
+      answer.status = result->status;
+      if (result->found())
         answer.path = std::make_shared<const PlannedPath>(planned(std::move(cells)));
       answer.seconds = seconds;
       if (const auto stale = cache_.find(key); stale != cache_.end()) {
@@ -305,10 +344,14 @@ std::uint64_t PathService::serve(std::vector<PathDelivery>& out, double now) {
         cacheOrder_.push_back(key);
       }
     }
+    const PathRequest request = front;
+    queue_.pop_front();
+    inFlight_ = nullptr;  // a sliced search of the request, if any, is done or not needed
     if (congestion && answer.path)
       congestion->book(request.unit, request.agent, request.speed, answer.path->cells, now);
     out.push_back({request.unit, request.serial, answer.status, answer.path, answer.seconds});
   }
+  metrics_.maxTickExpanded = std::max(metrics_.maxTickExpanded, spent);
   return spent;
 }
 

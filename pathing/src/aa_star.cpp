@@ -15,7 +15,7 @@ std::string_view toString(PathStatus status) {
 
 AnnotatedAStar::AnnotatedAStar(const AnnotatedGrid& grid) : grid_(grid) {}
 
-void AnnotatedAStar::beginQuery() {
+void AnnotatedAStar::resetScratch() {
   if (stamps_.size() != grid_.map().cellCount()) {
     stamps_.assign(grid_.map().cellCount(), 0);
     g_.assign(grid_.map().cellCount(), 0.0);
@@ -30,36 +30,75 @@ void AnnotatedAStar::beginQuery() {
 
 PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                                     const SearchLimits& limits) {
-  return run(agent, start, goal, path, nullptr, limits);
+  begin(agent, start, goal, nullptr, limits);
+  updatePath(kUnboundedExpansions);
+  return finalizePath(path);
 }
 
 PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                                     const CostField& costs, const SearchLimits& limits) {
-  return run(agent, start, goal, path, &costs, limits);
+  begin(agent, start, goal, &costs, limits);
+  updatePath(kUnboundedExpansions);
+  return finalizePath(path);
 }
 
-PathResult AnnotatedAStar::run(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
-                               const CostField* costs, const SearchLimits& limits) {
-  const QueryClock clock;
-  PathResult result;
-  if (path) path->clear();
-  const auto finish = [&](PathStatus status) { return finishQuery(result, status, clock); };
+PathStatus AnnotatedAStar::beginPath(Agent agent, Cell start, Cell goal,
+                                     const SearchLimits& limits) {
+  return begin(agent, start, goal, nullptr, limits);
+}
 
-  if (const auto answer = screenQuery(grid_, agent, start, goal, limits)) return finish(*answer);
-  const GridMap& map = grid_.map();
-  const AgentLayer& layer = grid_.layer(agent);
-  PathStatus status;
-  if (costs) {
-    status = limits.region ? search<true, true>(layer, start, goal, costs, limits, result)
-                           : search<false, true>(layer, start, goal, costs, limits, result);
+PathStatus AnnotatedAStar::beginPath(Agent agent, Cell start, Cell goal, const CostField& costs,
+                                     const SearchLimits& limits) {
+  return begin(agent, start, goal, &costs, limits);
+}
+
+PathStatus AnnotatedAStar::begin(Agent agent, Cell start, Cell goal, const CostField* costs,
+                                 const SearchLimits& limits) {
+  const QueryClock clock;
+  result_ = PathResult{};
+  result_.status = PathStatus::Pending;
+  start_ = start;
+  goal_ = goal;
+  costs_ = costs;
+  limits_ = limits;
+  if (const auto answer = screenQuery(grid_, agent, start, goal, limits)) {
+    result_.status = *answer;
   } else {
-    status = limits.region ? search<true, false>(layer, start, goal, costs, limits, result)
-                           : search<false, false>(layer, start, goal, costs, limits, result);
+    layer_ = &grid_.layer(agent);
+    resetScratch();
+    const std::uint32_t startIndex = grid_.map().indexOf(start);
+    const double h = octileDistance(goal.x - start.x, goal.y - start.y);
+    stamps_[startIndex] = generation_ << kGenerationShift;
+    g_[startIndex] = 0.0;
+    open_.push(OpenList::makeKey(costs ? costs->cheapest() * h : h, 0.0), startIndex);
+    ++result_.metrics.generated;
   }
-  if (status == PathStatus::Found && path) {
-    const std::uint32_t startIndex = map.indexOf(start);
+  result_.metrics.microseconds += clock.elapsedMicroseconds();
+  return result_.status;
+}
+
+PathStatus AnnotatedAStar::updatePath(std::uint64_t maxExpansions) {
+  if (result_.status != PathStatus::Pending || maxExpansions == 0) return result_.status;
+  const QueryClock clock;
+  if (costs_) {
+    result_.status =
+        limits_.region ? search<true, true>(maxExpansions) : search<false, true>(maxExpansions);
+  } else {
+    result_.status =
+        limits_.region ? search<true, false>(maxExpansions) : search<false, false>(maxExpansions);
+  }
+  result_.metrics.microseconds += clock.elapsedMicroseconds();
+  return result_.status;
+}
+
+PathResult AnnotatedAStar::finalizePath(std::vector<Cell>* path) {
+  const QueryClock clock;
+  if (path) path->clear();
+  if (result_.status == PathStatus::Found && path) {
+    const GridMap& map = grid_.map();
+    const std::uint32_t startIndex = map.indexOf(start_);
     const auto width = static_cast<std::int64_t>(map.width());
-    for (std::uint32_t at = map.indexOf(goal);;) {
+    for (std::uint32_t at = map.indexOf(goal_);;) {
       path->push_back(map.cellAt(at));
       if (at == startIndex) break;
       const Direction& dir = kDirections[stamps_[at] & 7u];
@@ -67,18 +106,19 @@ PathResult AnnotatedAStar::run(Agent agent, Cell start, Cell goal, std::vector<C
     }
     std::reverse(path->begin(), path->end());
   }
-  return finish(status);
+  result_.metrics.microseconds += clock.elapsedMicroseconds();
+  return result_;
 }
 
 template <bool kInRegion, bool kWeighted>
-PathStatus AnnotatedAStar::search(const AgentLayer& layer, Cell start, Cell goal,
-                                  const CostField* costs, const SearchLimits& limits,
-                                  PathResult& result) {
-  beginQuery();
+PathStatus AnnotatedAStar::search(std::uint64_t maxExpansions) {
   const GridMap& map = grid_.map();
-  const std::uint32_t startIndex = map.indexOf(start);
+  const Cell goal = goal_;
+  const CostField* costs = costs_;
+  const SearchLimits& limits = limits_;
+  PathResult& result = result_;
   const std::uint32_t goalIndex = map.indexOf(goal);
-  const std::uint8_t* masks = layer.moveMasks().data();
+  const std::uint8_t* masks = layer_->moveMasks().data();
   const std::uint32_t width = static_cast<std::uint32_t>(map.width());
   const double inverseWidth = 1.0 / static_cast<double>(width);
   std::array<std::int64_t, kDirectionCount> offset{};
@@ -94,12 +134,10 @@ PathStatus AnnotatedAStar::search(const AgentLayer& layer, Cell start, Cell goal
 
   const std::uint32_t openStamp = generation_ << kGenerationShift;
   const std::uint32_t closedStamp = openStamp | kClosedBit;
-  stamps_[startIndex] = openStamp;
-  g_[startIndex] = 0.0;
-  open_.push(OpenList::makeKey(heuristic(start.x, start.y), 0.0), startIndex);
-  ++result.metrics.generated;
+  const std::uint64_t end = sliceEnd(result.metrics.expanded, maxExpansions);
 
   while (!open_.empty()) {
+    if (result.metrics.expanded >= end) return PathStatus::Pending;
     const std::uint32_t current = open_.pop();
     std::uint32_t& stamp = stamps_[current];
     // A cell can be queued more than once; its cheapest entry pops first (same h).

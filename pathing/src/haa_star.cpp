@@ -60,6 +60,18 @@ struct HierarchicalAStar::Scratch {
   OpenList open;
   std::uint32_t generation = 0;
 
+  // The query under way (result.status Pending until done).
+  Agent agent;
+  Cell start;
+  Cell goal;
+  const AgentLayer* layer = nullptr;
+  const EdgeSurcharge* surcharge = nullptr;
+  Phase phase = Phase::GridOnly;
+  PathResult result;
+  std::uint64_t expandedSoFar = 0;
+  std::size_t refineIndex = 0;   // the abstract path's next step to refine
+  bool refineSearching = false;  // AA* re-planning that step is under way
+
   // Per-cell stamps for loop removal in smoothing (cell -> index in the path).
   std::vector<std::uint32_t> cellStamp;
   std::vector<std::uint32_t> cellIndex;
@@ -94,11 +106,32 @@ HierarchicalAStar::HierarchicalAStar(const ClusterAbstraction& abstraction, HaaO
 
 HierarchicalAStar::~HierarchicalAStar() = default;
 
-PathResult HierarchicalAStar::gridSearch(Agent agent, Cell start, Cell goal,
-                                         std::vector<Cell>* path, const SearchLimits& limits) {
+std::uint64_t HierarchicalAStar::expandedSoFar() const {
+  return scratch_->expandedSoFar;
+}
+
+std::uint64_t HierarchicalAStar::nextStepExpansions() const {
+  const Scratch& s = *scratch_;
+  if (s.result.status != PathStatus::Pending ||
+      (s.phase != Phase::InsertStart && s.phase != Phase::InsertGoal))
+    return 1;
+  // The Dijkstra settles each cell of the cluster at most once.
+  const CellRect bounds = abstraction_.clusterBounds(
+      abstraction_.clusterOf(s.phase == Phase::InsertGoal ? s.goal : s.start));
+  return static_cast<std::uint64_t>(bounds.width) * static_cast<std::uint64_t>(bounds.height);
+}
+
+PathStatus HierarchicalAStar::beginGridSearch(Agent agent, Cell start, Cell goal,
+                                              const SearchLimits& limits) {
   if (const CostField* costs = abstraction_.costs())
-    return gridSearch_.findPath(agent, start, goal, path, *costs, limits);
-  return gridSearch_.findPath(agent, start, goal, path, limits);
+    return gridSearch_.beginPath(agent, start, goal, *costs, limits);
+  return gridSearch_.beginPath(agent, start, goal, limits);
+}
+
+std::uint64_t HierarchicalAStar::stepGridSearch(std::uint64_t budget, bool& done) {
+  const std::uint64_t before = gridSearch_.expandedSoFar();
+  done = gridSearch_.updatePath(budget) != PathStatus::Pending;
+  return gridSearch_.expandedSoFar() - before;
 }
 
 namespace {
@@ -176,109 +209,194 @@ class StraightWalker {
 
 PathResult HierarchicalAStar::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                                        const EdgeSurcharge* surcharge) {
-  const QueryClock clock;
-  PathResult result;
-  if (path) path->clear();
-  const auto finish = [&](PathStatus status) { return finishQuery(result, status, clock); };
-  const AnnotatedGrid& grid = abstraction_.grid();
-  if (const auto answer = screenEndpoints(grid, agent, start, goal)) return finish(*answer);
-  // A weighted graph's costs are its one agent's: any other is planned in the uniform model.
-  if (!abstraction_.supports(agent)) {
-    result = gridSearch_.findPath(agent, start, goal, path);
-    result.metrics.gridExpanded = result.metrics.expanded;
-    result.metrics.usedGridSearch = true;
-    return finish(result.status);
-  }
-  const AgentLayer& layer = grid.layer(agent);
-  if (start == goal) {
-    if (path) path->push_back(start);
-    return finish(PathStatus::Found);
-  }
+  beginPath(agent, start, goal, surcharge);
+  updatePath(kUnboundedExpansions);
+  return finalizePath(path);
+}
 
-  SearchMetrics& metrics = result.metrics;
-  std::vector<Cell>& cells = scratch_->refined;
-  cells.clear();
-  if (!searchSameCluster(agent, start, goal, metrics)) {
-    insertEndpoints(layer, start, goal, metrics);
-    // The grid's components say a path exists and the abstraction is complete, so both
-    // failures below are bugs (checked as invariants). Release builds answer Unreachable
-    // rather than return a path that is not there or is broken.
-    if (!searchAbstract(agent, start, goal, surcharge, metrics))
-      return finish(PathStatus::Unreachable);
-    if (!refine(agent, start, metrics)) return finish(PathStatus::Unreachable);
-    WARPATH_INVARIANT(
-        cells.front() == start && cells.back() == goal && isLegalWalk(grid, layer, cells),
-        "HAA* refinement must join start to goal by moves legal for the agent");
+PathStatus HierarchicalAStar::beginPath(Agent agent, Cell start, Cell goal,
+                                        const EdgeSurcharge* surcharge) {
+  const QueryClock clock;
+  Scratch& s = *scratch_;
+  s.result = PathResult{};
+  s.result.status = PathStatus::Pending;
+  s.surcharge = surcharge;
+  s.agent = agent;
+  s.start = start;
+  s.goal = goal;
+  s.expandedSoFar = 0;
+  s.refined.clear();
+  const AnnotatedGrid& grid = abstraction_.grid();
+  if (const auto answer = screenEndpoints(grid, agent, start, goal)) {
+    s.result.status = *answer;
+  } else if (!abstraction_.supports(agent)) {
+    // A weighted graph's costs are its one agent's: any other is planned in the uniform model.
+    s.phase = Phase::GridOnly;
+    gridSearch_.beginPath(agent, start, goal);
+  } else if (start == goal) {
+    s.refined.push_back(start);
+    s.result.status = PathStatus::Found;
+  } else {
+    s.layer = &grid.layer(agent);
+    const int cluster = abstraction_.clusterOf(start);
+    s.phase = Phase::InsertStart;
+    if (cluster == abstraction_.clusterOf(goal)) {
+      // A path inside the shared cluster, when there is one, is found by AA* at local cost
+      // (counted as insertion effort).
+      SearchLimits inCluster;
+      inCluster.region = abstraction_.clusterBounds(cluster);
+      beginGridSearch(agent, start, goal, inCluster);
+      s.phase = Phase::SameCluster;
+    }
   }
+  s.result.metrics.microseconds += clock.elapsedMicroseconds();
+  return s.result.status;
+}
+
+PathStatus HierarchicalAStar::updatePath(std::uint64_t maxExpansions) {
+  return advance(maxExpansions, true);
+}
+
+PathStatus HierarchicalAStar::advance(std::uint64_t maxExpansions, bool mayOverrun) {
+  Scratch& s = *scratch_;
+  if (s.result.status != PathStatus::Pending || maxExpansions == 0) return s.result.status;
+  const QueryClock clock;
+  for (std::uint64_t left = maxExpansions; s.result.status == PathStatus::Pending && left > 0;) {
+    if (nextStepExpansions() > left && !(mayOverrun && left == maxExpansions)) break;
+    const std::uint64_t spent = step(left);
+    s.expandedSoFar += spent;
+    left -= std::min(left, spent);
+  }
+  s.result.metrics.microseconds += clock.elapsedMicroseconds();
+  return s.result.status;
+}
+
+PathResult HierarchicalAStar::finalizePath(std::vector<Cell>* path) {
+  const QueryClock clock;
+  Scratch& s = *scratch_;
+  if (path) path->clear();
+  if (s.result.status == PathStatus::Found && path)
+    path->assign(s.refined.begin(), s.refined.end());
+  s.result.metrics.microseconds += clock.elapsedMicroseconds();
+  return s.result;
+}
+
+std::uint64_t HierarchicalAStar::step(std::uint64_t budget) {
+  Scratch& s = *scratch_;
+  SearchMetrics& metrics = s.result.metrics;
+  bool done = false;
+  switch (s.phase) {
+    case Phase::GridOnly: {
+      const std::uint64_t spent = stepGridSearch(budget, done);
+      if (done) {
+        const double microseconds = metrics.microseconds;
+        const PathResult r = gridSearch_.finalizePath(&s.refined);
+        s.result = r;
+        metrics.microseconds = microseconds;
+        metrics.gridExpanded = r.metrics.expanded;
+        metrics.usedGridSearch = true;
+      }
+      return spent;
+    }
+    case Phase::SameCluster: {
+      const std::uint64_t spent = stepGridSearch(budget, done);
+      if (done) {
+        const PathResult local = gridSearch_.finalizePath(&s.refined);
+        metrics.insertionExpanded += local.metrics.expanded;
+        metrics.generated += local.metrics.generated;
+        if (local.found()) {
+          complete();
+        } else {
+          s.phase = Phase::InsertStart;
+        }
+      }
+      return spent;
+    }
+    case Phase::InsertStart:
+      s.begin(abstraction_.nodeCount());
+      insertEndpoint(false);
+      s.phase = Phase::InsertGoal;
+      return s.startSearch.expanded();
+    case Phase::InsertGoal:
+      insertEndpoint(true);
+      beginAbstract();
+      return s.goalSearch.expanded();
+    case Phase::Abstract:
+      return searchAbstract(budget);
+    case Phase::Refine:
+      return refine(budget);
+  }
+  return 0;
+}
+
+void HierarchicalAStar::complete() {
+  Scratch& s = *scratch_;
+  std::vector<Cell>& cells = s.refined;
+  [[maybe_unused]] const AnnotatedGrid& grid = abstraction_.grid();
   if (options_.smooth) {
-    smooth(layer);
+    smooth(*s.layer);
     WARPATH_INVARIANT(
-        cells.front() == start && cells.back() == goal && isLegalWalk(grid, layer, cells),
+        cells.front() == s.start && cells.back() == s.goal && isLegalWalk(grid, *s.layer, cells),
         "HAA* smoothing must keep a path from start to goal of moves legal for the agent");
   }
-
   const CostField* costs = abstraction_.costs();
-  result.cost = costs ? costs->pathCost(cells) : pathCost(cells);
+  SearchMetrics& metrics = s.result.metrics;
+  s.result.cost = costs ? costs->pathCost(cells) : pathCost(cells);
   metrics.expanded = metrics.insertionExpanded + metrics.abstractExpanded +
                      metrics.refinementExpanded + metrics.gridExpanded;
-  if (path) path->assign(cells.begin(), cells.end());
-  return finish(PathStatus::Found);
+  s.result.status = PathStatus::Found;
 }
 
-// Start and goal in one cluster: a path inside it, when there is one, is found by AA* at
-// local cost (counted as insertion effort). Fills `refined` and returns true when found.
-bool HierarchicalAStar::searchSameCluster(Agent agent, Cell start, Cell goal,
-                                          SearchMetrics& metrics) {
-  const int cluster = abstraction_.clusterOf(start);
-  if (cluster != abstraction_.clusterOf(goal)) return false;
-  SearchLimits inCluster;
-  inCluster.region = abstraction_.clusterBounds(cluster);
-  const PathResult local = gridSearch(agent, start, goal, &scratch_->refined, inCluster);
-  metrics.insertionExpanded += local.metrics.expanded;
-  metrics.generated += local.metrics.generated;
-  return local.found();
-}
-
-// Insertion: one Dijkstra from each end over its cluster reaches every node there. Leaves the
+// Insertion: one Dijkstra from an end over its cluster reaches every node there. Leaves the
 // start's links (node, cost) in `startLinks` and the goal's in `goalLinkStamp/Cost`, and both
 // search trees for refinement.
-void HierarchicalAStar::insertEndpoints(const AgentLayer& layer, Cell start, Cell goal,
-                                        SearchMetrics& metrics) {
+void HierarchicalAStar::insertEndpoint(bool goalSide) {
   Scratch& s = *scratch_;
   const GridMap& map = abstraction_.grid().map();
-  const int startCluster = abstraction_.clusterOf(start);
-  const int goalCluster = abstraction_.clusterOf(goal);
-  s.begin(abstraction_.nodeCount());
-  const auto clusterCells = [&](int cluster) {
-    s.clusterCells.clear();
-    for (std::uint32_t n : abstraction_.nodesInCluster(cluster))
-      s.clusterCells.push_back(abstraction_.nodeCell(n));
-    return std::span<const Cell>(s.clusterCells);
-  };
-  s.startSearch.run(map, layer, abstraction_.clusterBounds(startCluster), start,
-                    clusterCells(startCluster), abstraction_.costs());
-  for (std::uint32_t n : abstraction_.nodesInCluster(startCluster)) {
+  const Cell end = goalSide ? s.goal : s.start;
+  const int cluster = abstraction_.clusterOf(end);
+  ClusterDijkstra& search = goalSide ? s.goalSearch : s.startSearch;
+  s.clusterCells.clear();
+  for (std::uint32_t n : abstraction_.nodesInCluster(cluster))
+    s.clusterCells.push_back(abstraction_.nodeCell(n));
+  search.run(map, *s.layer, abstraction_.clusterBounds(cluster), end, s.clusterCells,
+             abstraction_.costs());
+  for (std::uint32_t n : abstraction_.nodesInCluster(cluster)) {
     const Cell c = abstraction_.nodeCell(n);
-    if (s.startSearch.reached(c)) s.startLinks.push_back({n, s.startSearch.cost(c)});
+    if (!search.reached(c)) continue;
+    if (goalSide) {
+      s.goalLinkStamp[n] = s.generation;
+      s.goalLinkCost[n] = search.cost(c);
+    } else {
+      s.startLinks.push_back({n, search.cost(c)});
+    }
   }
-  s.goalSearch.run(map, layer, abstraction_.clusterBounds(goalCluster), goal,
-                   clusterCells(goalCluster), abstraction_.costs());
-  for (std::uint32_t n : abstraction_.nodesInCluster(goalCluster)) {
-    const Cell c = abstraction_.nodeCell(n);
-    if (!s.goalSearch.reached(c)) continue;
-    s.goalLinkStamp[n] = s.generation;
-    s.goalLinkCost[n] = s.goalSearch.cost(c);
-  }
-  metrics.insertionExpanded += s.startSearch.expanded() + s.goalSearch.expanded();
-  metrics.generated += s.startSearch.generated() + s.goalSearch.generated();
+  s.result.metrics.insertionExpanded += search.expanded();
+  s.result.metrics.generated += search.generated();
 }
 
 // Abstract A* with the octile heuristic over the edges this agent may use, from the start
-// (node nodeCount()) to the goal (nodeCount() + 1) through their links. When the goal is
-// reached, leaves the node sequence start..goal in `abstractPath` and returns true.
-bool HierarchicalAStar::searchAbstract(Agent agent, Cell start, Cell goal,
-                                       const EdgeSurcharge* surcharge, SearchMetrics& metrics) {
+// (node nodeCount()) to the goal (nodeCount() + 1) through their links.
+void HierarchicalAStar::beginAbstract() {
   Scratch& s = *scratch_;
+  const std::uint32_t startNode = abstraction_.nodeCount();
+  const double scale = abstraction_.costs() ? abstraction_.costs()->cheapest() : 1.0;
+  s.stamp[startNode] = s.generation * 2;
+  s.g[startNode] = 0.0;
+  s.parent[startNode] = Scratch::kNone;
+  s.open.push(
+      OpenList::makeKey(scale * octileDistance(s.goal.x - s.start.x, s.goal.y - s.start.y), 0.0),
+      startNode);
+  s.phase = Phase::Abstract;
+}
+
+// When the goal is reached, leaves the node sequence start..goal in `abstractPath` and moves on
+// to refinement; stops between two expansions once `budget` are spent.
+std::uint64_t HierarchicalAStar::searchAbstract(std::uint64_t budget) {
+  Scratch& s = *scratch_;
+  SearchMetrics& metrics = s.result.metrics;
+  const Agent agent = s.agent;
+  const Cell goal = s.goal;
   const std::uint32_t startNode = abstraction_.nodeCount();
   const std::uint32_t goalNode = startNode + 1;
   const double scale = abstraction_.costs() ? abstraction_.costs()->cheapest() : 1.0;
@@ -296,19 +414,23 @@ bool HierarchicalAStar::searchAbstract(Agent agent, Cell start, Cell goal,
     s.open.push(OpenList::makeKey(ng + heuristic(toCell), ng), to);
     ++metrics.generated;
   };
-  s.stamp[startNode] = openStamp;
-  s.g[startNode] = 0.0;
-  s.parent[startNode] = Scratch::kNone;
-  s.open.push(OpenList::makeKey(heuristic(start), 0.0), startNode);
-  bool reached = false;
+  std::uint64_t spent = 0;
   while (!s.open.empty()) {
+    if (spent >= budget) return spent;
     const std::uint32_t u = s.open.pop();
     if (s.stamp[u] == closedStamp) continue;
     s.stamp[u] = closedStamp;
     ++metrics.abstractExpanded;
+    ++spent;
     if (u == goalNode) {
-      reached = true;
-      break;
+      for (std::uint32_t at = goalNode; at != Scratch::kNone; at = s.parent[at])
+        s.abstractPath.push_back(at);
+      std::reverse(s.abstractPath.begin(), s.abstractPath.end());
+      s.refined.push_back(s.start);
+      s.refineIndex = 1;
+      s.refineSearching = false;
+      s.phase = Phase::Refine;
+      return spent;
     }
     if (u == startNode) {
       for (const auto& [n, cost] : s.startLinks)
@@ -317,36 +439,37 @@ bool HierarchicalAStar::searchAbstract(Agent agent, Cell start, Cell goal,
     }
     for (const AbstractEdge& e : abstraction_.edgesOf(u)) {
       if (!e.usableBy(agent)) continue;
-      const double cost = surcharge ? e.cost + surcharge->on(abstraction_, u, e, s.g[u]) : e.cost;
+      const double cost =
+          s.surcharge ? e.cost + s.surcharge->on(abstraction_, u, e, s.g[u]) : e.cost;
       relax(u, e.target, cost, &e, abstraction_.nodeCell(e.target));
     }
     if (s.goalLinkStamp[u] == s.generation) relax(u, goalNode, s.goalLinkCost[u], nullptr, goal);
   }
-  WARPATH_INVARIANT(reached, "HAA* abstract search must reach a goal in the start's component");
-  if (!reached) return false;
-  for (std::uint32_t at = goalNode; at != Scratch::kNone; at = s.parent[at])
-    s.abstractPath.push_back(at);
-  std::reverse(s.abstractPath.begin(), s.abstractPath.end());
-  return true;
+  // The grid's components say a path exists and the abstraction is complete, so this is a bug
+  // (checked as an invariant). Release builds answer Unreachable rather than a path that is not
+  // there.
+  WARPATH_INVARIANT(false, "HAA* abstract search must reach a goal in the start's component");
+  s.result.status = PathStatus::Unreachable;
+  return spent;
 }
 
 // Refinement: the start link (the start's Dijkstra tree), each abstract edge's cached path
-// (or, without cached paths, AA* re-planned inside its cluster), the goal link (the goal's
-// tree, walked backwards). Fills `refined` from start to goal and returns true; false only
-// when re-planning an edge fails, which is a bug (see findPath).
-bool HierarchicalAStar::refine(Agent agent, Cell start, SearchMetrics& metrics) {
+// (or, without cached paths, AA* re-planned inside its cluster, sliced), the goal link (the
+// goal's tree, walked backwards). Fills `refined` from start to goal and completes the query;
+// re-planning an edge fails only through a bug (answered Unreachable, as above).
+std::uint64_t HierarchicalAStar::refine(std::uint64_t budget) {
   Scratch& s = *scratch_;
+  SearchMetrics& metrics = s.result.metrics;
   const std::uint32_t startNode = abstraction_.nodeCount();
   const std::uint32_t goalNode = startNode + 1;
   std::vector<Cell>& cells = s.refined;
-  cells.push_back(start);
-  for (std::size_t i = 1; i < s.abstractPath.size(); ++i) {
-    const std::uint32_t from = s.abstractPath[i - 1];
-    const std::uint32_t to = s.abstractPath[i];
+  for (; s.refineIndex < s.abstractPath.size(); ++s.refineIndex) {
+    const std::uint32_t from = s.abstractPath[s.refineIndex - 1];
+    const std::uint32_t to = s.abstractPath[s.refineIndex];
     if (from == startNode) {
       s.steps.clear();
       s.startSearch.appendSteps(abstraction_.nodeCell(to), &s.steps);
-      appendWalk(start, s.steps, &cells);
+      appendWalk(s.start, s.steps, &cells);
     } else if (to == goalNode) {
       s.steps.clear();
       s.goalSearch.appendSteps(abstraction_.nodeCell(from), &s.steps);
@@ -360,24 +483,39 @@ bool HierarchicalAStar::refine(Agent agent, Cell start, SearchMetrics& metrics) 
       const AbstractEdge& edge = *s.parentEdge[to];
       if (!edge.intra || edge.path != AbstractEdge::kNoPath) {
         abstraction_.appendEdgeCells(from, edge, &cells);
-      } else {
-        // Paths not cached: the edge promises a path inside the cluster for this agent.
+        continue;
+      }
+      // Paths not cached: the edge promises a path inside the cluster for this agent.
+      if (!s.refineSearching) {
         SearchLimits inCluster;
         inCluster.region =
             abstraction_.clusterBounds(abstraction_.clusterOf(abstraction_.nodeCell(from)));
-        std::vector<Cell>& piece = s.smoothed;
-        const PathResult r = gridSearch(agent, abstraction_.nodeCell(from),
-                                        abstraction_.nodeCell(to), &piece, inCluster);
-        metrics.refinementExpanded += r.metrics.expanded;
-        metrics.generated += r.metrics.generated;
-        WARPATH_INVARIANT(r.found(),
-                          "an abstract edge the agent may use must refine in its cluster");
-        if (!r.found()) return false;
-        cells.insert(cells.end(), piece.begin() + 1, piece.end());
+        beginGridSearch(s.agent, abstraction_.nodeCell(from), abstraction_.nodeCell(to), inCluster);
+        s.refineSearching = true;
       }
+      bool done = false;
+      const std::uint64_t spent = stepGridSearch(budget, done);
+      if (!done) return spent;
+      s.refineSearching = false;
+      std::vector<Cell>& piece = s.smoothed;
+      const PathResult r = gridSearch_.finalizePath(&piece);
+      metrics.refinementExpanded += r.metrics.expanded;
+      metrics.generated += r.metrics.generated;
+      WARPATH_INVARIANT(r.found(), "an abstract edge the agent may use must refine in its cluster");
+      if (!r.found()) {
+        s.result.status = PathStatus::Unreachable;
+        return spent;
+      }
+      cells.insert(cells.end(), piece.begin() + 1, piece.end());
+      ++s.refineIndex;
+      return spent;  // the next edge in the next step, with what is left of the slice
     }
   }
-  return true;
+  WARPATH_INVARIANT(cells.front() == s.start && cells.back() == s.goal &&
+                        isLegalWalk(abstraction_.grid(), *s.layer, cells),
+                    "HAA* refinement must join start to goal by moves legal for the agent");
+  complete();
+  return 0;
 }
 
 // Smoothing keeps every step legal: (1) cut loops (a cell visited twice), then (2) greedily
@@ -476,25 +614,82 @@ HybridPlanner::HybridPlanner(const ClusterAbstraction& abstraction, HybridOption
 
 PathResult HybridPlanner::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                                    const EdgeSurcharge* surcharge) {
+  beginPath(agent, start, goal, surcharge);
+  updatePath(kUnboundedExpansions);
+  return finalizePath(path);
+}
+
+PathStatus HybridPlanner::beginPath(Agent agent, Cell start, Cell goal,
+                                    const EdgeSurcharge* surcharge) {
+  surcharge_ = surcharge;
+  agent_ = agent;
+  start_ = start;
+  goal_ = goal;
+  attempt_ = PathResult{};
+  attempt_.status = PathStatus::Pending;
   const double dx = goal.x - start.x;
   const double dy = goal.y - start.y;
-  if (std::sqrt(dx * dx + dy * dy) <= shortQueryDistance_) {
-    SearchLimits budget;
-    budget.maxExpanded = options_.tau;
-    PathResult quick = hierarchical_.abstraction_.supports(agent)
-                           ? hierarchical_.gridSearch(agent, start, goal, path, budget)
-                           : hierarchical_.gridSearch_.findPath(agent, start, goal, path, budget);
+  if (std::sqrt(dx * dx + dy * dy) > shortQueryDistance_) {
+    stage_ = Stage::Hierarchical;
+    return hierarchical_.beginPath(agent, start, goal, surcharge);
+  }
+  SearchLimits budget;
+  budget.maxExpanded = options_.tau;
+  stage_ = Stage::Attempt;
+  return afterAttempt(hierarchical_.abstraction_.supports(agent)
+                          ? hierarchical_.beginGridSearch(agent, start, goal, budget)
+                          : hierarchical_.gridSearch_.beginPath(agent, start, goal, budget));
+}
+
+PathStatus HybridPlanner::afterAttempt(PathStatus status) {
+  if (status == PathStatus::Pending) return status;
+  if (status != PathStatus::BudgetExhausted) {
+    stage_ = Stage::Answered;
+    attemptStatus_ = status;
+    return status;
+  }
+  attempt_ = hierarchical_.gridSearch_.finalizePath(nullptr);
+  stage_ = Stage::Hierarchical;
+  return hierarchical_.beginPath(agent_, start_, goal_, surcharge_);
+}
+
+PathStatus HybridPlanner::updatePath(std::uint64_t maxExpansions) {
+  if (stage_ == Stage::Answered) return attemptStatus_;
+  if (stage_ == Stage::Attempt) {
+    AnnotatedAStar& attempt = hierarchical_.gridSearch_;
+    const std::uint64_t before = attempt.expandedSoFar();
+    const PathStatus attemptStatus = attempt.updatePath(maxExpansions);
+    const std::uint64_t spent = attempt.expandedSoFar() - before;
+    const PathStatus status = afterAttempt(attemptStatus);  // may begin HAA*
+    if (stage_ != Stage::Hierarchical || spent >= maxExpansions) return status;
+    // The rest of the slice: no insertion larger than it (the attempt spent part of it).
+    return hierarchical_.advance(maxExpansions - spent, spent == 0);
+  }
+  return hierarchical_.updatePath(maxExpansions);
+}
+
+std::uint64_t HybridPlanner::nextStepExpansions() const {
+  return stage_ == Stage::Hierarchical ? hierarchical_.nextStepExpansions() : 1;
+}
+
+std::uint64_t HybridPlanner::expandedSoFar() const {
+  if (stage_ != Stage::Hierarchical) return hierarchical_.gridSearch_.expandedSoFar();
+  return attempt_.metrics.expanded + hierarchical_.expandedSoFar();
+}
+
+PathResult HybridPlanner::finalizePath(std::vector<Cell>* path) {
+  if (stage_ != Stage::Hierarchical) {
+    PathResult quick = hierarchical_.gridSearch_.finalizePath(path);
     quick.metrics.gridExpanded = quick.metrics.expanded;
     quick.metrics.usedGridSearch = true;
-    if (quick.status != PathStatus::BudgetExhausted) return quick;
-    PathResult full = hierarchical_.findPath(agent, start, goal, path, surcharge);
-    full.metrics.gridExpanded += quick.metrics.expanded;
-    full.metrics.expanded += quick.metrics.expanded;
-    full.metrics.generated += quick.metrics.generated;
-    full.metrics.microseconds += quick.metrics.microseconds;
-    return full;
+    return quick;
   }
-  return hierarchical_.findPath(agent, start, goal, path, surcharge);
+  PathResult full = hierarchical_.finalizePath(path);
+  full.metrics.gridExpanded += attempt_.metrics.expanded;
+  full.metrics.expanded += attempt_.metrics.expanded;
+  full.metrics.generated += attempt_.metrics.generated;
+  full.metrics.microseconds += attempt_.metrics.microseconds;
+  return full;
 }
 
 }  // namespace warpath::pathing

@@ -76,37 +76,28 @@ int scanLine(const std::uint64_t* line, const std::uint64_t* sideA, const std::u
 
 }  // namespace
 
-// What the jumps of one query read: where the agent can stand (its bit maps), inside the map
-// (or the query's region), and the goal.
-struct JumpPointSearch::Query {
-  const Bitmap* bits = nullptr;
-  int width = 0;
-  CellRect bounds;
-  Cell goal;
+bool JumpPointSearch::Query::walkable(int x, int y) const {
+  if (!bounds.contains({x, y})) return false;
+  const std::size_t word = static_cast<std::size_t>(y) * static_cast<std::size_t>(bits->rowWords) +
+                           static_cast<std::size_t>(x >> 6);
+  return (bits->rows[word] >> (x & 63)) & 1u;
+}
 
-  bool walkable(int x, int y) const {
-    if (!bounds.contains({x, y})) return false;
-    const std::size_t word =
-        static_cast<std::size_t>(y) * static_cast<std::size_t>(bits->rowWords) +
-        static_cast<std::size_t>(x >> 6);
-    return (bits->rows[word] >> (x & 63)) & 1u;
-  }
-  std::uint32_t indexOf(int x, int y) const {
-    return static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(width) +
-           static_cast<std::uint32_t>(x);
-  }
-  // Row y's words (null outside the bounds).
-  const std::uint64_t* row(int y) const {
-    if (y < bounds.y || y >= bounds.y + bounds.height) return nullptr;
-    return bits->rows.data() +
-           static_cast<std::size_t>(y) * static_cast<std::size_t>(bits->rowWords);
-  }
-  const std::uint64_t* column(int x) const {
-    if (x < bounds.x || x >= bounds.x + bounds.width) return nullptr;
-    return bits->columns.data() +
-           static_cast<std::size_t>(x) * static_cast<std::size_t>(bits->columnWords);
-  }
-};
+std::uint32_t JumpPointSearch::Query::indexOf(int x, int y) const {
+  return static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(width) +
+         static_cast<std::uint32_t>(x);
+}
+
+const std::uint64_t* JumpPointSearch::Query::row(int y) const {
+  if (y < bounds.y || y >= bounds.y + bounds.height) return nullptr;
+  return bits->rows.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(bits->rowWords);
+}
+
+const std::uint64_t* JumpPointSearch::Query::column(int x) const {
+  if (x < bounds.x || x >= bounds.x + bounds.width) return nullptr;
+  return bits->columns.data() +
+         static_cast<std::size_t>(x) * static_cast<std::size_t>(bits->columnWords);
+}
 
 JumpPointSearch::JumpPointSearch(const AnnotatedGrid& grid) : grid_(grid) {}
 
@@ -150,7 +141,7 @@ const JumpPointSearch::Bitmap& JumpPointSearch::bitmapFor(Agent agent) {
   return b;
 }
 
-void JumpPointSearch::beginQuery() {
+void JumpPointSearch::resetScratch() {
   const std::size_t cells = grid_.map().cellCount();
   if (stamps_.size() != cells) {
     stamps_.assign(cells, 0);
@@ -197,33 +188,58 @@ std::uint32_t JumpPointSearch::jump(const Query& q, int x, int y, int dx, int dy
 
 PathResult JumpPointSearch::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                                      const SearchLimits& limits) {
+  beginPath(agent, start, goal, limits);
+  updatePath(kUnboundedExpansions);
+  return finalizePath(path);
+}
+
+PathStatus JumpPointSearch::beginPath(Agent agent, Cell start, Cell goal,
+                                      const SearchLimits& limits) {
   const QueryClock clock;
-  PathResult result;
-  if (path) path->clear();
-  const auto finish = [&](PathStatus status) { return finishQuery(result, status, clock); };
-  if (const auto answer = screenQuery(grid_, agent, start, goal, limits)) return finish(*answer);
+  result_ = PathResult{};
+  result_.status = PathStatus::Pending;
+  start_ = start;
+  limits_ = limits;
+  if (const auto answer = screenQuery(grid_, agent, start, goal, limits)) {
+    result_.status = *answer;
+  } else {
+    const GridMap& map = grid_.map();
+    query_.bits = &bitmapFor(agent);
+    query_.width = map.width();
+    query_.bounds = limits.region.value_or(CellRect{0, 0, map.width(), map.height()});
+    query_.goal = goal;
+    resetScratch();
+    const std::uint32_t startIndex = map.indexOf(start);
+    stamps_[startIndex] = generation_ << 1;
+    g_[startIndex] = 0.0;
+    parent_[startIndex] = kNone;
+    open_.push(OpenList::makeKey(octileDistance(goal.x - start.x, goal.y - start.y), 0.0),
+               startIndex);
+    ++result_.metrics.generated;
+  }
+  result_.metrics.microseconds += clock.elapsedMicroseconds();
+  return result_.status;
+}
+
+PathStatus JumpPointSearch::updatePath(std::uint64_t maxExpansions) {
+  if (result_.status != PathStatus::Pending || maxExpansions == 0) return result_.status;
+  const QueryClock clock;
   const GridMap& map = grid_.map();
-
-  Query q;
-  q.bits = &bitmapFor(agent);
-  q.width = map.width();
-  q.bounds = limits.region.value_or(CellRect{0, 0, map.width(), map.height()});
-  q.goal = goal;
+  const Query& q = query_;
+  const Cell goal = q.goal;
+  PathResult& result = result_;
   const std::uint32_t goalIndex = map.indexOf(goal);
-
-  beginQuery();
   const std::uint32_t openStamp = generation_ << 1;
   const std::uint32_t closedStamp = openStamp | 1u;
-  const std::uint32_t startIndex = map.indexOf(start);
   const auto heuristic = [&](int x, int y) { return octileDistance(goal.x - x, goal.y - y); };
-  stamps_[startIndex] = openStamp;
-  g_[startIndex] = 0.0;
-  parent_[startIndex] = kNone;
-  open_.push(OpenList::makeKey(heuristic(start.x, start.y), 0.0), startIndex);
-  ++result.metrics.generated;
+  const std::uint64_t end = sliceEnd(result.metrics.expanded, maxExpansions);
 
   PathStatus status = PathStatus::Unreachable;
   while (!open_.empty()) {
+    if (result.metrics.expanded >= end) {
+      status = PathStatus::Pending;
+      break;
+    }
     const std::uint32_t current = open_.pop();
     if (stamps_[current] == closedStamp) continue;  // a dearer duplicate
     stamps_[current] = closedStamp;
@@ -233,7 +249,7 @@ PathResult JumpPointSearch::findPath(Agent agent, Cell start, Cell goal, std::ve
       status = PathStatus::Found;
       break;
     }
-    if (result.metrics.expanded >= limits.maxExpanded) {
+    if (result.metrics.expanded >= limits_.maxExpanded) {
       status = PathStatus::BudgetExhausted;
       break;
     }
@@ -287,9 +303,19 @@ PathResult JumpPointSearch::findPath(Agent agent, Cell start, Cell goal, std::ve
       ++result.metrics.generated;
     }
   }
-  if (status == PathStatus::Found && path) {
+  result.status = status;
+  result.metrics.microseconds += clock.elapsedMicroseconds();
+  return status;
+}
+
+PathResult JumpPointSearch::finalizePath(std::vector<Cell>* path) {
+  const QueryClock clock;
+  if (path) path->clear();
+  if (result_.status == PathStatus::Found && path) {
+    const GridMap& map = grid_.map();
+    const std::uint32_t startIndex = map.indexOf(start_);
     // Jump points are joined by straight or diagonal runs: fill in their cells.
-    for (std::uint32_t at = goalIndex; at != startIndex; at = parent_[at]) {
+    for (std::uint32_t at = map.indexOf(query_.goal); at != startIndex; at = parent_[at]) {
       const Cell to = map.cellAt(at);
       const Cell from = map.cellAt(parent_[at]);
       const int dx = (to.x > from.x) - (to.x < from.x);
@@ -297,10 +323,11 @@ PathResult JumpPointSearch::findPath(Agent agent, Cell start, Cell goal, std::ve
       for (Cell c = to; c != from; c = {c.x - dx, c.y - dy})
         path->push_back(c);
     }
-    path->push_back(start);
+    path->push_back(start_);
     std::reverse(path->begin(), path->end());
   }
-  return finish(status);
+  result_.metrics.microseconds += clock.elapsedMicroseconds();
+  return result_;
 }
 
 }  // namespace warpath::pathing

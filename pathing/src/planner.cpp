@@ -71,14 +71,35 @@ Planner::Planner(const AnnotatedGrid& grid, Algorithm algorithm,
 
 PathResult Planner::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                              const EdgeSurcharge* surcharge) {
+  beginPath(agent, start, goal, surcharge);
+  updatePath(kUnboundedExpansions);
+  return finalizePath(path);
+}
+
+PathStatus Planner::beginPath(Agent agent, Cell start, Cell goal, const EdgeSurcharge* surcharge) {
   if (auto* grid = std::get_if<AnnotatedAStar>(&impl_); grid && costs_)
-    return grid->findPath(agent, start, goal, path, *costs_);
+    return grid->beginPath(agent, start, goal, *costs_);
   if (auto* hierarchical = std::get_if<HierarchicalAStar>(&impl_))
-    return hierarchical->findPath(agent, start, goal, path, surcharge);
+    return hierarchical->beginPath(agent, start, goal, surcharge);
   if (auto* hybrid = std::get_if<HybridPlanner>(&impl_))
-    return hybrid->findPath(agent, start, goal, path, surcharge);
-  return std::visit([&](auto& planner) { return planner.findPath(agent, start, goal, path); },
-                    impl_);
+    return hybrid->beginPath(agent, start, goal, surcharge);
+  return std::visit([&](auto& planner) { return planner.beginPath(agent, start, goal); }, impl_);
+}
+
+PathStatus Planner::updatePath(std::uint64_t maxExpansions) {
+  return std::visit([&](auto& planner) { return planner.updatePath(maxExpansions); }, impl_);
+}
+
+PathResult Planner::finalizePath(std::vector<Cell>* path) {
+  return std::visit([&](auto& planner) { return planner.finalizePath(path); }, impl_);
+}
+
+std::uint64_t Planner::expandedSoFar() const {
+  return std::visit([](const auto& planner) { return planner.expandedSoFar(); }, impl_);
+}
+
+std::uint64_t Planner::nextStepExpansions() const {
+  return std::visit([](const auto& planner) { return planner.nextStepExpansions(); }, impl_);
 }
 
 }  // namespace warpath::pathing

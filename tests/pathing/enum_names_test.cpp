@@ -50,9 +50,9 @@ TEST(EnumNames, PathingTablesRoundTrip) {
                                            Terrain::Water, Terrain::Blocked});
   testing::expectRoundTrip(kAlgorithmNames, {Algorithm::AStar, Algorithm::HaaHigh,
                                              Algorithm::HaaLow, Algorithm::Hybrid, Algorithm::Jps});
-  testing::expectRoundTrip(kPathStatusNames,
-                           {PathStatus::Found, PathStatus::Unreachable, PathStatus::InvalidStart,
-                            PathStatus::InvalidGoal, PathStatus::BudgetExhausted});
+  testing::expectRoundTrip(kPathStatusNames, {PathStatus::Found, PathStatus::Unreachable,
+                                              PathStatus::InvalidStart, PathStatus::InvalidGoal,
+                                              PathStatus::BudgetExhausted, PathStatus::Pending});
   testing::expectRoundTrip(kAbstractionQualityNames,
                            {AbstractionQuality::High, AbstractionQuality::Low});
 }

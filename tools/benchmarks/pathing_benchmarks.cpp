@@ -137,6 +137,49 @@ void BM_HierarchicalAStar(benchmark::State& state) {
 }
 BENCHMARK(BM_HierarchicalAStar)->Arg(1)->Arg(3)->Unit(benchmark::kMicrosecond);
 
+// Sliced searches (issue 15): the same queries as above (infantry, size 1) run in slices of
+// `batch` expansions (beginPath, updatePath until done, finalizePath), against one findPath
+// each for batch 0: the cost of stopping and resuming.
+template <class Search>
+void timeSliced(benchmark::State& state, Search& search, Agent agent,
+                const std::vector<std::pair<Cell, Cell>>& queries) {
+  const auto batch = static_cast<std::uint64_t>(state.range(0));
+  std::vector<Cell> path;
+  std::size_t next = 0;
+  std::int64_t updates = 0;
+  for (auto _ : state) {
+    const auto& [s, g] = queries[next++ % queries.size()];
+    if (batch == 0) {
+      benchmark::DoNotOptimize(search.findPath(agent, s, g, &path));
+      continue;
+    }
+    for (PathStatus status = search.beginPath(agent, s, g); status == PathStatus::Pending;
+         ++updates)
+      status = search.updatePath(batch);
+    benchmark::DoNotOptimize(search.finalizePath(&path));
+  }
+  state.counters["updates_per_query"] =
+      benchmark::Counter(static_cast<double>(updates), benchmark::Counter::kAvgIterations);
+}
+
+void BM_SlicedAnnotatedAStar(benchmark::State& state) {
+  const AnnotatedGrid grid(benchmarkMap(512));
+  const Agent agent{1, kInfantry};
+  AnnotatedAStar search(grid);
+  timeSliced(state, search, agent, standableQueries(grid, agent, 0));
+}
+BENCHMARK(BM_SlicedAnnotatedAStar)->Arg(0)->Arg(256)->Unit(benchmark::kMicrosecond);
+
+void BM_SlicedHierarchicalAStar(benchmark::State& state) {
+  const AnnotatedGrid grid(benchmarkMap(512));
+  const ClusterAbstraction graph =
+      ClusterAbstraction::build(grid, catalogueSpec(16, AbstractionQuality::High));
+  const Agent agent{1, kInfantry};
+  HierarchicalAStar search(graph);
+  timeSliced(state, search, agent, standableQueries(grid, agent, 256));
+}
+BENCHMARK(BM_SlicedHierarchicalAStar)->Arg(0)->Arg(256)->Unit(benchmark::kMicrosecond);
+
 // The cooperative search's heuristic (issue 12): exact distances inside a corridor of half-width
 // 4 (the default) around an infantry unit's HAA* path, as the path service builds one for each
 // unit that needs windows. Paths of 150-250 cells, like stress_2000's crossings.

@@ -1,10 +1,11 @@
 #pragma once
 // The one path service every unit asks. Requests queue in arrival order and are served in
 // that order, a tick at a time, until the tick's budget of node expansions is spent (the
-// request that crosses the budget finishes; a tick always serves at least one). Budgets count
-// expansions, never wall time, so the simulation stays deterministic. Answers are cached by
-// (agent, start, goal): identical requests within a tick are coalesced and repeated ones later
-// are free, until a change of terrain touches them (changeTerrain).
+// request that crosses the budget finishes; a tick always serves at least one), or with
+// `sliced` searches the request at the head is advanced only up to the budget and resumed next
+// tick. Budgets count expansions, never wall time, so the simulation stays deterministic. Answers
+// are cached by (agent, start, goal): identical requests within a tick are coalesced and repeated
+// ones later are free, until a change of terrain touches them (changeTerrain).
 
 #include <cstdint>
 #include <deque>
@@ -57,6 +58,14 @@ struct PathServiceSettings {
   // (the hierarchical ones on a weighted graph per cost profile). Off by default, so scenarios
   // plan as they always did.
   bool terrainCosts = false;
+  // Sliced searches (issue 15): the search of the request at the head of the queue stops when
+  // the tick's budget is spent and resumes next tick, and an HAA* insertion (one step of up to
+  // clusterSize^2 cells) that does not fit in what is left waits for the next tick, so a tick's
+  // requests never spend more than the budget (or one insertion, when the budget is smaller).
+  // Answers are planned as unsliced ones, delivered when done (congestion waits: those expected
+  // when the search began, read as the queues stand while it runs). Off by default: the request
+  // that crosses the budget runs to its end, as scenarios always have.
+  bool sliced = false;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
 // [Unit: clusters] side of a chunk of graph repair (PathService::changeTerrain).
@@ -118,13 +127,15 @@ struct PathServiceMetrics {
   // Searches that met a queue on the way (congestion-aware routes): planned with the waits as
   // surcharges, the cache passed by.
   std::uint64_t congestedSearches = 0;
+  std::uint64_t maxTickExpanded = 0;  // the most one serve() spent (searches and repairs)
+  std::uint64_t slices = 0;           // sliced searches' pauses at the end of a tick's budget
   bool operator==(const PathServiceMetrics& o) const {  // wall-clock fields excluded
     return std::tie(requests, cacheHits, searches, found, failed, expanded, maxQueue,
-                    terrainChanges, cacheDropped, repairChunks, repairExpanded,
-                    congestedSearches) == std::tie(o.requests, o.cacheHits, o.searches, o.found,
-                                                   o.failed, o.expanded, o.maxQueue,
-                                                   o.terrainChanges, o.cacheDropped, o.repairChunks,
-                                                   o.repairExpanded, o.congestedSearches);
+                    terrainChanges, cacheDropped, repairChunks, repairExpanded, congestedSearches,
+                    maxTickExpanded, slices) ==
+           std::tie(o.requests, o.cacheHits, o.searches, o.found, o.failed, o.expanded, o.maxQueue,
+                    o.terrainChanges, o.cacheDropped, o.repairChunks, o.repairExpanded,
+                    o.congestedSearches, o.maxTickExpanded, o.slices);
   }
 };
 
@@ -147,6 +158,10 @@ class PathService {
   PathService(const PathService&) = delete;
   PathService& operator=(const PathService&) = delete;
 
+  // With sliced searches: the expansions the search of the request at the head of the queue
+  // has spent in earlier ticks (0 when none is under way).
+  std::uint64_t slicedExpanded() const;
+
   // The grid's terrain changed (AnnotatedGrid::setTerrain or an obstacle): drops the cached
   // answers the change touches (paths that cross the changed cells, and every failed answer,
   // which may now succeed), repairs the cost fields at once and queues the repair of every
@@ -159,7 +174,8 @@ class PathService {
   std::size_t repairsPending() const { return pendingRepairs_.size(); }
 
   void request(const PathRequest& request);
-  // Drops the unit's queued requests (it died): its searches are not run.
+  // Drops the unit's queued requests (it died): its searches are not run (nor finished, when
+  // sliced).
   void cancel(UnitId unit);
   // Serves queued requests in order within the budget, appending one delivery each. Returns
   // the node expansions spent (what is left of the budget goes to cooperative windows).
@@ -201,6 +217,13 @@ class PathService {
   std::uint64_t repairChunk();
   // Groups the cost profiles that plan alike on the terrains present_ (planners unbuilt).
   void mergeCostProfiles();
+  // Plans `request` within `budget` expansions when sliced (else to its end), with the
+  // congestion waits at `now` when `congestion` is given: the result, or nullopt while its
+  // search is left pending for the next tick. Adds what it spends to `spent`.
+  std::optional<pathing::PathResult> search(const PathRequest& request, std::uint64_t budget,
+                                            double now, Congestion* congestion,
+                                            std::uint64_t& spent, std::vector<pathing::Cell>& cells,
+                                            double& seconds);
 
   const pathing::AnnotatedGrid& grid_;
   PathServiceSettings settings_;
@@ -216,6 +239,12 @@ class PathService {
   std::map<Key, Answer> cache_;
   std::deque<Key> cacheOrder_;            // insertion order, for eviction
   std::optional<Congestion> congestion_;  // with settings_.congestion in force
+  // Sliced: the planner whose search for the head of the queue is under way (null: none); it
+  // is abandoned (begun again later) when the head is served otherwise (from the cache), its
+  // unit is cancelled or the terrain changes.
+  pathing::Planner* inFlight_ = nullptr;
+  // The congestion waits the search under way plans with, dated when it began.
+  std::optional<Congestion::Surcharge> surcharge_;
   PathServiceMetrics metrics_;
 };
 

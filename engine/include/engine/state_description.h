@@ -202,6 +202,9 @@ void describe(V& v, const PathService& paths) {
   v("expanded", m.expanded);
   v("maxQueue", m.maxQueue);
   v(Since{8}, "congestedSearches", m.congestedSearches);
+  // Sliced searches carry a search across ticks: its progress decides when answers come. Only
+  // then: runs without them hash as they always have.
+  if (paths.settings().sliced) v("slicedExpanded", paths.slicedExpanded());
 }
 template <class V>
 void describe(V& v, const TerrainEdit& e) {

@@ -352,7 +352,7 @@ inline constexpr EnumNames<bool, 2> kCooperativeSearchNames{{{{true, "cpra"}, {f
 raw::Pathing pathing(const Reader& r, const YAML::Node& node) {
   r.checkKeys(node, "pathing",
               {"algo", "cluster_size", "budget", "cache", "cooperative", "window",
-               "cooperative_search", "corridor", "congestion", "terrain_costs"});
+               "cooperative_search", "corridor", "congestion", "terrain_costs", "sliced"});
   raw::Pathing p;
   p.algorithm = r.maybe(node, "algo", [&](const YAML::Node& v) {
     return r.named(v, "algo", pathing::kAlgorithmNames, "algo", pathing::kAlgorithmNames.list());
@@ -369,6 +369,7 @@ raw::Pathing pathing(const Reader& r, const YAML::Node& node) {
   p.corridor = r.maybeInteger(node, "corridor", "corridor");
   p.congestion = r.maybeBoolean(node, "congestion", "congestion");
   p.terrainCosts = r.maybeBoolean(node, "terrain_costs", "terrain_costs");
+  p.sliced = r.maybeBoolean(node, "sliced", "sliced");
   return p;
 }
 

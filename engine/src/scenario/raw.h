@@ -106,6 +106,7 @@ struct Pathing {
   Maybe<int> corridor;
   Maybe<bool> congestion;
   Maybe<bool> terrainCosts;
+  Maybe<bool> sliced;
 };
 
 struct Stuck {

@@ -278,6 +278,7 @@ void applyPathing(const Checker& c, const raw::Pathing& in, PathServiceSettings&
   if (in.corridor) out.corridor = c.range(*in.corridor, "corridor", 1, 64);
   if (in.congestion) out.congestion = in.congestion->value;
   if (in.terrainCosts) out.terrainCosts = in.terrainCosts->value;
+  if (in.sliced) out.sliced = in.sliced->value;
 }
 
 void applyStuck(const Checker& c, const raw::Stuck& in, units::StuckRule& out) {

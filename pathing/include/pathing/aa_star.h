@@ -29,6 +29,16 @@ class AnnotatedAStar {
   PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                       const CostField& costs, const SearchLimits& limits = {});
 
+  // The same query sliced (search.h): stops after at most `maxExpansions` expansions per
+  // updatePath and resumes where it stopped. `costs` must outlive the query.
+  PathStatus beginPath(Agent agent, Cell start, Cell goal, const SearchLimits& limits = {});
+  PathStatus beginPath(Agent agent, Cell start, Cell goal, const CostField& costs,
+                       const SearchLimits& limits = {});
+  PathStatus updatePath(std::uint64_t maxExpansions);
+  PathResult finalizePath(std::vector<Cell>* path);
+  std::uint64_t expandedSoFar() const { return result_.metrics.expanded; }
+  std::uint64_t nextStepExpansions() const { return 1; }
+
  private:
   // Per-cell search state, split so that the common checks touch 4 bytes a cell: the stamp
   // holds the query generation (upper 28 bits), a closed flag (bit 3) and the direction the
@@ -36,14 +46,21 @@ class AnnotatedAStar {
   static constexpr std::uint32_t kClosedBit = 8;
   static constexpr int kGenerationShift = 4;
 
-  void beginQuery();
-  PathResult run(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
-                 const CostField* costs, const SearchLimits& limits);
+  void resetScratch();
+  PathStatus begin(Agent agent, Cell start, Cell goal, const CostField* costs,
+                   const SearchLimits& limits);
+  // Expands until done or `maxExpansions` more were expanded (then Pending).
   template <bool kInRegion, bool kWeighted>
-  PathStatus search(const AgentLayer& layer, Cell start, Cell goal, const CostField* costs,
-                    const SearchLimits& limits, PathResult& result);
+  PathStatus search(std::uint64_t maxExpansions);
 
   const AnnotatedGrid& grid_;
+  // The query under way: its arguments and its result so far (status Pending until done).
+  const AgentLayer* layer_ = nullptr;
+  Cell start_;
+  Cell goal_;
+  const CostField* costs_ = nullptr;
+  SearchLimits limits_;
+  PathResult result_;
   std::vector<std::uint32_t> stamps_;
   std::vector<double> g_;
   OpenList open_;

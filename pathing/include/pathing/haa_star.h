@@ -38,7 +38,7 @@ struct HaaOptions {
 // (2) insert start and goal (one Dijkstra each over their cluster reaches every node there);
 // (3) A* over the abstract graph using only edges the agent may use; (4) refine abstract
 // edges to grid cells (cached paths); (5) smooth. Each phase is one private member working on
-// the query object's scratch, so that the phases can later be sliced across ticks. Agents the
+// the query object's scratch, so that a query can be sliced across ticks (beginPath). Agents the
 // abstraction does not serve (capability not built, size above maxAgentSize) are answered by
 // AA* on the grid (in the uniform model), flagged in metrics.usedGridSearch. A weighted graph
 // (AbstractionSpec::costs) plans every phase under its costs, and result.cost is the path's
@@ -59,20 +59,54 @@ class HierarchicalAStar {
   PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                       const EdgeSurcharge* surcharge = nullptr);
 
+  // The same query sliced (search.h). Expansions are those metrics.expanded counts: grid cells
+  // of the searches on the grid and abstract nodes alike. Every phase stops between two
+  // expansions but insertion: the Dijkstra over the start's cluster, and then the goal's, is
+  // one step each (splitting its tuned inner loop would cost every query), of at most its
+  // cluster's cells (nextStepExpansions()). It is begun only when the slice has room for it, or
+  // as the update's first step: an updatePath spends at most max(maxExpansions, clusterSize^2).
+  // Refining an edge whose path is not cached, and the same-cluster attempt, are AA* searches
+  // sliced like any other.
+  // `surcharge` must outlive the query.
+  PathStatus beginPath(Agent agent, Cell start, Cell goal,
+                       const EdgeSurcharge* surcharge = nullptr);
+  PathStatus updatePath(std::uint64_t maxExpansions);
+  PathResult finalizePath(std::vector<Cell>* path);
+  std::uint64_t expandedSoFar() const;
+  std::uint64_t nextStepExpansions() const;
+
  private:
   friend class HybridPlanner;
   struct Scratch;
-  // The phases of a query, in order; each adds its effort to `metrics` and leaves its
-  // output in the scratch (the refined path in `refined`).
-  bool searchSameCluster(Agent agent, Cell start, Cell goal, SearchMetrics& metrics);
-  void insertEndpoints(const AgentLayer& layer, Cell start, Cell goal, SearchMetrics& metrics);
-  bool searchAbstract(Agent agent, Cell start, Cell goal, const EdgeSurcharge* surcharge,
-                      SearchMetrics& metrics);
-  bool refine(Agent agent, Cell start, SearchMetrics& metrics);
+  // The phases of a query, in order; each works on the query object's scratch, adds its effort
+  // to the result's metrics and leaves its output there (the refined path in `refined`).
+  enum class Phase : std::uint8_t {
+    GridOnly,     // an agent the graph does not serve: AA* on the grid, uniform costs
+    SameCluster,  // start and goal share a cluster: AA* inside it first
+    InsertStart,  // insertion: the start's cluster Dijkstra
+    InsertGoal,   // and the goal's
+    Abstract,     // A* over the abstract graph
+    Refine,       // abstract edges to grid cells, then smoothing
+  };
+  // updatePath; `mayOverrun`: a step larger than the slice may be its first (the hybrid's
+  // attempt may have spent part of the caller's slice already).
+  PathStatus advance(std::uint64_t maxExpansions, bool mayOverrun);
+  // Advances the phase under way by at most `budget` expansions (insertion: one step);
+  // returns the expansions spent.
+  std::uint64_t step(std::uint64_t budget);
+  // A sub-search on the grid (gridSearch_) advanced within `budget`: the expansions spent;
+  // `done` tells whether it finished.
+  std::uint64_t stepGridSearch(std::uint64_t budget, bool& done);
+  void insertEndpoint(bool goalSide);
+  void beginAbstract();
+  std::uint64_t searchAbstract(std::uint64_t budget);
+  std::uint64_t refine(std::uint64_t budget);
+  // Smoothing, cost and the total of the phases: the query is Found.
+  void complete();
   void smooth(const AgentLayer& layer);
-  // AA* on the grid for an agent the graph serves: under the graph's costs when it has them.
-  PathResult gridSearch(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
-                        const SearchLimits& limits);
+  // Starts AA* on the grid for an agent the graph serves: under the graph's costs when it has
+  // them.
+  PathStatus beginGridSearch(Agent agent, Cell start, Cell goal, const SearchLimits& limits);
 
   const ClusterAbstraction& abstraction_;
   HaaOptions options_;
@@ -100,13 +134,37 @@ class HybridPlanner {
   // Short queries answered by AA* carry no surcharge (HierarchicalAStar::findPath).
   PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                       const EdgeSurcharge* surcharge = nullptr);
+  // The same query sliced (search.h): the short-query attempt, then HAA* when it runs out.
+  PathStatus beginPath(Agent agent, Cell start, Cell goal,
+                       const EdgeSurcharge* surcharge = nullptr);
+  PathStatus updatePath(std::uint64_t maxExpansions);
+  PathResult finalizePath(std::vector<Cell>* path);
+  std::uint64_t expandedSoFar() const;
+  std::uint64_t nextStepExpansions() const;
 
  private:
+  enum class Stage : std::uint8_t {
+    Attempt,   // the short-query AA* attempt under way
+    Answered,  // it answered (anything but BudgetExhausted)
+    Hierarchical,
+  };
+  // After the attempt's begin or update returned `status`: moves on to HAA* when it ran out
+  // of budget. Returns the query's status.
+  PathStatus afterAttempt(PathStatus status);
+
   HybridOptions options_;
   double shortQueryDistance_;
   // Short queries use the hierarchical planner's own AA* query object: a second one would
   // hold another whole-map scratch (12 bytes a cell) for nothing.
   HierarchicalAStar hierarchical_;
+  // The query under way.
+  Stage stage_ = Stage::Hierarchical;
+  PathStatus attemptStatus_ = PathStatus::Pending;
+  PathResult attempt_;  // a short query's attempt, once it ran out of budget
+  Agent agent_;
+  Cell start_;
+  Cell goal_;
+  const EdgeSurcharge* surcharge_ = nullptr;
 };
 
 }  // namespace warpath::pathing

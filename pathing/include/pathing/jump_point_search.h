@@ -28,6 +28,12 @@ class JumpPointSearch {
   // the jump points pushed, and the cells the jumps scanned are not counted.
   PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                       const SearchLimits& limits = {});
+  // The same query sliced (search.h), counting jump points expanded.
+  PathStatus beginPath(Agent agent, Cell start, Cell goal, const SearchLimits& limits = {});
+  PathStatus updatePath(std::uint64_t maxExpansions);
+  PathResult finalizePath(std::vector<Cell>* path);
+  std::uint64_t expandedSoFar() const { return result_.metrics.expanded; }
+  std::uint64_t nextStepExpansions() const { return 1; }
 
   // [Unit: bytes] the bit maps kept for the agent kinds asked about so far: where each can
   // stand, by rows and by columns (2 bits a cell a kind), built at its first query and again
@@ -35,7 +41,6 @@ class JumpPointSearch {
   std::size_t bitmapBytes() const;
 
  private:
-  struct Query;
   static constexpr std::uint32_t kNone = UINT32_MAX;
 
   // Where one agent kind can stand, a bit a cell, 64 cells a word: rows (x along a row) and
@@ -50,11 +55,30 @@ class JumpPointSearch {
   };
   const Bitmap& bitmapFor(Agent agent);
 
-  void beginQuery();
+  // What the jumps of one query read: where the agent can stand (its bit maps), inside the
+  // map (or the query's region), and the goal.
+  struct Query {
+    const Bitmap* bits = nullptr;
+    int width = 0;
+    CellRect bounds;
+    Cell goal;
+
+    bool walkable(int x, int y) const;
+    std::uint32_t indexOf(int x, int y) const;
+    const std::uint64_t* row(int y) const;  // row y's words (null outside the bounds)
+    const std::uint64_t* column(int x) const;
+  };
+
+  void resetScratch();
   std::uint32_t jump(const Query& q, int x, int y, int dx, int dy) const;
   std::uint32_t jumpStraight(const Query& q, int x, int y, int dx, int dy) const;
 
   const AnnotatedGrid& grid_;
+  // The query under way (its result's status Pending until done).
+  Query query_;
+  Cell start_;
+  SearchLimits limits_;
+  PathResult result_;
   std::vector<Bitmap> bitmaps_;
   std::vector<std::uint32_t> stamps_;  // generation << 1 | closed
   std::vector<double> g_;

@@ -61,6 +61,13 @@ class Planner {
   // (EdgeSurcharge); AA* and JPS plan without it.
   PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                       const EdgeSurcharge* surcharge = nullptr);
+  // The same query sliced (search.h), by the algorithm's own sliced search.
+  PathStatus beginPath(Agent agent, Cell start, Cell goal,
+                       const EdgeSurcharge* surcharge = nullptr);
+  PathStatus updatePath(std::uint64_t maxExpansions);
+  PathResult finalizePath(std::vector<Cell>* path);
+  std::uint64_t expandedSoFar() const;
+  std::uint64_t nextStepExpansions() const;
 
  private:
   Algorithm algorithm_;

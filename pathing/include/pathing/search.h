@@ -17,14 +17,16 @@ enum class PathStatus : std::uint8_t {
   InvalidStart,     // outside the map, or the agent cannot stand there
   InvalidGoal,      // outside the map, or the agent cannot stand there
   BudgetExhausted,  // the search stopped at its expansion limit before reaching the goal
+  Pending,          // a sliced query not finished yet (updatePath it again)
 };
 
-inline constexpr EnumNames<PathStatus, 5> kPathStatusNames{{{
+inline constexpr EnumNames<PathStatus, 6> kPathStatusNames{{{
     {PathStatus::Found, "found"},
     {PathStatus::Unreachable, "unreachable"},
     {PathStatus::InvalidStart, "invalid-start"},
     {PathStatus::InvalidGoal, "invalid-goal"},
     {PathStatus::BudgetExhausted, "budget-exhausted"},
+    {PathStatus::Pending, "pending"},
 }}};
 // The name from kPathStatusNames ("found", "invalid-start", …).
 std::string_view toString(PathStatus status);
@@ -63,6 +65,32 @@ struct PathResult {
 
   bool found() const { return status == PathStatus::Found; }
 };
+
+// Sliced queries (Detour's init / update / finalize), offered by every planner's query object:
+//   beginPath(agent, start, goal, ...)  starts a query, abandoning any unfinished one, and
+//                                       answers at once what needs no search;
+//   updatePath(maxExpansions)           advances it by at most that many expansions
+//                                       [Limit: >= 1; 0 advances nothing], but for a step
+//                                       that cannot be split (an HAA* insertion) larger than
+//                                       that, taken whole when it is the update's first, so
+//                                       that every slice makes progress;
+//   finalizePath(path)                  its result: what findPath returns for the same query
+//                                       (status, cells, cost, metrics; microseconds sums the
+//                                       calls' wall time).
+// beginPath and updatePath return PathStatus::Pending until the query is done, then its final
+// status (again on later calls, without work); finalizePath answers Pending and no cells while
+// it is unfinished. expandedSoFar() is the query's expansions so far, for budgets spread over
+// calls; nextStepExpansions() the most the query's next unsplittable step may spend (1 but
+// before an insertion), so that a caller with less budget left can wait for the next one. findPath
+// is begin, one unbounded update and finalize. Nothing the query reads may change while it is
+// unfinished (the grid's terrain, a graph repair): begin it again after.
+inline constexpr std::uint64_t kUnboundedExpansions = UINT64_MAX;
+
+// The expansion count at which a slice of `maxExpansions` begun at `expanded` ends (saturating).
+// Slices end between two expansions, so a sliced query expands exactly what an unsliced one does.
+constexpr std::uint64_t sliceEnd(std::uint64_t expanded, std::uint64_t maxExpansions) {
+  return maxExpansions >= UINT64_MAX - expanded ? UINT64_MAX : expanded + maxExpansions;
+}
 
 // Wall time since construction, for SearchMetrics::microseconds (a measurement only).
 class QueryClock {
