@@ -6,16 +6,15 @@
 //
 // Narrow places, per capability: cells of the capability whose run across (the shorter of the
 // row and the column of such cells through them) is at most kNarrowWidth cells; each 8-connected
-// set of them is one place, as wide as its narrowest cell's run. Each place is a queue served
-// first come, first served, both ways together. A delivered path books its unit there: its
-// arrival (now, plus the path's length up to the place at the unit's top speed, plus the waits
-// at the places before it) and the time it holds the place (its body's length along the flow,
-// 3/4 of its size plus a quarter cell, over its speed and the files of bodies that fit side by
-// side). A unit
-// arriving at t waits for the queue of those booked to arrive by t: max(0, its end - t). A
-// unit's bookings are replaced by its next path's and dropped when it dies; a booking leaves
-// the queue once the queue has served it. Everything is in booking order and simulated
-// seconds, so it is deterministic.
+// set of them is one place, as wide as the median of its cells' runs (ragged banks do not narrow
+// a bridge). Each place is a queue served first come, first served, both ways together. A
+// delivered path books its unit there: its arrival (now, plus the path's length up to the place
+// at the unit's top speed, plus the waits at the places before it) and the time it holds the
+// place (its body's length along the flow, 3/4 of its size plus a quarter cell, over its speed
+// and the files of bodies that fit side by side). A unit arriving at t waits for the queue of
+// those booked to arrive by t: max(0, its end - t). A unit's bookings are replaced by its next
+// path's and dropped when it dies; a booking leaves the queue once the queue has served it.
+// Everything is in booking order and simulated seconds, so it is deterministic.
 
 #include <cstdint>
 #include <span>
