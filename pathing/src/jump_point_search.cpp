@@ -74,6 +74,17 @@ int scanLine(const std::uint64_t* line, const std::uint64_t* sideA, const std::u
   return -1;
 }
 
+// JPS+ tables: a cell's 8 entries, in the order of kTableSteps.
+constexpr int kTableSteps[8][2] = {{1, 0}, {-1, 0}, {0, 1},  {0, -1},
+                                   {1, 1}, {-1, 1}, {1, -1}, {-1, -1}};
+constexpr int tableEntry(int dx, int dy) {
+  if (dy == 0) return dx > 0 ? 0 : 1;
+  if (dx == 0) return dy > 0 ? 2 : 3;
+  return 4 + (dx > 0 ? 0 : 1) + (dy > 0 ? 0 : 2);
+}
+// Distances are 16 bits: larger maps scan.
+constexpr int kLargestTabledSide = INT16_MAX;
+
 }  // namespace
 
 bool JumpPointSearch::Query::walkable(int x, int y) const {
@@ -99,13 +110,26 @@ const std::uint64_t* JumpPointSearch::Query::column(int x) const {
          static_cast<std::size_t>(x) * static_cast<std::size_t>(bits->columnWords);
 }
 
-JumpPointSearch::JumpPointSearch(const AnnotatedGrid& grid) : grid_(grid) {}
+JumpPointSearch::JumpPointSearch(const AnnotatedGrid& grid, JumpDistances distances)
+    : grid_(grid), distances_(distances) {}
 
 std::size_t JumpPointSearch::bitmapBytes() const {
   std::size_t bytes = 0;
   for (const Bitmap& b : bitmaps_)
     bytes += (b.rows.size() + b.columns.size()) * sizeof(std::uint64_t);
   return bytes;
+}
+
+std::vector<LayerBytes> JumpPointSearch::layerBytes() const {
+  std::vector<LayerBytes> layers;
+  for (const Bitmap& b : bitmaps_) {
+    std::size_t bytes = (b.rows.size() + b.columns.size()) * sizeof(std::uint64_t);
+    for (const JumpTable& t : tables_) {
+      if (t.agent == b.agent) bytes += t.distances.size() * sizeof(std::int16_t);
+    }
+    layers.push_back({b.agent, bytes});
+  }
+  return layers;
 }
 
 const JumpPointSearch::Bitmap& JumpPointSearch::bitmapFor(Agent agent) {
@@ -139,6 +163,78 @@ const JumpPointSearch::Bitmap& JumpPointSearch::bitmapFor(Agent agent) {
     }
   }
   return b;
+}
+
+// Built from the layer's bit map: first the straight jumps, then the diagonal ones (which stop
+// where a straight jump from them ends at a jump point). Each direction is swept against itself,
+// so an entry extends the entry of the cell one step along.
+const JumpPointSearch::JumpTable& JumpPointSearch::tableFor(Agent agent) {
+  auto it = std::find_if(tables_.begin(), tables_.end(),
+                         [&](const JumpTable& t) { return t.agent == agent; });
+  if (it == tables_.end()) {
+    tables_.push_back(JumpTable{agent, 0, {}});
+    it = tables_.end() - 1;
+  } else if (it->revision == grid_.revision() && !it->distances.empty()) {
+    return *it;
+  }
+  JumpTable& t = *it;
+  const Bitmap& bits = bitmapFor(agent);
+  const GridMap& map = grid_.map();
+  const int width = map.width();
+  const int height = map.height();
+  const auto open = [&](int x, int y) {
+    if (x < 0 || y < 0 || x >= width || y >= height) return false;
+    return ((bits.rows[static_cast<std::size_t>(y) * static_cast<std::size_t>(bits.rowWords) +
+                       static_cast<std::size_t>(x >> 6)] >>
+             (x & 63)) &
+            1u) != 0;
+  };
+  t.revision = grid_.revision();
+  t.distances.assign(map.cellCount() * 8, 0);
+  const auto entry = [&](int x, int y, int e) -> std::int16_t& {
+    return t.distances[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                        static_cast<std::size_t>(x)) *
+                           8 +
+                       static_cast<std::size_t>(e)];
+  };
+  // One step further than the entry one step along: away from it when that is a jump point.
+  const auto extend = [](int next) {
+    return static_cast<std::int16_t>(next > 0 ? next + 1 : next - 1);
+  };
+  // A straight jump along (dx, dy) ends at p when a cell beside the line opens at p after a
+  // closed one behind it (as scanLine finds it).
+  const auto forced = [&](int px, int py, int dx, int dy) {
+    if (dx != 0) {
+      return (open(px, py - 1) && !open(px - dx, py - 1)) ||
+             (open(px, py + 1) && !open(px - dx, py + 1));
+    }
+    return (open(px - 1, py) && !open(px - 1, py - dy)) ||
+           (open(px + 1, py) && !open(px + 1, py - dy));
+  };
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int e = pass * 4; e < pass * 4 + 4; ++e) {
+      const int dx = kTableSteps[e][0];
+      const int dy = kTableSteps[e][1];
+      for (int row = 0; row < height; ++row) {
+        const int y = dy > 0 ? height - 1 - row : row;
+        for (int column = 0; column < width; ++column) {
+          const int x = dx > 0 ? width - 1 - column : column;
+          const int nx = x + dx;
+          const int ny = y + dy;
+          if (dx == 0 || dy == 0) {
+            if (!open(nx, ny)) continue;
+            entry(x, y, e) = forced(nx, ny, dx, dy) ? 1 : extend(entry(nx, ny, e));
+          } else {
+            if (!open(nx, y) || !open(x, ny) || !open(nx, ny)) continue;
+            const bool stops =
+                entry(nx, ny, tableEntry(dx, 0)) > 0 || entry(nx, ny, tableEntry(0, dy)) > 0;
+            entry(x, y, e) = stops ? 1 : extend(entry(nx, ny, e));
+          }
+        }
+      }
+    }
+  }
+  return t;
 }
 
 void JumpPointSearch::resetScratch() {
@@ -186,6 +282,39 @@ std::uint32_t JumpPointSearch::jump(const Query& q, int x, int y, int dx, int dy
   }
 }
 
+// The jump of jump(), read from the JPS+ table: the table's end, unless the goal comes first
+// (ahead on a straight line within reach, or on the line of a straight jump from a cell of the
+// diagonal run that reaches it: the cell in the goal's row or column, the nearer one).
+std::uint32_t JumpPointSearch::jumpByTable(const Query& q, int x, int y, int dx, int dy) const {
+  const std::int16_t* here =
+      q.table + (static_cast<std::size_t>(y) * static_cast<std::size_t>(q.width) +
+                 static_cast<std::size_t>(x)) *
+                    8;
+  const int v = here[tableEntry(dx, dy)];
+  const int reach = v > 0 ? v : -v;
+  const int aheadX = (q.goal.x - x) * dx;
+  const int aheadY = (q.goal.y - y) * dy;
+  if (dx == 0 || dy == 0) {
+    const bool onLine = dx != 0 ? q.goal.y == y : q.goal.x == x;
+    const int toGoal = dx != 0 ? aheadX : aheadY;
+    if (onLine && toGoal > 0 && toGoal <= reach) return q.indexOf(q.goal.x, q.goal.y);
+  } else if (aheadX > 0 && aheadY > 0) {
+    const int k = std::min(aheadX, aheadY);
+    if (k <= reach) {
+      const int cx = x + k * dx;
+      const int cy = y + k * dy;
+      if (k == v) return q.indexOf(cx, cy);
+      const std::int16_t* at =
+          q.table + (static_cast<std::size_t>(cy) * static_cast<std::size_t>(q.width) +
+                     static_cast<std::size_t>(cx)) *
+                        8;
+      const int s = aheadX > aheadY ? at[tableEntry(dx, 0)] : at[tableEntry(0, dy)];
+      if (std::abs(aheadX - aheadY) <= (s > 0 ? s : -s)) return q.indexOf(cx, cy);
+    }
+  }
+  return v > 0 ? q.indexOf(x + v * dx, y + v * dy) : kNone;
+}
+
 PathResult JumpPointSearch::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                                      const SearchLimits& limits) {
   beginPath(agent, start, goal, limits);
@@ -204,6 +333,9 @@ PathStatus JumpPointSearch::beginPath(Agent agent, Cell start, Cell goal,
     result_.status = *answer;
   } else {
     const GridMap& map = grid_.map();
+    const bool tabled = distances_ == JumpDistances::Precomputed && !limits.region &&
+                        std::max(map.width(), map.height()) <= kLargestTabledSide;
+    query_.table = tabled ? tableFor(agent).distances.data() : nullptr;
     query_.bits = &bitmapFor(agent);
     query_.width = map.width();
     query_.bounds = limits.region.value_or(CellRect{0, 0, map.width(), map.height()});
@@ -290,7 +422,8 @@ PathStatus JumpPointSearch::updatePath(std::uint64_t maxExpansions) {
       }
     }
     for (int k = 0; k < count; ++k) {
-      const std::uint32_t next = jump(q, here.x, here.y, dirs[k][0], dirs[k][1]);
+      const std::uint32_t next = q.table ? jumpByTable(q, here.x, here.y, dirs[k][0], dirs[k][1])
+                                         : jump(q, here.x, here.y, dirs[k][0], dirs[k][1]);
       if (next == kNone) continue;
       const Cell there = map.cellAt(next);
       const double ng = g + octileDistance(there.x - here.x, there.y - here.y);

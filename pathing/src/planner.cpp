@@ -16,6 +16,7 @@ std::optional<AbstractionQuality> abstractionQualityFor(Algorithm algorithm) {
   switch (algorithm) {
     case Algorithm::AStar:
     case Algorithm::Jps:
+    case Algorithm::JpsPlus:
       return std::nullopt;
     case Algorithm::HaaLow:
       return AbstractionQuality::Low;
@@ -53,8 +54,10 @@ Planner::Planner(const AnnotatedGrid& grid, Algorithm algorithm,
                  const CostField* costs)
     : algorithm_(algorithm), costs_(costs), impl_([&]() -> Impl {
         limits::require(problemWith(grid, algorithm, abstraction, hybrid));
-        if (algorithm == Algorithm::Jps && costs)
-          limits::require("jps plans on uniform costs only (got terrain costs)");
+        if ((algorithm == Algorithm::Jps || algorithm == Algorithm::JpsPlus) && costs) {
+          limits::require(std::string(toString(algorithm)) +
+                          " plans on uniform costs only (got terrain costs)");
+        }
         switch (algorithm) {
           case Algorithm::HaaHigh:
           case Algorithm::HaaLow:
@@ -62,7 +65,9 @@ Planner::Planner(const AnnotatedGrid& grid, Algorithm algorithm,
           case Algorithm::Hybrid:
             return Impl(std::in_place_type<HybridPlanner>, *abstraction, hybrid, haa);
           case Algorithm::Jps:
-            return Impl(std::in_place_type<JumpPointSearch>, grid);
+            return Impl(std::in_place_type<JumpPointSearch>, grid, JumpDistances::Scanned);
+          case Algorithm::JpsPlus:
+            return Impl(std::in_place_type<JumpPointSearch>, grid, JumpDistances::Precomputed);
           case Algorithm::AStar:
             break;
         }
@@ -100,6 +105,11 @@ std::uint64_t Planner::expandedSoFar() const {
 
 std::uint64_t Planner::nextStepExpansions() const {
   return std::visit([](const auto& planner) { return planner.nextStepExpansions(); }, impl_);
+}
+
+std::vector<LayerBytes> Planner::layerBytes() const {
+  const auto* jps = std::get_if<JumpPointSearch>(&impl_);
+  return jps ? jps->layerBytes() : std::vector<LayerBytes>{};
 }
 
 }  // namespace warpath::pathing

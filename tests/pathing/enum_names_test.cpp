@@ -48,8 +48,9 @@ TEST(EnumNames, PathingTablesRoundTrip) {
   using namespace pathing;
   testing::expectRoundTrip(kTerrainNames, {Terrain::Ground, Terrain::Swamp, Terrain::Trees,
                                            Terrain::Water, Terrain::Blocked});
-  testing::expectRoundTrip(kAlgorithmNames, {Algorithm::AStar, Algorithm::HaaHigh,
-                                             Algorithm::HaaLow, Algorithm::Hybrid, Algorithm::Jps});
+  testing::expectRoundTrip(
+      kAlgorithmNames, {Algorithm::AStar, Algorithm::HaaHigh, Algorithm::HaaLow, Algorithm::Hybrid,
+                        Algorithm::Jps, Algorithm::JpsPlus});
   testing::expectRoundTrip(kPathStatusNames, {PathStatus::Found, PathStatus::Unreachable,
                                               PathStatus::InvalidStart, PathStatus::InvalidGoal,
                                               PathStatus::BudgetExhausted, PathStatus::Pending});

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "pathing/aa_star.h"
@@ -168,6 +169,102 @@ TEST(JumpPointSearch, ThePlannerOffersItByNameOnUniformCostsOnly) {
   TerrainCosts costs = TerrainCosts::uniform(kGround);
   const CostField field(grid, {1, kGround}, costs);
   EXPECT_THROW(Planner(grid, Algorithm::Jps, nullptr, {}, {}, &field), std::invalid_argument);
+  EXPECT_EQ(algorithmFromName("jps+"), Algorithm::JpsPlus);
+  EXPECT_FALSE(abstractionQualityFor(Algorithm::JpsPlus));
+  EXPECT_THROW(Planner(grid, Algorithm::JpsPlus, nullptr, {}, {}, &field), std::invalid_argument);
+  EXPECT_TRUE(Planner(grid, Algorithm::AStar, nullptr).layerBytes().empty());
+}
+
+// JPS+ reads its jumps from precomputed tables: the very search the scanning one makes (status,
+// cost to the bit, path, jump points expanded and pushed), on every size and capability, maps
+// sparse and cluttered, sides across one and two 64-cell words. Goals on a jump's line, on the
+// row or column of a diagonal run, and at a diagonal's end are all met among random queries
+// (and the goals are also drawn near the start, where such cases are common).
+TEST(JumpPointSearch, PrecomputedJumpsGiveTheScanningSearchsAnswersBitForBit) {
+  int found = 0;
+  int unreachable = 0;
+  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+    const int side = 30 + static_cast<int>(seed % 4) * 37;
+    AnnotatedGrid grid(randomTerrainMap(seed * 7919, side + 5, side,
+                                        1 + static_cast<int>(seed % 4) * 3,
+                                        3 + static_cast<int>(seed % 5) * 7));
+    const GridMap& map = grid.map();
+    JumpPointSearch scanning(grid);
+    JumpPointSearch tabled(grid, JumpDistances::Precomputed);
+    SplitMix64 rng(seed + 100);
+    for (int round = 0; round < 2; ++round) {
+      for (Capability capability : {kGround, kInfantry, kAmphibious}) {
+        for (int size = 1; size <= 3; ++size) {
+          const Agent agent{size, capability};
+          for (int q = 0; q < 60; ++q) {
+            const Cell start{rng.between(0, map.width() - 1), rng.between(0, map.height() - 1)};
+            const Cell goal =
+                q % 2 == 0 ? Cell{rng.between(0, map.width() - 1), rng.between(0, map.height() - 1)}
+                           : Cell{std::clamp(start.x + rng.between(-8, 8), 0, map.width() - 1),
+                                  std::clamp(start.y + rng.between(-8, 8), 0, map.height() - 1)};
+            std::vector<Cell> expectedPath;
+            std::vector<Cell> path;
+            const PathResult expected = scanning.findPath(agent, start, goal, &expectedPath);
+            const PathResult result = tabled.findPath(agent, start, goal, &path);
+            SCOPED_TRACE(::testing::Message()
+                         << "seed " << seed << " size " << size << " cap " << capability.toString()
+                         << " " << start.x << "," << start.y << " -> " << goal.x << "," << goal.y);
+            ASSERT_EQ(result.status, expected.status);
+            EXPECT_EQ(result.cost, expected.cost);
+            EXPECT_EQ(path, expectedPath);
+            EXPECT_EQ(result.metrics.expanded, expected.metrics.expanded);
+            EXPECT_EQ(result.metrics.generated, expected.metrics.generated);
+            if (expected.found()) ++found;
+            if (expected.status == PathStatus::Unreachable) ++unreachable;
+          }
+        }
+      }
+      // The tables follow the grid: a wall across the map with a gap, then the same queries'
+      // kind again on the changed map.
+      const int x = rng.between(5, map.width() - 8);
+      (void)grid.setTerrain({x, 0, 2, map.height() - 4}, Terrain::Blocked);
+      (void)grid.setTerrain({x, rng.between(2, map.height() - 10), 2, 3}, Terrain::Ground);
+    }
+  }
+  EXPECT_GT(found, 2500);
+  EXPECT_GT(unreachable, 100);
+}
+
+// A region query scans (the tables are of the whole map), with the same answers as AA*; the
+// memory of each layer is reported: its bit maps and, once a whole-map query built it, its
+// table of 8 16-bit distances a cell.
+TEST(JumpPointSearch, PrecomputedJumpsKeepToARegionAndReportTheirMemoryPerLayer) {
+  const AnnotatedGrid grid(randomTerrainMap(77, 48, 42, 3, 15));
+  JumpPointSearch jps(grid, JumpDistances::Precomputed);
+  SplitMix64 rng(5);
+  const CellRect region{8, 6, 20, 16};
+  const Agent agent{1, kInfantry};
+  int found = 0;
+  for (int q = 0; q < 200; ++q) {
+    const Cell start{rng.between(region.x, region.x + region.width - 1),
+                     rng.between(region.y, region.y + region.height - 1)};
+    const Cell goal{rng.between(region.x, region.x + region.width - 1),
+                    rng.between(region.y, region.y + region.height - 1)};
+    if (!grid.canStand(agent, start) || !grid.canStand(agent, goal)) continue;
+    found += expectSameAsAStar(grid, jps, agent, start, goal,
+                               {.maxExpanded = UINT64_MAX, .region = region})
+                 ? 1
+                 : 0;
+  }
+  EXPECT_GT(found, 50);
+  ASSERT_EQ(jps.layerBytes().size(), 1u);
+  const std::size_t bitmaps = jps.layerBytes()[0].bytes;
+  EXPECT_EQ(bitmaps, jps.bitmapBytes());
+  Cell start;
+  Cell goal;
+  do {
+    start = {rng.between(0, 47), rng.between(0, 41)};
+    goal = {rng.between(0, 47), rng.between(0, 41)};
+  } while (!grid.canStand(agent, start) || !grid.canStand(agent, goal));
+  expectSameAsAStar(grid, jps, agent, start, goal);
+  ASSERT_EQ(jps.layerBytes().size(), 1u);
+  EXPECT_EQ(jps.layerBytes()[0].agent, agent);
+  EXPECT_EQ(jps.layerBytes()[0].bytes, bitmaps + 48u * 42u * 8u * sizeof(std::int16_t));
 }
 
 }  // namespace

@@ -129,6 +129,13 @@ int runScenBench(const ScenBenchOptions& options) {
       grid.cacheBytes() +
       (abstraction ? abstraction->stats().graphBytes + abstraction->stats().pathBytes : 0);
   writeAbstractionKeys(abstraction, out);
+  // JPS and JPS+ keep per-layer bit maps (and tables), built at each layer's first query.
+  if (const std::vector<LayerBytes> layers = planner.layerBytes(); !layers.empty()) {
+    nlohmann::json perLayer = nlohmann::json::array();
+    for (const LayerBytes& layer : layers)
+      perLayer.push_back({{"agent", agentJson(layer.agent)}, {"bytes", layer.bytes}});
+    out["layer_bytes"] = perLayer;
+  }
 
   if (!options.rowsFile.empty()) writeRows(options.rowsFile, rows);
   printReport(out, options.json);

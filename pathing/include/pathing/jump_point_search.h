@@ -7,6 +7,12 @@
 // after a blocked one behind; a diagonal jump stops where a straight jump from it would).
 // Optimal: its paths are as long as AA*'s (they may take other, equally short, cells).
 //
+// JPS+ (Harabor & Grastien 2012): with JumpDistances::Precomputed the jumps read, for each cell
+// of the agent's layer and each of the 8 directions, how far the next jump point or wall is,
+// from a table built at the layer's first query (and again after the grid's terrain changes).
+// A jump is then one lookup plus a test for the goal, and the search expands exactly the jump
+// points the scanning search expands, in the same order: the same answers, bit for bit.
+//
 // A query object owns its scratch memory and reuses it; the AnnotatedGrid may be shared.
 
 #include <cstdint>
@@ -18,9 +24,20 @@
 
 namespace warpath::pathing {
 
+// How a jump finds its end: by scanning the layer's bit maps (64 cells a word), or by looking
+// it up in a table of jump distances precomputed per layer (JPS+: 16 bytes a cell and layer).
+enum class JumpDistances : std::uint8_t { Scanned, Precomputed };
+
+// [Unit: bytes] the memory kept for one agent kind (a layer).
+struct LayerBytes {
+  Agent agent;
+  std::size_t bytes = 0;
+};
+
 class JumpPointSearch {
  public:
-  explicit JumpPointSearch(const AnnotatedGrid& grid);
+  explicit JumpPointSearch(const AnnotatedGrid& grid,
+                           JumpDistances distances = JumpDistances::Scanned);
 
   // Finds a shortest path for `agent` from `start` to `goal` (anchor cells), uniform costs
   // (a diagonal step costs √2). When found and `path` is not null, it receives every cell from
@@ -39,6 +56,8 @@ class JumpPointSearch {
   // stand, by rows and by columns (2 bits a cell a kind), built at its first query and again
   // when the grid's terrain changes.
   std::size_t bitmapBytes() const;
+  // The bit maps and, when precomputed, jump distance tables, per layer asked about so far.
+  std::vector<LayerBytes> layerBytes() const;
 
  private:
   static constexpr std::uint32_t kNone = UINT32_MAX;
@@ -55,10 +74,21 @@ class JumpPointSearch {
   };
   const Bitmap& bitmapFor(Agent agent);
 
+  // JPS+: for each cell (row-major) and direction (kTableDirections), the steps to the jump
+  // point the jump from that cell ends at (> 0), else minus the steps it can take before a wall
+  // (<= 0); the goal is not in it (a query tests for its goal as it reads).
+  struct JumpTable {
+    Agent agent;
+    std::uint64_t revision = 0;
+    std::vector<std::int16_t> distances;
+  };
+  const JumpTable& tableFor(Agent agent);
+
   // What the jumps of one query read: where the agent can stand (its bit maps), inside the
   // map (or the query's region), and the goal.
   struct Query {
     const Bitmap* bits = nullptr;
+    const std::int16_t* table = nullptr;  // JPS+ (null: scan); never with a region
     int width = 0;
     CellRect bounds;
     Cell goal;
@@ -72,14 +102,17 @@ class JumpPointSearch {
   void resetScratch();
   std::uint32_t jump(const Query& q, int x, int y, int dx, int dy) const;
   std::uint32_t jumpStraight(const Query& q, int x, int y, int dx, int dy) const;
+  std::uint32_t jumpByTable(const Query& q, int x, int y, int dx, int dy) const;
 
   const AnnotatedGrid& grid_;
+  JumpDistances distances_;
   // The query under way (its result's status Pending until done).
   Query query_;
   Cell start_;
   SearchLimits limits_;
   PathResult result_;
   std::vector<Bitmap> bitmaps_;
+  std::vector<JumpTable> tables_;
   std::vector<std::uint32_t> stamps_;  // generation << 1 | closed
   std::vector<double> g_;
   std::vector<std::uint32_t> parent_;  // the jump point a cell was reached from

@@ -23,19 +23,21 @@ enum class Algorithm : std::uint8_t {
   HaaLow,   // "haa-lq": HAA* on the low-quality (weak dominance) graph
   Hybrid,   // "hybrid": AA* within a node budget for short queries, else HAA* (HQ graph)
   Jps,      // "jps": jump point search on the agent's layer, optimal, uniform costs only
+  JpsPlus,  // "jps+": the same with jump distances precomputed per layer (the same answers)
 };
-inline constexpr EnumNames<Algorithm, 5> kAlgorithmNames{{{
+inline constexpr EnumNames<Algorithm, 6> kAlgorithmNames{{{
     {Algorithm::AStar, "aa"},
     {Algorithm::HaaHigh, "haa-hq"},
     {Algorithm::HaaLow, "haa-lq"},
     {Algorithm::Hybrid, "hybrid"},
     {Algorithm::Jps, "jps"},
+    {Algorithm::JpsPlus, "jps+"},
 }}};
 
 // Names from kAlgorithmNames (kAlgorithmNames.list() for "choose one of" messages).
 std::string_view toString(Algorithm algorithm);
 std::optional<Algorithm> algorithmFromName(std::string_view name);
-// The abstraction quality an algorithm needs; nullopt for AA* and JPS.
+// The abstraction quality an algorithm needs; nullopt for AA*, JPS and JPS+.
 std::optional<AbstractionQuality> abstractionQualityFor(Algorithm algorithm);
 
 // Empty when Planner(grid, algorithm, abstraction, hybrid) can be built, else what is wrong:
@@ -51,8 +53,8 @@ class Planner {
   // with the message of problemWith(grid, algorithm, abstraction, hybrid).]
   // Terrain costs: AA* plans under `costs` when given (built for the agents it is asked
   // about, and it must outlive the planner); the hierarchical algorithms plan under their
-  // abstraction's (AbstractionSpec::costs) and ignore it. JPS plans on uniform costs only
-  // [Limit: no `costs` with JPS, else std::invalid_argument].
+  // abstraction's (AbstractionSpec::costs) and ignore it. JPS and JPS+ plan on uniform costs
+  // only [Limit: no `costs` with them, else std::invalid_argument].
   Planner(const AnnotatedGrid& grid, Algorithm algorithm, const ClusterAbstraction* abstraction,
           HybridOptions hybrid = {}, HaaOptions haa = {}, const CostField* costs = nullptr);
 
@@ -68,6 +70,8 @@ class Planner {
   PathResult finalizePath(std::vector<Cell>* path);
   std::uint64_t expandedSoFar() const;
   std::uint64_t nextStepExpansions() const;
+  // JPS and JPS+: the memory their layers hold (bit maps, jump tables); empty for the others.
+  std::vector<LayerBytes> layerBytes() const;
 
  private:
   Algorithm algorithm_;
