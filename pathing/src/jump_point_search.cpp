@@ -82,6 +82,17 @@ constexpr int tableEntry(int dx, int dy) {
   if (dx == 0) return dy > 0 ? 2 : 3;
   return 4 + (dx > 0 ? 0 : 1) + (dy > 0 ? 0 : 2);
 }
+// The last step of a run from `from` to `to` that goes diagonally first, then straight (a jump
+// from one jump point to the next); zero when they are the same cell.
+std::pair<int, int> lastStep(Cell from, Cell to) {
+  const int ax = std::abs(to.x - from.x);
+  const int ay = std::abs(to.y - from.y);
+  const int sx = (to.x > from.x) - (to.x < from.x);
+  const int sy = (to.y > from.y) - (to.y < from.y);
+  if (ax == ay) return {sx, sy};
+  return ax > ay ? std::pair{sx, 0} : std::pair{0, sy};
+}
+
 // Distances are 16 bits: larger maps scan.
 constexpr int kLargestTabledSide = INT16_MAX;
 
@@ -400,9 +411,7 @@ PathStatus JumpPointSearch::updatePath(std::uint64_t maxExpansions) {
       for (const Direction& dir : kDirections)
         add(dir.dx, dir.dy);
     } else {
-      const Cell from = map.cellAt(parent_[current]);
-      const int dx = (here.x > from.x) - (here.x < from.x);
-      const int dy = (here.y > from.y) - (here.y < from.y);
+      const auto [dx, dy] = lastStep(map.cellAt(parent_[current]), here);
       if (dx != 0 && dy != 0) {
         add(dx, dy);
         add(dx, 0);
@@ -421,19 +430,49 @@ PathStatus JumpPointSearch::updatePath(std::uint64_t maxExpansions) {
         add(1, 0);
       }
     }
-    for (int k = 0; k < count; ++k) {
-      const std::uint32_t next = q.table ? jumpByTable(q, here.x, here.y, dirs[k][0], dirs[k][1])
-                                         : jump(q, here.x, here.y, dirs[k][0], dirs[k][1]);
-      if (next == kNone) continue;
+    // A jump point reached from `current` by a diagonal run and then a straight one (either
+    // may be none): an octile path.
+    const auto reach = [&](std::uint32_t next) {
       const Cell there = map.cellAt(next);
       const double ng = g + octileDistance(there.x - here.x, there.y - here.y);
       const std::uint32_t seen = stamps_[next];
-      if (seen == closedStamp || (seen == openStamp && ng >= g_[next])) continue;
+      if (seen == closedStamp || (seen == openStamp && ng >= g_[next])) return;
       stamps_[next] = openStamp;
       g_[next] = ng;
       parent_[next] = current;
       open_.push(OpenList::makeKey(ng + heuristic(there.x, there.y), ng), next);
       ++result.metrics.generated;
+    };
+    for (int k = 0; k < count; ++k) {
+      const int dx = dirs[k][0];
+      const int dy = dirs[k][1];
+      if (q.table == nullptr || dx == 0 || dy == 0) {
+        const std::uint32_t next =
+            q.table ? jumpByTable(q, here.x, here.y, dx, dy) : jump(q, here.x, here.y, dx, dy);
+        if (next != kNone) reach(next);
+        continue;
+      }
+      // JPS+ (as JPS2, Harabor & Grastien 2014): a diagonal jump point is never pushed. Its
+      // successors are its natural ones (a diagonal move has no forced neighbour when corners
+      // are not cut), so they are reached from here at once: the straight jumps from each
+      // stop of the diagonal run, and the run goes on.
+      int x = here.x;
+      int y = here.y;
+      for (;;) {
+        const std::uint32_t stop = jumpByTable(q, x, y, dx, dy);
+        if (stop == kNone) break;
+        const Cell at = map.cellAt(stop);
+        if (at == goal) {
+          reach(stop);
+          break;
+        }
+        for (const auto& [sx, sy] : {std::pair{dx, 0}, std::pair{0, dy}}) {
+          if (const std::uint32_t next = jumpByTable(q, at.x, at.y, sx, sy); next != kNone)
+            reach(next);
+        }
+        x = at.x;
+        y = at.y;
+      }
     }
   }
   result.status = status;
@@ -447,14 +486,18 @@ PathResult JumpPointSearch::finalizePath(std::vector<Cell>* path) {
   if (result_.status == PathStatus::Found && path) {
     const GridMap& map = grid_.map();
     const std::uint32_t startIndex = map.indexOf(start_);
-    // Jump points are joined by straight or diagonal runs: fill in their cells.
+    // Jump points are joined by a diagonal run and then a straight one (JPS: either alone):
+    // fill in their cells, backwards.
     for (std::uint32_t at = map.indexOf(query_.goal); at != startIndex; at = parent_[at]) {
-      const Cell to = map.cellAt(at);
       const Cell from = map.cellAt(parent_[at]);
-      const int dx = (to.x > from.x) - (to.x < from.x);
-      const int dy = (to.y > from.y) - (to.y < from.y);
-      for (Cell c = to; c != from; c = {c.x - dx, c.y - dy})
+      Cell c = map.cellAt(at);
+      for (;;) {
         path->push_back(c);
+        const auto [dx, dy] = lastStep(from, c);
+        if (dx == 0 && dy == 0) break;
+        c = {c.x - dx, c.y - dy};
+        if (c == from) break;
+      }
     }
     path->push_back(start_);
     std::reverse(path->begin(), path->end());

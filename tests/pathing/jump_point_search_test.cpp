@@ -175,14 +175,17 @@ TEST(JumpPointSearch, ThePlannerOffersItByNameOnUniformCostsOnly) {
   EXPECT_TRUE(Planner(grid, Algorithm::AStar, nullptr).layerBytes().empty());
 }
 
-// JPS+ reads its jumps from precomputed tables: the very search the scanning one makes (status,
-// cost to the bit, path, jump points expanded and pushed), on every size and capability, maps
-// sparse and cluttered, sides across one and two 64-cell words. Goals on a jump's line, on the
-// row or column of a diagonal run, and at a diagonal's end are all met among random queries
-// (and the goals are also drawn near the start, where such cases are common).
-TEST(JumpPointSearch, PrecomputedJumpsGiveTheScanningSearchsAnswersBitForBit) {
+// JPS+ reads its jumps from precomputed tables and, as JPS2, never pushes a diagonal jump point
+// (it reaches that point's successors at once): optimal, as the scanning search is, with fewer
+// expansions. Every size and capability, maps sparse and cluttered, sides across one and two
+// 64-cell words; goals on a jump's line, on the row or column of a diagonal run and at a
+// diagonal's end are all met among random queries (half of the goals are drawn near the start,
+// where such cases are common).
+TEST(JumpPointSearch, PrecomputedJumpsFindPathsAsShortAsTheScanningSearchWithFewerExpansions) {
   int found = 0;
   int unreachable = 0;
+  std::uint64_t scannedExpansions = 0;
+  std::uint64_t tabledExpansions = 0;
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     const int side = 30 + static_cast<int>(seed % 4) * 37;
     AnnotatedGrid grid(randomTerrainMap(seed * 7919, side + 5, side,
@@ -210,10 +213,15 @@ TEST(JumpPointSearch, PrecomputedJumpsGiveTheScanningSearchsAnswersBitForBit) {
                          << "seed " << seed << " size " << size << " cap " << capability.toString()
                          << " " << start.x << "," << start.y << " -> " << goal.x << "," << goal.y);
             ASSERT_EQ(result.status, expected.status);
-            EXPECT_EQ(result.cost, expected.cost);
-            EXPECT_EQ(path, expectedPath);
-            EXPECT_EQ(result.metrics.expanded, expected.metrics.expanded);
-            EXPECT_EQ(result.metrics.generated, expected.metrics.generated);
+            EXPECT_NEAR(result.cost, expected.cost, 1e-9);
+            if (result.found()) {
+              EXPECT_EQ(path.front(), start);
+              EXPECT_EQ(path.back(), goal);
+              EXPECT_EQ(findIllegalStep(grid, agent, path), "");
+              EXPECT_NEAR(pathCost(path), result.cost, 1e-9);
+            }
+            scannedExpansions += expected.metrics.expanded;
+            tabledExpansions += result.metrics.expanded;
             if (expected.found()) ++found;
             if (expected.status == PathStatus::Unreachable) ++unreachable;
           }
@@ -228,6 +236,7 @@ TEST(JumpPointSearch, PrecomputedJumpsGiveTheScanningSearchsAnswersBitForBit) {
   }
   EXPECT_GT(found, 2500);
   EXPECT_GT(unreachable, 100);
+  EXPECT_LT(tabledExpansions * 10, scannedExpansions * 8);
 }
 
 // A region query scans (the tables are of the whole map), with the same answers as AA*; the
