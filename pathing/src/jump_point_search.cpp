@@ -193,12 +193,23 @@ const JumpPointSearch::JumpTable& JumpPointSearch::tableFor(Agent agent) {
   const GridMap& map = grid_.map();
   const int width = map.width();
   const int height = map.height();
+  // Where the agent stands, a byte a cell with a closed frame: the sweeps read it 8-16 times
+  // a cell, without bounds tests.
+  const int framed = width + 2;
+  std::vector<std::uint8_t> standing(static_cast<std::size_t>(framed) * (height + 2), 0);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      standing[static_cast<std::size_t>(y + 1) * framed + static_cast<std::size_t>(x + 1)] =
+          static_cast<std::uint8_t>(
+              (bits.rows[static_cast<std::size_t>(y) * static_cast<std::size_t>(bits.rowWords) +
+                         static_cast<std::size_t>(x >> 6)] >>
+               (x & 63)) &
+              1u);
+    }
+  }
   const auto open = [&](int x, int y) {
-    if (x < 0 || y < 0 || x >= width || y >= height) return false;
-    return ((bits.rows[static_cast<std::size_t>(y) * static_cast<std::size_t>(bits.rowWords) +
-                       static_cast<std::size_t>(x >> 6)] >>
-             (x & 63)) &
-            1u) != 0;
+    return standing[static_cast<std::size_t>(y + 1) * framed + static_cast<std::size_t>(x + 1)] !=
+           0;
   };
   t.revision = grid_.revision();
   t.distances.assign(map.cellCount() * 8, 0);

@@ -9,6 +9,7 @@
 #include "pathing/aa_star.h"
 #include "pathing/cooperative_search.h"
 #include "pathing/haa_star.h"
+#include "pathing/jump_point_search.h"
 #include "pathing/map_generator.h"
 #include "pathing/random.h"
 #include "pathing/terrain_costs.h"
@@ -95,6 +96,44 @@ void BM_AnnotatedAStar(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(expanded), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_AnnotatedAStar)->Arg(1)->Arg(3)->Unit(benchmark::kMicrosecond);
+
+// The same queries by jump points: Args(size, precomputed). The layer's bit maps (and JPS+
+// table) are built before timing.
+void BM_JumpPointSearch(benchmark::State& state) {
+  const AnnotatedGrid grid(benchmarkMap(512));
+  const Agent agent{static_cast<int>(state.range(0)), kInfantry};
+  JumpPointSearch search(grid,
+                         state.range(1) != 0 ? JumpDistances::Precomputed : JumpDistances::Scanned);
+  const std::vector<std::pair<Cell, Cell>> queries = standableQueries(grid, agent, 0);
+  search.findPath(agent, queries[0].first, queries[0].second, nullptr);
+  timeQueries(state, queries, [&](Cell s, Cell g, std::vector<Cell>* path) {
+    return search.findPath(agent, s, g, path);
+  });
+}
+BENCHMARK(BM_JumpPointSearch)
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Args({3, 0})
+    ->Args({3, 1})
+    ->Unit(benchmark::kMicrosecond);
+
+// JPS+'s table for one layer of the 512x512 map: built at the layer's first query, and again
+// whole after each terrain change.
+void BM_JumpTableBuild(benchmark::State& state) {
+  AnnotatedGrid grid(benchmarkMap(512));
+  const Agent agent{1, kInfantry};
+  JumpPointSearch search(grid, JumpDistances::Precomputed);
+  const std::vector<std::pair<Cell, Cell>> queries = standableQueries(grid, agent, 0);
+  bool blocked = false;
+  for (auto _ : state) {
+    state.PauseTiming();
+    (void)grid.setTerrain({0, 0, 1, 1}, blocked ? Terrain::Ground : Terrain::Blocked);
+    blocked = !blocked;
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(search.findPath(agent, queries[0].first, queries[0].second, nullptr));
+  }
+}
+BENCHMARK(BM_JumpTableBuild)->Unit(benchmark::kMillisecond);
 
 // The catalogue's capabilities (infantry, jeep and tank, amphibious), sizes 1-3.
 AbstractionSpec catalogueSpec(int clusterSize, AbstractionQuality quality) {
