@@ -307,7 +307,7 @@ std::uint32_t JumpPointSearch::jump(const Query& q, int x, int y, int dx, int dy
 // The jump of jump(), read from the JPS+ table: the table's end, unless the goal comes first
 // (ahead on a straight line within reach, or on the line of a straight jump from a cell of the
 // diagonal run that reaches it: the cell in the goal's row or column, the nearer one).
-std::uint32_t JumpPointSearch::jumpByTable(const Query& q, int x, int y, int dx, int dy) const {
+Cell JumpPointSearch::jumpByTable(const Query& q, int x, int y, int dx, int dy) const {
   const std::int16_t* here =
       q.table + (static_cast<std::size_t>(y) * static_cast<std::size_t>(q.width) +
                  static_cast<std::size_t>(x)) *
@@ -319,22 +319,22 @@ std::uint32_t JumpPointSearch::jumpByTable(const Query& q, int x, int y, int dx,
   if (dx == 0 || dy == 0) {
     const bool onLine = dx != 0 ? q.goal.y == y : q.goal.x == x;
     const int toGoal = dx != 0 ? aheadX : aheadY;
-    if (onLine && toGoal > 0 && toGoal <= reach) return q.indexOf(q.goal.x, q.goal.y);
+    if (onLine && toGoal > 0 && toGoal <= reach) return q.goal;
   } else if (aheadX > 0 && aheadY > 0) {
     const int k = std::min(aheadX, aheadY);
     if (k <= reach) {
       const int cx = x + k * dx;
       const int cy = y + k * dy;
-      if (k == v) return q.indexOf(cx, cy);
+      if (k == v) return {cx, cy};
       const std::int16_t* at =
           q.table + (static_cast<std::size_t>(cy) * static_cast<std::size_t>(q.width) +
                      static_cast<std::size_t>(cx)) *
                         8;
       const int s = aheadX > aheadY ? at[tableEntry(dx, 0)] : at[tableEntry(0, dy)];
-      if (std::abs(aheadX - aheadY) <= (s > 0 ? s : -s)) return q.indexOf(cx, cy);
+      if (std::abs(aheadX - aheadY) <= (s > 0 ? s : -s)) return {cx, cy};
     }
   }
-  return v > 0 ? q.indexOf(x + v * dx, y + v * dy) : kNone;
+  return v > 0 ? Cell{x + v * dx, y + v * dy} : kNoCell;
 }
 
 PathResult JumpPointSearch::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
@@ -443,8 +443,8 @@ PathStatus JumpPointSearch::updatePath(std::uint64_t maxExpansions) {
     }
     // A jump point reached from `current` by a diagonal run and then a straight one (either
     // may be none): an octile path.
-    const auto reach = [&](std::uint32_t next) {
-      const Cell there = map.cellAt(next);
+    const auto reach = [&](Cell there) {
+      const std::uint32_t next = q.indexOf(there.x, there.y);
       const double ng = g + octileDistance(there.x - here.x, there.y - here.y);
       const std::uint32_t seen = stamps_[next];
       if (seen == closedStamp || (seen == openStamp && ng >= g_[next])) return;
@@ -458,31 +458,26 @@ PathStatus JumpPointSearch::updatePath(std::uint64_t maxExpansions) {
       const int dx = dirs[k][0];
       const int dy = dirs[k][1];
       if (q.table == nullptr || dx == 0 || dy == 0) {
-        const std::uint32_t next =
-            q.table ? jumpByTable(q, here.x, here.y, dx, dy) : jump(q, here.x, here.y, dx, dy);
-        if (next != kNone) reach(next);
+        if (q.table) {
+          if (const Cell next = jumpByTable(q, here.x, here.y, dx, dy); next != kNoCell)
+            reach(next);
+        } else if (const std::uint32_t next = jump(q, here.x, here.y, dx, dy); next != kNone) {
+          reach(map.cellAt(next));
+        }
         continue;
       }
       // JPS+ (as JPS2, Harabor & Grastien 2014): a diagonal jump point is never pushed. Its
       // successors are its natural ones (a diagonal move has no forced neighbour when corners
       // are not cut), so they are reached from here at once: the straight jumps from each
       // stop of the diagonal run, and the run goes on.
-      int x = here.x;
-      int y = here.y;
-      for (;;) {
-        const std::uint32_t stop = jumpByTable(q, x, y, dx, dy);
-        if (stop == kNone) break;
-        const Cell at = map.cellAt(stop);
+      for (Cell at = jumpByTable(q, here.x, here.y, dx, dy); at != kNoCell;
+           at = jumpByTable(q, at.x, at.y, dx, dy)) {
         if (at == goal) {
-          reach(stop);
+          reach(at);
           break;
         }
-        for (const auto& [sx, sy] : {std::pair{dx, 0}, std::pair{0, dy}}) {
-          if (const std::uint32_t next = jumpByTable(q, at.x, at.y, sx, sy); next != kNone)
-            reach(next);
-        }
-        x = at.x;
-        y = at.y;
+        if (const Cell next = jumpByTable(q, at.x, at.y, dx, 0); next != kNoCell) reach(next);
+        if (const Cell next = jumpByTable(q, at.x, at.y, 0, dy); next != kNoCell) reach(next);
       }
     }
   }

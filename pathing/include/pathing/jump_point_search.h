@@ -102,7 +102,9 @@ class JumpPointSearch {
   void resetScratch();
   std::uint32_t jump(const Query& q, int x, int y, int dx, int dy) const;
   std::uint32_t jumpStraight(const Query& q, int x, int y, int dx, int dy) const;
-  std::uint32_t jumpByTable(const Query& q, int x, int y, int dx, int dy) const;
+  // JPS+: the end of a jump (kNoCell at a wall), read from the table.
+  static constexpr Cell kNoCell{-1, -1};
+  Cell jumpByTable(const Query& q, int x, int y, int dx, int dy) const;
 
   const AnnotatedGrid& grid_;
   JumpDistances distances_;
