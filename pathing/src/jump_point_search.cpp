@@ -136,7 +136,8 @@ std::vector<LayerBytes> JumpPointSearch::layerBytes() const {
   for (const Bitmap& b : bitmaps_) {
     std::size_t bytes = (b.rows.size() + b.columns.size()) * sizeof(std::uint64_t);
     for (const JumpTable& t : tables_) {
-      if (t.agent == b.agent) bytes += t.distances.size() * sizeof(std::int16_t);
+      if (t.agent == b.agent)
+        bytes += t.distances.size() * sizeof(std::int16_t) + t.standing.size();
     }
     layers.push_back({b.agent, bytes});
   }
@@ -176,14 +177,157 @@ const JumpPointSearch::Bitmap& JumpPointSearch::bitmapFor(Agent agent) {
   return b;
 }
 
-// Built from the layer's bit map: first the straight jumps, then the diagonal ones (which stop
-// where a straight jump from them ends at a jump point). Each direction is swept against itself,
-// so an entry extends the entry of the cell one step along.
+namespace {
+
+// The sweeps that fill a layer's JPS+ table from its framed byte map (1: the agent stands there,
+// with a closed frame around the map). An entry extends the entry of the cell one step along
+// (a straight one, or one that stops where a straight jump ends at a jump point), so each
+// direction is swept against itself.
+class TableSweeps {
+ public:
+  TableSweeps(const std::vector<std::uint8_t>& standing, int width, int height,
+              std::vector<std::int16_t>& distances)
+      : standing_(standing), width_(width), height_(height), distances_(distances) {}
+
+  void all() {
+    for (int e = 0; e < 4; ++e) {
+      for (int line = 0, lines = kTableSteps[e][0] != 0 ? height_ : width_; line < lines; ++line)
+        straightLine(e, line);
+    }
+    // A diagonal entry reads the row one step along only, so rows go in its order.
+    for (int e = 4; e < 8; ++e) {
+      const int dy = kTableSteps[e][1];
+      for (int row = 0; row < height_; ++row) {
+        const int y = dy > 0 ? height_ - 1 - row : row;
+        for (int x = 0; x < width_; ++x)
+          update(x, y, e);
+      }
+    }
+  }
+
+  // After the cells of `changed` (and only those) changed in the byte map: the rows and columns
+  // of straight entries that read them, whole, then the diagonal entries that read a changed
+  // cell or entry, and upstream along each diagonal while entries keep changing.
+  void around(CellRect changed) {
+    const int x0 = changed.x;
+    const int x1 = changed.x + changed.width - 1;
+    const int y0 = changed.y;
+    const int y1 = changed.y + changed.height - 1;
+    for (int e = 0; e < 4; ++e) {
+      const bool rows = kTableSteps[e][0] != 0;
+      const int lo = std::max(0, (rows ? y0 : x0) - 1);
+      const int hi = std::min((rows ? height_ : width_) - 1, (rows ? y1 : x1) + 1);
+      for (int line = lo; line <= hi; ++line)
+        straightLine(e, line);
+    }
+    std::vector<std::uint32_t> seen(static_cast<std::size_t>(width_), 0);
+    std::uint32_t stamp = 0;
+    std::vector<int> before;
+    std::vector<int> now;
+    const int seedX0 = std::max(0, x0 - 2);
+    const int seedX1 = std::min(width_ - 1, x1 + 2);
+    for (int e = 4; e < 8; ++e) {
+      const int dx = kTableSteps[e][0];
+      const int dy = kTableSteps[e][1];
+      before.clear();
+      for (int row = 0; row < height_; ++row) {
+        const int y = dy > 0 ? height_ - 1 - row : row;
+        now.clear();
+        ++stamp;
+        const auto visit = [&](int x) {
+          if (x < 0 || x >= width_ || seen[static_cast<std::size_t>(x)] == stamp) return;
+          seen[static_cast<std::size_t>(x)] = stamp;
+          if (update(x, y, e)) now.push_back(x);
+        };
+        if (y >= y0 - 2 && y <= y1 + 2) {
+          for (int x = 0; x < width_; ++x)
+            visit(x);
+        } else {
+          for (int x = seedX0; x <= seedX1; ++x)
+            visit(x);
+          for (const int x : before)
+            visit(x - dx);
+        }
+        std::swap(before, now);
+      }
+    }
+  }
+
+ private:
+  bool open(int x, int y) const {
+    return standing_[static_cast<std::size_t>(y + 1) * static_cast<std::size_t>(width_ + 2) +
+                     static_cast<std::size_t>(x + 1)] != 0;
+  }
+  std::int16_t& entry(int x, int y, int e) {
+    return distances_[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+                       static_cast<std::size_t>(x)) *
+                          8 +
+                      static_cast<std::size_t>(e)];
+  }
+  // A straight jump along (dx, dy) ends at p when a cell beside the line opens at p after a
+  // closed one behind it (as scanLine finds it).
+  bool forced(int px, int py, int dx, int dy) const {
+    if (dx != 0) {
+      return (open(px, py - 1) && !open(px - dx, py - 1)) ||
+             (open(px, py + 1) && !open(px - dx, py + 1));
+    }
+    return (open(px - 1, py) && !open(px - 1, py - dy)) ||
+           (open(px + 1, py) && !open(px + 1, py - dy));
+  }
+  // Sets entry e of (x, y) from the cells and entries one step along; true when it changed.
+  bool update(int x, int y, int e) {
+    const int dx = kTableSteps[e][0];
+    const int dy = kTableSteps[e][1];
+    const int nx = x + dx;
+    const int ny = y + dy;
+    std::int16_t value = 0;
+    if (dx == 0 || dy == 0) {
+      if (open(nx, ny)) value = forced(nx, ny, dx, dy) ? 1 : extend(entry(nx, ny, e));
+    } else if (open(nx, y) && open(x, ny) && open(nx, ny)) {
+      const bool stops =
+          entry(nx, ny, tableEntry(dx, 0)) > 0 || entry(nx, ny, tableEntry(0, dy)) > 0;
+      value = stops ? 1 : extend(entry(nx, ny, e));
+    }
+    std::int16_t& slot = entry(x, y, e);
+    if (slot == value) return false;
+    slot = value;
+    return true;
+  }
+  // One step further than the entry one step along: away from it when that is a jump point.
+  static std::int16_t extend(int next) {
+    return static_cast<std::int16_t>(next > 0 ? next + 1 : next - 1);
+  }
+  // A whole row (east, west) or column (south, north) of a straight direction.
+  void straightLine(int e, int line) {
+    const int dx = kTableSteps[e][0];
+    const int dy = kTableSteps[e][1];
+    const int length = dx != 0 ? width_ : height_;
+    for (int i = 0; i < length; ++i) {
+      const int along = (dx + dy) > 0 ? length - 1 - i : i;
+      if (dx != 0) {
+        update(along, line, e);
+      } else {
+        update(line, along, e);
+      }
+    }
+  }
+
+  const std::vector<std::uint8_t>& standing_;
+  int width_;
+  int height_;
+  std::vector<std::int16_t>& distances_;
+};
+
+}  // namespace
+
+// Built at the layer's first query; after the grid's terrain changes, the entries around the
+// cells where the agent's standing changed are swept again (the whole table when they spread
+// over more than an eighth of the map).
 const JumpPointSearch::JumpTable& JumpPointSearch::tableFor(Agent agent) {
   auto it = std::find_if(tables_.begin(), tables_.end(),
                          [&](const JumpTable& t) { return t.agent == agent; });
   if (it == tables_.end()) {
-    tables_.push_back(JumpTable{agent, 0, {}});
+    tables_.push_back(JumpTable{agent, 0, {}, {}});
     it = tables_.end() - 1;
   } else if (it->revision == grid_.revision() && !it->distances.empty()) {
     return *it;
@@ -193,10 +337,8 @@ const JumpPointSearch::JumpTable& JumpPointSearch::tableFor(Agent agent) {
   const GridMap& map = grid_.map();
   const int width = map.width();
   const int height = map.height();
-  // Where the agent stands, a byte a cell with a closed frame: the sweeps read it 8-16 times
-  // a cell, without bounds tests.
-  const int framed = width + 2;
-  std::vector<std::uint8_t> standing(static_cast<std::size_t>(framed) * (height + 2), 0);
+  const std::size_t framed = static_cast<std::size_t>(width + 2);
+  std::vector<std::uint8_t> standing(framed * static_cast<std::size_t>(height + 2), 0);
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       standing[static_cast<std::size_t>(y + 1) * framed + static_cast<std::size_t>(x + 1)] =
@@ -207,55 +349,44 @@ const JumpPointSearch::JumpTable& JumpPointSearch::tableFor(Agent agent) {
               1u);
     }
   }
-  const auto open = [&](int x, int y) {
-    return standing[static_cast<std::size_t>(y + 1) * framed + static_cast<std::size_t>(x + 1)] !=
-           0;
-  };
   t.revision = grid_.revision();
-  t.distances.assign(map.cellCount() * 8, 0);
-  const auto entry = [&](int x, int y, int e) -> std::int16_t& {
-    return t.distances[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                        static_cast<std::size_t>(x)) *
-                           8 +
-                       static_cast<std::size_t>(e)];
-  };
-  // One step further than the entry one step along: away from it when that is a jump point.
-  const auto extend = [](int next) {
-    return static_cast<std::int16_t>(next > 0 ? next + 1 : next - 1);
-  };
-  // A straight jump along (dx, dy) ends at p when a cell beside the line opens at p after a
-  // closed one behind it (as scanLine finds it).
-  const auto forced = [&](int px, int py, int dx, int dy) {
-    if (dx != 0) {
-      return (open(px, py - 1) && !open(px - dx, py - 1)) ||
-             (open(px, py + 1) && !open(px - dx, py + 1));
-    }
-    return (open(px - 1, py) && !open(px - 1, py - dy)) ||
-           (open(px + 1, py) && !open(px + 1, py - dy));
-  };
-  for (int pass = 0; pass < 2; ++pass) {
-    for (int e = pass * 4; e < pass * 4 + 4; ++e) {
-      const int dx = kTableSteps[e][0];
-      const int dy = kTableSteps[e][1];
-      for (int row = 0; row < height; ++row) {
-        const int y = dy > 0 ? height - 1 - row : row;
-        for (int column = 0; column < width; ++column) {
-          const int x = dx > 0 ? width - 1 - column : column;
-          const int nx = x + dx;
-          const int ny = y + dy;
-          if (dx == 0 || dy == 0) {
-            if (!open(nx, ny)) continue;
-            entry(x, y, e) = forced(nx, ny, dx, dy) ? 1 : extend(entry(nx, ny, e));
-          } else {
-            if (!open(nx, y) || !open(x, ny) || !open(nx, ny)) continue;
-            const bool stops =
-                entry(nx, ny, tableEntry(dx, 0)) > 0 || entry(nx, ny, tableEntry(0, dy)) > 0;
-            entry(x, y, e) = stops ? 1 : extend(entry(nx, ny, e));
-          }
-        }
+  if (!t.distances.empty() && t.standing.size() == standing.size()) {
+    // The bounding box of the cells whose standing changed.
+    int x0 = width, y0 = height, x1 = -1, y1 = -1;
+    for (int y = 0; y < height; ++y) {
+      const std::size_t row = static_cast<std::size_t>(y + 1) * framed + 1;
+      if (std::equal(standing.begin() + static_cast<std::ptrdiff_t>(row),
+                     standing.begin() + static_cast<std::ptrdiff_t>(row) + width,
+                     t.standing.begin() + static_cast<std::ptrdiff_t>(row)))
+        continue;
+      y0 = std::min(y0, y);
+      y1 = y;
+      for (int x = 0; x < width; ++x) {
+        if (standing[row + static_cast<std::size_t>(x)] ==
+            t.standing[row + static_cast<std::size_t>(x)])
+          continue;
+        x0 = std::min(x0, x);
+        x1 = std::max(x1, x);
       }
     }
+    t.standing = std::move(standing);
+    if (y1 < 0) return t;  // this layer did not change
+    const std::size_t area =
+        static_cast<std::size_t>(x1 - x0 + 1) * static_cast<std::size_t>(y1 - y0 + 1);
+    TableSweeps sweeps(t.standing, width, height, t.distances);
+    if (area * 8 <= map.cellCount()) {
+      sweeps.around({x0, y0, x1 - x0 + 1, y1 - y0 + 1});
+      ++tableCounts_.repairs;
+    } else {
+      sweeps.all();
+      ++tableCounts_.builds;
+    }
+    return t;
   }
+  t.standing = std::move(standing);
+  t.distances.assign(map.cellCount() * 8, 0);
+  TableSweeps(t.standing, width, height, t.distances).all();
+  ++tableCounts_.builds;
   return t;
 }
 

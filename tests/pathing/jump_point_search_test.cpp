@@ -273,7 +273,58 @@ TEST(JumpPointSearch, PrecomputedJumpsKeepToARegionAndReportTheirMemoryPerLayer)
   expectSameAsAStar(grid, jps, agent, start, goal);
   ASSERT_EQ(jps.layerBytes().size(), 1u);
   EXPECT_EQ(jps.layerBytes()[0].agent, agent);
-  EXPECT_EQ(jps.layerBytes()[0].bytes, bitmaps + 48u * 42u * 8u * sizeof(std::int16_t));
+  // 8 16-bit entries a cell, and the layer's framed byte map the table repairs start from.
+  EXPECT_EQ(jps.layerBytes()[0].bytes,
+            bitmaps + 48u * 42u * 8u * sizeof(std::int16_t) + (48u + 2u) * (42u + 2u));
+}
+
+// After terrain changes a table is repaired around the cells where the agent's standing changed
+// (or built whole when they spread far): entry for entry the table built from scratch on the
+// changed map, and the search answers as one with such tables. Open maps (long diagonal runs,
+// whose entries change far from a change) and cluttered ones; walls, gaps, single cells, water
+// and clearings, near the borders too; sizes 1-3.
+TEST(JumpPointSearch, RepairedTablesAreTheTablesBuiltOnTheChangedMap) {
+  int found = 0;
+  for (const int obstacles : {2, 12}) {
+    AnnotatedGrid grid(randomTerrainMap(4242 + obstacles, 100, 76, 3, obstacles));
+    const GridMap& map = grid.map();
+    JumpPointSearch repaired(grid, JumpDistances::Precomputed);
+    SplitMix64 rng(17 + static_cast<std::uint64_t>(obstacles));
+    for (int change = 0; change < 30; ++change) {
+      JumpPointSearch fresh(grid, JumpDistances::Precomputed);
+      for (int size = 1; size <= 3; ++size) {
+        for (Capability capability : {kInfantry, kAmphibious}) {
+          const Agent agent{size, capability};
+          ASSERT_EQ(repaired.jumpDistances(agent), fresh.jumpDistances(agent))
+              << "change " << change << " size " << size << " " << capability.toString();
+        }
+      }
+      for (int q = 0; q < 30; ++q) {
+        const Agent agent{1 + q % 3, q % 2 == 0 ? kInfantry : kAmphibious};
+        const Cell start{rng.between(0, map.width() - 1), rng.between(0, map.height() - 1)};
+        const Cell goal{rng.between(0, map.width() - 1), rng.between(0, map.height() - 1)};
+        std::vector<Cell> expectedPath;
+        std::vector<Cell> path;
+        const PathResult expected = fresh.findPath(agent, start, goal, &expectedPath);
+        const PathResult result = repaired.findPath(agent, start, goal, &path);
+        ASSERT_EQ(result.status, expected.status);
+        EXPECT_EQ(result.cost, expected.cost);
+        EXPECT_EQ(path, expectedPath);
+        found += result.found() ? 1 : 0;
+      }
+      const int w = rng.between(1, change % 5 == 0 ? 70 : 8);
+      const int h = rng.between(1, change % 5 == 0 ? 50 : 8);
+      const CellRect area{rng.between(-2, map.width() - 2), rng.between(-2, map.height() - 2), w,
+                          h};
+      const Terrain terrains[] = {Terrain::Blocked, Terrain::Ground, Terrain::Water,
+                                  Terrain::Trees};
+      (void)grid.setTerrain(area, terrains[rng.between(0, 3)]);
+    }
+    // Most changes were repaired; the large ones (and each layer's first query) built whole.
+    EXPECT_GT(repaired.tableCounts().repairs, 60u);
+    EXPECT_GT(repaired.tableCounts().builds, 6u);
+  }
+  EXPECT_GT(found, 400);
 }
 
 }  // namespace

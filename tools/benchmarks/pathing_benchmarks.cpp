@@ -117,23 +117,48 @@ BENCHMARK(BM_JumpPointSearch)
     ->Args({3, 1})
     ->Unit(benchmark::kMicrosecond);
 
-// JPS+'s table for one layer of the 512x512 map: built at the layer's first query, and again
-// whole after each terrain change.
+// JPS+'s table for one layer of the 512x512 map, built at the layer's first query.
 void BM_JumpTableBuild(benchmark::State& state) {
-  AnnotatedGrid grid(benchmarkMap(512));
+  const AnnotatedGrid grid(benchmarkMap(512));
   const Agent agent{1, kInfantry};
-  JumpPointSearch search(grid, JumpDistances::Precomputed);
-  const std::vector<std::pair<Cell, Cell>> queries = standableQueries(grid, agent, 0);
-  bool blocked = false;
   for (auto _ : state) {
-    state.PauseTiming();
-    (void)grid.setTerrain({0, 0, 1, 1}, blocked ? Terrain::Ground : Terrain::Blocked);
-    blocked = !blocked;
-    state.ResumeTiming();
-    benchmark::DoNotOptimize(search.findPath(agent, queries[0].first, queries[0].second, nullptr));
+    JumpPointSearch search(grid, JumpDistances::Precomputed);
+    benchmark::DoNotOptimize(search.jumpDistances(agent).data());
   }
 }
 BENCHMARK(BM_JumpTableBuild)->Unit(benchmark::kMillisecond);
+
+// The same table repaired after a k x k obstacle goes down or is cleared (alternately, at a spot
+// that moves every pair), sizes 1 and 3: Args(k, size). The grid's own repair is not timed.
+void BM_JumpTableRepair(benchmark::State& state) {
+  AnnotatedGrid grid(benchmarkMap(512));
+  const int k = static_cast<int>(state.range(0));
+  const Agent agent{static_cast<int>(state.range(1)), kInfantry};
+  JumpPointSearch search(grid, JumpDistances::Precomputed);
+  benchmark::DoNotOptimize(search.jumpDistances(agent).data());
+  SplitMix64 rng(11);
+  CellRect spot{0, 0, k, k};
+  bool placed = false;
+  for (auto _ : state) {
+    state.PauseTiming();
+    if (placed) {
+      grid.clearObstacle(spot);
+    } else {
+      spot = {rng.between(0, 511 - k), rng.between(0, 511 - k), k, k};
+      grid.placeObstacle(spot);
+    }
+    placed = !placed;
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(search.jumpDistances(agent).data());
+  }
+  state.counters["repairs"] = static_cast<double>(search.tableCounts().repairs);
+}
+BENCHMARK(BM_JumpTableRepair)
+    ->Args({1, 1})
+    ->Args({16, 1})
+    ->Args({16, 3})
+    ->Args({64, 1})
+    ->Unit(benchmark::kMicrosecond);
 
 // The catalogue's capabilities (infantry, jeep and tank, amphibious), sizes 1-3.
 AbstractionSpec catalogueSpec(int clusterSize, AbstractionQuality quality) {

@@ -9,7 +9,8 @@
 //
 // JPS+ (Harabor & Grastien 2012): with JumpDistances::Precomputed the jumps read, for each cell
 // of the agent's layer and each of the 8 directions, how far the next jump point or wall is,
-// from a table built at the layer's first query (and again after the grid's terrain changes).
+// from a table built at the layer's first query (and repaired around the cells where the agent's
+// standing changed after the grid's terrain changes).
 // A jump is then one lookup plus a test for the goal, and the search expands exactly the jump
 // points the scanning search expands, in the same order: the same answers, bit for bit.
 //
@@ -58,6 +59,18 @@ class JumpPointSearch {
   std::size_t bitmapBytes() const;
   // The bit maps and, when precomputed, jump distance tables, per layer asked about so far.
   std::vector<LayerBytes> layerBytes() const;
+  // JPS+: tables built whole (a layer's first query, or a change over more than an eighth of
+  // the map) and repaired around a terrain change, so far.
+  struct TableCounts {
+    std::uint64_t builds = 0;
+    std::uint64_t repairs = 0;
+  };
+  TableCounts tableCounts() const { return tableCounts_; }
+  // JPS+: the table of `agent`'s layer on the grid as it is now (built or repaired first): for
+  // each cell (row-major) 8 entries, east, west, south, north, then south-east, south-west,
+  // north-east, north-west: the steps to the jump point that jump ends at (> 0), else minus the
+  // steps it can take before a wall. For tests and tools that inspect it.
+  const std::vector<std::int16_t>& jumpDistances(Agent agent) { return tableFor(agent).distances; }
 
  private:
   static constexpr std::uint32_t kNone = UINT32_MAX;
@@ -81,6 +94,7 @@ class JumpPointSearch {
     Agent agent;
     std::uint64_t revision = 0;
     std::vector<std::int16_t> distances;
+    std::vector<std::uint8_t> standing;  // the layer it was built for, framed (a byte a cell)
   };
   const JumpTable& tableFor(Agent agent);
 
@@ -115,6 +129,7 @@ class JumpPointSearch {
   PathResult result_;
   std::vector<Bitmap> bitmaps_;
   std::vector<JumpTable> tables_;
+  TableCounts tableCounts_;
   std::vector<std::uint32_t> stamps_;  // generation << 1 | closed
   std::vector<double> g_;
   std::vector<std::uint32_t> parent_;  // the jump point a cell was reached from
