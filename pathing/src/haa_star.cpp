@@ -610,7 +610,18 @@ HybridPlanner::HybridPlanner(const ClusterAbstraction& abstraction, HybridOption
                              HaaOptions haa)
     : options_((limits::require(problemWith(hybrid)), hybrid)),
       shortQueryDistance_(std::sqrt(static_cast<double>(hybrid.tau)) / 2.0),
-      hierarchical_(abstraction, haa) {}
+      hierarchical_(abstraction, haa),
+      jumps_(abstraction.grid(), JumpDistances::Precomputed) {}
+
+template <typename F>
+decltype(auto) HybridPlanner::withAttempt(F&& f) {
+  return jumping_ ? f(jumps_) : f(hierarchical_.gridSearch_);
+}
+
+template <typename F>
+decltype(auto) HybridPlanner::withAttempt(F&& f) const {
+  return jumping_ ? f(jumps_) : f(hierarchical_.gridSearch_);
+}
 
 PathResult HybridPlanner::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                                    const EdgeSurcharge* surcharge) {
@@ -627,15 +638,18 @@ PathStatus HybridPlanner::beginPath(Agent agent, Cell start, Cell goal,
   goal_ = goal;
   attempt_ = PathResult{};
   attempt_.status = PathStatus::Pending;
+  jumping_ = options_.attempt == HybridAttempt::JumpPoints &&
+             hierarchical_.abstraction_.costs() == nullptr;
   const double dx = goal.x - start.x;
   const double dy = goal.y - start.y;
-  if (std::sqrt(dx * dx + dy * dy) > shortQueryDistance_) {
+  if (!jumping_ && std::sqrt(dx * dx + dy * dy) > shortQueryDistance_) {
     stage_ = Stage::Hierarchical;
     return hierarchical_.beginPath(agent, start, goal, surcharge);
   }
   SearchLimits budget;
   budget.maxExpanded = options_.tau;
   stage_ = Stage::Attempt;
+  if (jumping_) return afterAttempt(jumps_.beginPath(agent, start, goal, budget));
   return afterAttempt(hierarchical_.abstraction_.supports(agent)
                           ? hierarchical_.beginGridSearch(agent, start, goal, budget)
                           : hierarchical_.gridSearch_.beginPath(agent, start, goal, budget));
@@ -648,7 +662,7 @@ PathStatus HybridPlanner::afterAttempt(PathStatus status) {
     attemptStatus_ = status;
     return status;
   }
-  attempt_ = hierarchical_.gridSearch_.finalizePath(nullptr);
+  attempt_ = withAttempt([](auto& search) { return search.finalizePath(nullptr); });
   stage_ = Stage::Hierarchical;
   return hierarchical_.beginPath(agent_, start_, goal_, surcharge_);
 }
@@ -656,10 +670,13 @@ PathStatus HybridPlanner::afterAttempt(PathStatus status) {
 PathStatus HybridPlanner::updatePath(std::uint64_t maxExpansions) {
   if (stage_ == Stage::Answered) return attemptStatus_;
   if (stage_ == Stage::Attempt) {
-    AnnotatedAStar& attempt = hierarchical_.gridSearch_;
-    const std::uint64_t before = attempt.expandedSoFar();
-    const PathStatus attemptStatus = attempt.updatePath(maxExpansions);
-    const std::uint64_t spent = attempt.expandedSoFar() - before;
+    std::uint64_t spent = 0;
+    const PathStatus attemptStatus = withAttempt([&](auto& attempt) {
+      const std::uint64_t before = attempt.expandedSoFar();
+      const PathStatus s = attempt.updatePath(maxExpansions);
+      spent = attempt.expandedSoFar() - before;
+      return s;
+    });
     const PathStatus status = afterAttempt(attemptStatus);  // may begin HAA*
     if (stage_ != Stage::Hierarchical || spent >= maxExpansions) return status;
     // The rest of the slice: no insertion larger than it (the attempt spent part of it).
@@ -673,13 +690,14 @@ std::uint64_t HybridPlanner::nextStepExpansions() const {
 }
 
 std::uint64_t HybridPlanner::expandedSoFar() const {
-  if (stage_ != Stage::Hierarchical) return hierarchical_.gridSearch_.expandedSoFar();
+  if (stage_ != Stage::Hierarchical)
+    return withAttempt([](const auto& search) { return search.expandedSoFar(); });
   return attempt_.metrics.expanded + hierarchical_.expandedSoFar();
 }
 
 PathResult HybridPlanner::finalizePath(std::vector<Cell>* path) {
   if (stage_ != Stage::Hierarchical) {
-    PathResult quick = hierarchical_.gridSearch_.finalizePath(path);
+    PathResult quick = withAttempt([&](auto& search) { return search.finalizePath(path); });
     quick.metrics.gridExpanded = quick.metrics.expanded;
     quick.metrics.usedGridSearch = true;
     return quick;

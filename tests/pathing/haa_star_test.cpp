@@ -184,6 +184,44 @@ TEST(HaaStarTest, HybridPlannerIsCompleteAndShortQueriesGetTheOptimum) {
   EXPECT_GT(shortOptimal, 300);
 }
 
+// With the JPS+ attempt every query tries JPS+ first, whatever the distance: complete, and
+// optimal whenever JPS+ answered within tau jump points; a tau too small for most sends them to
+// HAA* (still complete). Under terrain costs the attempt is AA*'s (weighted_haa_test covers it).
+TEST(HaaStarTest, HybridWithAJumpPointAttemptIsCompleteAndItsAttemptsOptimal) {
+  CompletenessTally tally;
+  int attempted = 0;
+  int hierarchical = 0;
+  for (int i = 1; i < kRandomMapCount; i += 4) {
+    const RandomMapCase m = randomMapCase(i);
+    const AnnotatedGrid grid(randomMap(m));
+    const std::vector<CompletenessCase> cases =
+        drawCompletenessCases(grid, testing::completenessAgents(), m.seed + 200, 3, 6, 1);
+    const AbstractionSpec spec = catalogueSpec(10, AbstractionQuality::High);
+    const ClusterAbstraction abstraction = ClusterAbstraction::build(grid, spec);
+    for (std::uint64_t tau : {std::uint64_t{2}, std::uint64_t{4096}}) {
+      HybridPlanner hybrid(abstraction,
+                           HybridOptions{.tau = tau, .attempt = HybridAttempt::JumpPoints});
+      checkCompleteness(grid, cases, hybrid, label(m, spec, "hybrid jps+"), tally);
+      std::vector<Cell> path;
+      for (const CompletenessCase& c : cases) {
+        if (!c.optimum.found()) continue;
+        const PathResult result = hybrid.findPath(c.agent, c.query.start, c.query.goal, &path);
+        if (result.metrics.usedGridSearch) {
+          EXPECT_NEAR(result.cost, c.optimum.cost, 1e-9);
+          ++attempted;
+        } else {
+          ++hierarchical;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(tally.failures, 0);
+  EXPECT_GT(tally.found, 800);
+  EXPECT_GT(tally.notFound, 250);
+  EXPECT_GT(attempted, 400);
+  EXPECT_GT(hierarchical, 100);
+}
+
 TEST(HaaStarTest, AgentsTheGraphDoesNotServeAreAnsweredByGridSearch) {
   const AnnotatedGrid grid(randomMap(randomMapCase(1)));
   const ClusterAbstraction abstraction = ClusterAbstraction::build(

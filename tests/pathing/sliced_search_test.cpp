@@ -236,6 +236,11 @@ TEST(SlicedSearch, EveryAlgorithmSlicedReturnsExactlyWhatTheUnslicedReturns) {
                                  std::make_shared<HybridPlanner>(*high, HybridOptions{tau}),
                                  std::make_shared<HybridPlanner>(*high, HybridOptions{tau}),
                                  beginUniform<HybridPlanner>(), insertion));
+      // The JPS+ attempt: tau 4 runs out on most queries, so HAA* takes over mid-slice.
+      const HybridOptions jumps{tau == 64u ? 4u : tau, HybridAttempt::JumpPoints};
+      subjects.push_back(subject(
+          "hybrid-jps+-" + std::to_string(jumps.tau), std::make_shared<HybridPlanner>(*high, jumps),
+          std::make_shared<HybridPlanner>(*high, jumps), beginUniform<HybridPlanner>(), insertion));
     }
     for (const Algorithm algorithm : {Algorithm::AStar, Algorithm::Jps, Algorithm::HaaHigh,
                                       Algorithm::HaaLow, Algorithm::Hybrid}) {

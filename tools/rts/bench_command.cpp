@@ -119,7 +119,10 @@ int runScenBench(const ScenBenchOptions& options) {
   out["scen"] = options.scenFile;
   out["algo"] = std::string(toString(algorithm));
   if (prepared.abstraction) out["cluster_size"] = options.planner.clusterSize;
-  if (algorithm == Algorithm::Hybrid) out["tau"] = options.planner.tau;
+  if (algorithm == Algorithm::Hybrid) {
+    out["tau"] = options.planner.tau;
+    out["attempt"] = options.planner.attempt;
+  }
   out["bucket_min"] = options.bucketMin;
   out["costs"] = costs ? nlohmann::json(options.costsFile) : nlohmann::json(nullptr);
   tally.writeTo(out);

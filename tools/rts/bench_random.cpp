@@ -117,7 +117,10 @@ int runRandomBench(const RandomBenchOptions& options) {
   out["seed"] = options.seed;
   out["costs"] = costs ? nlohmann::json(options.costsFile) : nlohmann::json(nullptr);
   if (prepared.abstraction) out["cluster_size"] = options.planner.clusterSize;
-  if (algorithm == Algorithm::Hybrid) out["tau"] = options.planner.tau;
+  if (algorithm == Algorithm::Hybrid) {
+    out["tau"] = options.planner.tau;
+    out["attempt"] = options.planner.attempt;
+  }
   tally.writeTo(out);
   out["completeness_failures"] = completenessFailures;
   out["illegal_paths"] = illegalPaths;

@@ -66,6 +66,11 @@ void addPlannerOptions(CLI::App& cmd, PlannerChoice& choice) {
                  "apart try it first")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40))
       ->capture_default_str();
+  cmd.add_option("--attempt", choice.attempt,
+                 "hybrid: what a query tries within tau before HAA*: aa (AA*, queries up to "
+                 "sqrt(tau)/2 apart) or jps+ (JPS+ counting jump points, every query; uniform "
+                 "costs)")
+      ->capture_default_str();
   cmd.add_flag("--no-smooth", choice.noSmooth,
                "hierarchical algorithms: keep the refined path as it is, unsmoothed");
 }
@@ -96,6 +101,12 @@ PreparedPlanner prepare(Algorithm algorithm, const PlannerChoice& choice, Build&
   PreparedPlanner prepared;
   prepared.algorithm = algorithm;
   prepared.hybrid.tau = choice.tau;
+  if (const auto attempt = kHybridAttemptNames.parse(choice.attempt)) {
+    prepared.hybrid.attempt = *attempt;
+  } else {
+    throw BadInput{"--attempt: unknown '" + choice.attempt + "' (choose " +
+                   kHybridAttemptNames.list() + ")"};
+  }
   if (const std::string problem = problemWith(prepared.hybrid); !problem.empty())
     throw BadInput{"--tau: " + problem};
   prepared.haa.smooth = !choice.noSmooth;

@@ -10,6 +10,8 @@
 
 #include "pathing/aa_star.h"
 #include "pathing/cluster_abstraction.h"
+#include "pathing/enum_names.h"
+#include "pathing/jump_point_search.h"
 #include "pathing/search.h"
 
 namespace warpath::pathing {
@@ -114,11 +116,25 @@ class HierarchicalAStar {
   std::unique_ptr<Scratch> scratch_;  // defined in the source so the header stays small
 };
 
+// What a hybrid query tries before HAA*.
+enum class HybridAttempt : std::uint8_t {
+  // "aa": AA* within tau expanded cells, for queries up to sqrt(tau) / 2 apart.
+  AStar,
+  // "jps+": JPS+ (jump_point_search.h, tables per agent layer) within tau expanded jump points,
+  // for every query: its jump points are few whatever the distance, and it is optimal. Under
+  // terrain costs (a weighted graph) the attempt is AA*'s.
+  JumpPoints,
+};
+inline constexpr EnumNames<HybridAttempt, 2> kHybridAttemptNames{{{
+    {HybridAttempt::AStar, "aa"},
+    {HybridAttempt::JumpPoints, "jps+"},
+}}};
+
 struct HybridOptions {
-  // Node budget of the short-query AA* attempt. Queries whose straight-line distance is at
-  // most sqrt(tau) / 2 try AA* with this budget first, the rest (and short queries that run
-  // out of budget) go to HAA*. [Limit: >= 1]
+  // Node budget of the attempt. Queries it may answer try it first with this budget, the rest
+  // (and those that run out of budget) go to HAA*. [Limit: >= 1]
   std::uint64_t tau = 4096;
+  HybridAttempt attempt = HybridAttempt::AStar;
 };
 
 // Empty when the options are usable, else what is wrong ("tau must be >= 1 (got 0)").
@@ -151,13 +167,21 @@ class HybridPlanner {
   // After the attempt's begin or update returned `status`: moves on to HAA* when it ran out
   // of budget. Returns the query's status.
   PathStatus afterAttempt(PathStatus status);
+  // f(search) on the attempt's search object (AA* or JPS+).
+  template <typename F>
+  decltype(auto) withAttempt(F&& f);
+  template <typename F>
+  decltype(auto) withAttempt(F&& f) const;
 
   HybridOptions options_;
   double shortQueryDistance_;
   // Short queries use the hierarchical planner's own AA* query object: a second one would
   // hold another whole-map scratch (12 bytes a cell) for nothing.
   HierarchicalAStar hierarchical_;
+  // The JPS+ attempt (HybridAttempt::JumpPoints; its tables are built at a layer's first use).
+  JumpPointSearch jumps_;
   // The query under way.
+  bool jumping_ = false;  // its attempt is JPS+'s
   Stage stage_ = Stage::Hierarchical;
   PathStatus attemptStatus_ = PathStatus::Pending;
   PathResult attempt_;  // a short query's attempt, once it ran out of budget
