@@ -382,6 +382,7 @@ TEST(RtsCliTest, BenchRandomUnderTerrainCosts) {
 TEST(RtsCliTest, BenchRandomRejectsBadInput) {
   const std::string random = "bench random " + fixture("terrain.map");
   expectBadInput(random + " --algo astar", "--algo: unknown planner 'astar'");
+  expectBadInput(random + " --algo hybrid --attempt jps", "--attempt: unknown 'jps' (choose");
   expectBadInput(random + " --algo haa-lq --cluster-size 1", "clusterSize must be 2..4096 (got 1)");
   expectBadInput(random + " --size 30 --capability water", "can stand nowhere");
   expectBadInput("bench random " + fixture("missing.map"), "missing.map: no such file");
