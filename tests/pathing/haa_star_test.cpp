@@ -151,33 +151,47 @@ TEST(HaaStarTest, TheCheckCatchesWrongAnswers) {
   EXPECT_NE(problem(wrong, path), "");
 }
 
-TEST(HaaStarTest, HybridPlannerIsCompleteAndShortQueriesGetTheOptimum) {
-  CompletenessTally tally;
-  int shortOptimal = 0;
-  for (int i = 0; i < kRandomMapCount; i += 4) {
+// For every fourth random map from `first`: its completeness cases (seeded by the map's seed
+// plus `seedOffset`), the catalogue's HQ graph (clusters of 10) and, for each tau, a hybrid with
+// `attempt`; calls f(map case, grid, spec, cases, hybrid, tau).
+template <typename F>
+void forHybridCases(int first, std::uint64_t seedOffset, std::initializer_list<std::uint64_t> taus,
+                    HybridAttempt attempt, F&& f) {
+  for (int i = first; i < kRandomMapCount; i += 4) {
     const RandomMapCase m = randomMapCase(i);
     const AnnotatedGrid grid(randomMap(m));
     const std::vector<CompletenessCase> cases =
-        drawCompletenessCases(grid, testing::completenessAgents(), m.seed + 100, 3, 6, 1);
+        drawCompletenessCases(grid, testing::completenessAgents(), m.seed + seedOffset, 3, 6, 1);
     const AbstractionSpec spec = catalogueSpec(10, AbstractionQuality::High);
     const ClusterAbstraction abstraction = ClusterAbstraction::build(grid, spec);
-    for (std::uint64_t tau : {std::uint64_t{16}, std::uint64_t{4096}}) {
-      HybridPlanner hybrid(abstraction, HybridOptions{.tau = tau});
-      checkCompleteness(grid, cases, hybrid, label(m, spec, "hybrid"), tally);
-      // A short query whose AA* search fits the budget well is answered by that search.
-      std::vector<Cell> path;
-      for (const CompletenessCase& c : cases) {
-        if (!c.optimum.found() || c.optimum.metrics.expanded * 2 > tau) continue;
-        const double air =
-            std::hypot(c.query.goal.x - c.query.start.x, c.query.goal.y - c.query.start.y);
-        if (air > std::sqrt(static_cast<double>(tau)) / 2.0 - 0.5) continue;
-        const PathResult result = hybrid.findPath(c.agent, c.query.start, c.query.goal, &path);
-        EXPECT_TRUE(result.metrics.usedGridSearch);
-        EXPECT_NEAR(result.cost, c.optimum.cost, 1e-9);
-        ++shortOptimal;
-      }
+    for (const std::uint64_t tau : taus) {
+      HybridPlanner hybrid(abstraction, HybridOptions{.tau = tau, .attempt = attempt});
+      f(m, grid, spec, cases, hybrid, tau);
     }
   }
+}
+
+TEST(HaaStarTest, HybridPlannerIsCompleteAndShortQueriesGetTheOptimum) {
+  CompletenessTally tally;
+  int shortOptimal = 0;
+  forHybridCases(
+      0, 100, {16, 4096}, HybridAttempt::AStar,
+      [&](const RandomMapCase& m, const AnnotatedGrid& grid, const AbstractionSpec& spec,
+          const std::vector<CompletenessCase>& cases, HybridPlanner& hybrid, std::uint64_t tau) {
+        checkCompleteness(grid, cases, hybrid, label(m, spec, "hybrid"), tally);
+        // A short query whose AA* search fits the budget well is answered by that search.
+        std::vector<Cell> path;
+        for (const CompletenessCase& c : cases) {
+          if (!c.optimum.found() || c.optimum.metrics.expanded * 2 > tau) continue;
+          const double air =
+              std::hypot(c.query.goal.x - c.query.start.x, c.query.goal.y - c.query.start.y);
+          if (air > std::sqrt(static_cast<double>(tau)) / 2.0 - 0.5) continue;
+          const PathResult result = hybrid.findPath(c.agent, c.query.start, c.query.goal, &path);
+          EXPECT_TRUE(result.metrics.usedGridSearch);
+          EXPECT_NEAR(result.cost, c.optimum.cost, 1e-9);
+          ++shortOptimal;
+        }
+      });
   EXPECT_EQ(tally.failures, 0);
   EXPECT_GT(tally.found, 800);
   EXPECT_GT(tally.notFound, 250);
@@ -191,30 +205,23 @@ TEST(HaaStarTest, HybridWithAJumpPointAttemptIsCompleteAndItsAttemptsOptimal) {
   CompletenessTally tally;
   int attempted = 0;
   int hierarchical = 0;
-  for (int i = 1; i < kRandomMapCount; i += 4) {
-    const RandomMapCase m = randomMapCase(i);
-    const AnnotatedGrid grid(randomMap(m));
-    const std::vector<CompletenessCase> cases =
-        drawCompletenessCases(grid, testing::completenessAgents(), m.seed + 200, 3, 6, 1);
-    const AbstractionSpec spec = catalogueSpec(10, AbstractionQuality::High);
-    const ClusterAbstraction abstraction = ClusterAbstraction::build(grid, spec);
-    for (std::uint64_t tau : {std::uint64_t{2}, std::uint64_t{4096}}) {
-      HybridPlanner hybrid(abstraction,
-                           HybridOptions{.tau = tau, .attempt = HybridAttempt::JumpPoints});
-      checkCompleteness(grid, cases, hybrid, label(m, spec, "hybrid jps+"), tally);
-      std::vector<Cell> path;
-      for (const CompletenessCase& c : cases) {
-        if (!c.optimum.found()) continue;
-        const PathResult result = hybrid.findPath(c.agent, c.query.start, c.query.goal, &path);
-        if (result.metrics.usedGridSearch) {
-          EXPECT_NEAR(result.cost, c.optimum.cost, 1e-9);
-          ++attempted;
-        } else {
-          ++hierarchical;
+  forHybridCases(
+      1, 200, {2, 4096}, HybridAttempt::JumpPoints,
+      [&](const RandomMapCase& m, const AnnotatedGrid& grid, const AbstractionSpec& spec,
+          const std::vector<CompletenessCase>& cases, HybridPlanner& hybrid, std::uint64_t) {
+        checkCompleteness(grid, cases, hybrid, label(m, spec, "hybrid jps+"), tally);
+        std::vector<Cell> path;
+        for (const CompletenessCase& c : cases) {
+          if (!c.optimum.found()) continue;
+          const PathResult result = hybrid.findPath(c.agent, c.query.start, c.query.goal, &path);
+          if (result.metrics.usedGridSearch) {
+            EXPECT_NEAR(result.cost, c.optimum.cost, 1e-9);
+            ++attempted;
+          } else {
+            ++hierarchical;
+          }
         }
-      }
-    }
-  }
+      });
   EXPECT_EQ(tally.failures, 0);
   EXPECT_GT(tally.found, 800);
   EXPECT_GT(tally.notFound, 250);

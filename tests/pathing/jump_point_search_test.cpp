@@ -46,6 +46,27 @@ bool expectSameAsAStar(const AnnotatedGrid& grid, JumpPointSearch& jps, Agent ag
   return true;
 }
 
+// Random queries inside `region` (agents from agentFor(query number)), each checked against
+// AA* kept to the same region; returns how many found a path.
+template <typename AgentFor>
+int regionQueriesAsAStar(const AnnotatedGrid& grid, JumpPointSearch& jps, CellRect region,
+                         SplitMix64& rng, int queries, AgentFor agentFor) {
+  int found = 0;
+  for (int q = 0; q < queries; ++q) {
+    const Cell start{rng.between(region.x, region.x + region.width - 1),
+                     rng.between(region.y, region.y + region.height - 1)};
+    const Cell goal{rng.between(region.x, region.x + region.width - 1),
+                    rng.between(region.y, region.y + region.height - 1)};
+    const Agent agent = agentFor(q);
+    if (!grid.canStand(agent, start) || !grid.canStand(agent, goal)) continue;
+    found += expectSameAsAStar(grid, jps, agent, start, goal,
+                               {.maxExpanded = UINT64_MAX, .region = region})
+                 ? 1
+                 : 0;
+  }
+  return found;
+}
+
 // Optimal for every size and capability: random multi-terrain maps, sparse and cluttered,
 // small patches and large ones.
 TEST(JumpPointSearch, FindsPathsAsShortAsAStarForEverySizeAndCapability) {
@@ -108,20 +129,11 @@ TEST(JumpPointSearch, KeepsToARegionAsAStarDoes) {
   SplitMix64 rng(5);
   const CellRect region{8, 6, 20, 16};
   JumpPointSearch jps(grid);
-  int found = 0;
-  for (int q = 0; q < 300; ++q) {
-    const Cell start{rng.between(region.x, region.x + region.width - 1),
-                     rng.between(region.y, region.y + region.height - 1)};
-    const Cell goal{rng.between(region.x, region.x + region.width - 1),
-                    rng.between(region.y, region.y + region.height - 1)};
-    const Agent agent{1 + q % 2, kInfantry};
-    if (!grid.canStand(agent, start) || !grid.canStand(agent, goal)) continue;
-    found += expectSameAsAStar(grid, jps, agent, start, goal,
-                               {.maxExpanded = UINT64_MAX, .region = region})
-                 ? 1
-                 : 0;
-  }
-  EXPECT_GT(found, 50);
+  EXPECT_GT(regionQueriesAsAStar(grid, jps, region, rng, 300,
+                                 [](int q) {
+                                   return Agent{1 + q % 2, kInfantry};
+                                 }),
+            50);
 }
 
 // On open ground the jumps skip the symmetric cells: far fewer expansions than AA*.
@@ -248,19 +260,7 @@ TEST(JumpPointSearch, PrecomputedJumpsKeepToARegionAndReportTheirMemoryPerLayer)
   SplitMix64 rng(5);
   const CellRect region{8, 6, 20, 16};
   const Agent agent{1, kInfantry};
-  int found = 0;
-  for (int q = 0; q < 200; ++q) {
-    const Cell start{rng.between(region.x, region.x + region.width - 1),
-                     rng.between(region.y, region.y + region.height - 1)};
-    const Cell goal{rng.between(region.x, region.x + region.width - 1),
-                    rng.between(region.y, region.y + region.height - 1)};
-    if (!grid.canStand(agent, start) || !grid.canStand(agent, goal)) continue;
-    found += expectSameAsAStar(grid, jps, agent, start, goal,
-                               {.maxExpanded = UINT64_MAX, .region = region})
-                 ? 1
-                 : 0;
-  }
-  EXPECT_GT(found, 50);
+  EXPECT_GT(regionQueriesAsAStar(grid, jps, region, rng, 200, [&](int) { return agent; }), 50);
   ASSERT_EQ(jps.layerBytes().size(), 1u);
   const std::size_t bitmaps = jps.layerBytes()[0].bytes;
   EXPECT_EQ(bitmaps, jps.bitmapBytes());
