@@ -371,8 +371,29 @@ TerrainChange AnnotatedGrid::clearObstacle(CellRect area) {
   return {area, changed};
 }
 
+std::optional<CellRect> AnnotatedGrid::changedSince(std::uint64_t revision) const {
+  if (revision > revision_ || revision_ - revision > changes_.size()) return std::nullopt;
+  std::optional<CellRect> all;
+  for (std::size_t i = changes_.size() - static_cast<std::size_t>(revision_ - revision);
+       i < changes_.size(); ++i) {
+    const CellRect& c = changes_[i];
+    if (!all) {
+      all = c;
+      continue;
+    }
+    const int x0 = std::min(all->x, c.x);
+    const int y0 = std::min(all->y, c.y);
+    const int x1 = std::max(all->x + all->width, c.x + c.width);
+    const int y1 = std::max(all->y + all->height, c.y + c.height);
+    all = CellRect{x0, y0, x1 - x0, y1 - y0};
+  }
+  return all.value_or(CellRect{0, 0, 0, 0});
+}
+
 void AnnotatedGrid::refresh(CellRect area) {
   ++revision_;
+  changes_.push_back(area);
+  if (changes_.size() > kChangesKept) changes_.pop_front();
   std::lock_guard lock(mutex_);
   for (auto& [capability, field] : clearances_) {
     const CellRect changed = field->update(map_, area);

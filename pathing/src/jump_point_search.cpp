@@ -144,6 +144,18 @@ std::vector<LayerBytes> JumpPointSearch::layerBytes() const {
   return layers;
 }
 
+// Where `agent` may have started or stopped standing since `revision`: the grid's changes grown
+// by the agent's size up and left (a footprint anchored there covers a changed cell), clipped;
+// nullopt when the grid no longer knows.
+std::optional<CellRect> JumpPointSearch::standingChangedSince(Agent agent,
+                                                              std::uint64_t revision) const {
+  const std::optional<CellRect> changed = grid_.changedSince(revision);
+  if (!changed || changed->width <= 0 || changed->height <= 0) return changed;
+  const int grow = agent.size - 1;
+  return grid_.map().clip(
+      {changed->x - grow, changed->y - grow, changed->width + grow, changed->height + grow});
+}
+
 const JumpPointSearch::Bitmap& JumpPointSearch::bitmapFor(Agent agent) {
   auto it = std::find_if(bitmaps_.begin(), bitmaps_.end(), [&](const Bitmap& b) {
     return b.agent.size == agent.size && b.agent.capability == agent.capability;
@@ -159,19 +171,35 @@ const JumpPointSearch::Bitmap& JumpPointSearch::bitmapFor(Agent agent) {
   Bitmap& b = *it;
   const GridMap& map = grid_.map();
   const ClearanceField& clearance = grid_.clearance(agent.capability);
+  // After changes the grid still knows, only their cells are set again; else every cell.
+  std::optional<CellRect> area;
+  if (!b.rows.empty()) area = standingChangedSince(agent, b.revision);
   b.revision = grid_.revision();
-  b.rowWords = (map.width() + 63) / 64;
-  b.columnWords = (map.height() + 63) / 64;
-  b.rows.assign(static_cast<std::size_t>(b.rowWords) * static_cast<std::size_t>(map.height()), 0);
-  b.columns.assign(static_cast<std::size_t>(b.columnWords) * static_cast<std::size_t>(map.width()),
-                   0);
-  for (int y = 0; y < map.height(); ++y) {
-    for (int x = 0; x < map.width(); ++x) {
-      if (clearance.at({x, y}) < agent.size) continue;
-      b.rows[static_cast<std::size_t>(y) * static_cast<std::size_t>(b.rowWords) +
-             static_cast<std::size_t>(x >> 6)] |= std::uint64_t{1} << (x & 63);
-      b.columns[static_cast<std::size_t>(x) * static_cast<std::size_t>(b.columnWords) +
-                static_cast<std::size_t>(y >> 6)] |= std::uint64_t{1} << (y & 63);
+  if (!area) {
+    b.rowWords = (map.width() + 63) / 64;
+    b.columnWords = (map.height() + 63) / 64;
+    b.rows.assign(static_cast<std::size_t>(b.rowWords) * static_cast<std::size_t>(map.height()), 0);
+    b.columns.assign(
+        static_cast<std::size_t>(b.columnWords) * static_cast<std::size_t>(map.width()), 0);
+    area = CellRect{0, 0, map.width(), map.height()};
+  }
+  for (int y = area->y; y < area->y + area->height; ++y) {
+    for (int x = area->x; x < area->x + area->width; ++x) {
+      const std::uint64_t rowBit = std::uint64_t{1} << (x & 63);
+      const std::uint64_t columnBit = std::uint64_t{1} << (y & 63);
+      std::uint64_t& row =
+          b.rows[static_cast<std::size_t>(y) * static_cast<std::size_t>(b.rowWords) +
+                 static_cast<std::size_t>(x >> 6)];
+      std::uint64_t& column =
+          b.columns[static_cast<std::size_t>(x) * static_cast<std::size_t>(b.columnWords) +
+                    static_cast<std::size_t>(y >> 6)];
+      if (clearance.at({x, y}) >= agent.size) {
+        row |= rowBit;
+        column |= columnBit;
+      } else {
+        row &= ~rowBit;
+        column &= ~columnBit;
+      }
     }
   }
   return b;
@@ -333,48 +361,46 @@ const JumpPointSearch::JumpTable& JumpPointSearch::tableFor(Agent agent) {
     return *it;
   }
   JumpTable& t = *it;
+  // Known before bitmapFor brings the bit maps up to date.
+  const std::optional<CellRect> known =
+      t.distances.empty() ? std::nullopt : standingChangedSince(agent, t.revision);
   const Bitmap& bits = bitmapFor(agent);
   const GridMap& map = grid_.map();
   const int width = map.width();
   const int height = map.height();
   const std::size_t framed = static_cast<std::size_t>(width + 2);
-  std::vector<std::uint8_t> standing(framed * static_cast<std::size_t>(height + 2), 0);
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      standing[static_cast<std::size_t>(y + 1) * framed + static_cast<std::size_t>(x + 1)] =
-          static_cast<std::uint8_t>(
-              (bits.rows[static_cast<std::size_t>(y) * static_cast<std::size_t>(bits.rowWords) +
-                         static_cast<std::size_t>(x >> 6)] >>
-               (x & 63)) &
-              1u);
-    }
-  }
+  const auto standsAt = [&](int x, int y) {
+    return static_cast<std::uint8_t>(
+        (bits.rows[static_cast<std::size_t>(y) * static_cast<std::size_t>(bits.rowWords) +
+                   static_cast<std::size_t>(x >> 6)] >>
+         (x & 63)) &
+        1u);
+  };
+  const auto slot = [&](int x, int y) {
+    return static_cast<std::size_t>(y + 1) * framed + static_cast<std::size_t>(x + 1);
+  };
   t.revision = grid_.revision();
-  if (!t.distances.empty() && t.standing.size() == standing.size()) {
-    // The bounding box of the cells whose standing changed.
+  if (!t.distances.empty()) {
+    // The cells whose standing may have changed: those of the grid's changes it still knows,
+    // else all; their bounding box where it did change.
+    const CellRect area = known.value_or(CellRect{0, 0, width, height});
     int x0 = width, y0 = height, x1 = -1, y1 = -1;
-    for (int y = 0; y < height; ++y) {
-      const std::size_t row = static_cast<std::size_t>(y + 1) * framed + 1;
-      if (std::equal(standing.begin() + static_cast<std::ptrdiff_t>(row),
-                     standing.begin() + static_cast<std::ptrdiff_t>(row) + width,
-                     t.standing.begin() + static_cast<std::ptrdiff_t>(row)))
-        continue;
-      y0 = std::min(y0, y);
-      y1 = y;
-      for (int x = 0; x < width; ++x) {
-        if (standing[row + static_cast<std::size_t>(x)] ==
-            t.standing[row + static_cast<std::size_t>(x)])
-          continue;
+    for (int y = area.y; y < area.y + area.height; ++y) {
+      for (int x = area.x; x < area.x + area.width; ++x) {
+        const std::uint8_t now = standsAt(x, y);
+        if (t.standing[slot(x, y)] == now) continue;
+        t.standing[slot(x, y)] = now;
         x0 = std::min(x0, x);
         x1 = std::max(x1, x);
+        y0 = std::min(y0, y);
+        y1 = std::max(y1, y);
       }
     }
-    t.standing = std::move(standing);
     if (y1 < 0) return t;  // this layer did not change
-    const std::size_t area =
+    const std::size_t changed =
         static_cast<std::size_t>(x1 - x0 + 1) * static_cast<std::size_t>(y1 - y0 + 1);
     TableSweeps sweeps(t.standing, width, height, t.distances);
-    if (area * 8 <= map.cellCount()) {
+    if (changed * 8 <= map.cellCount()) {
       sweeps.around({x0, y0, x1 - x0 + 1, y1 - y0 + 1});
       ++tableCounts_.repairs;
     } else {
@@ -382,6 +408,11 @@ const JumpPointSearch::JumpTable& JumpPointSearch::tableFor(Agent agent) {
       ++tableCounts_.builds;
     }
     return t;
+  }
+  std::vector<std::uint8_t> standing(framed * static_cast<std::size_t>(height + 2), 0);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x)
+      standing[slot(x, y)] = standsAt(x, y);
   }
   t.standing = std::move(standing);
   t.distances.assign(map.cellCount() * 8, 0);

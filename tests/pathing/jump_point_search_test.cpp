@@ -280,7 +280,8 @@ TEST(JumpPointSearch, PrecomputedJumpsKeepToARegionAndReportTheirMemoryPerLayer)
 
 // After terrain changes a table is repaired around the cells where the agent's standing changed
 // (or built whole when they spread far): entry for entry the table built from scratch on the
-// changed map, and the search answers as one with such tables. Open maps (long diagonal runs,
+// changed map, and the search answers as one with such tables (also after more changes than
+// the grid keeps a record of). Open maps (long diagonal runs,
 // whose entries change far from a change) and cluttered ones; walls, gaps, single cells, water
 // and clearings, near the borders too; sizes 1-3.
 TEST(JumpPointSearch, RepairedTablesAreTheTablesBuiltOnTheChangedMap) {
@@ -319,6 +320,12 @@ TEST(JumpPointSearch, RepairedTablesAreTheTablesBuiltOnTheChangedMap) {
       const Terrain terrains[] = {Terrain::Blocked, Terrain::Ground, Terrain::Water,
                                   Terrain::Trees};
       (void)grid.setTerrain(area, terrains[rng.between(0, 3)]);
+      // Once, more changes than the grid keeps: the repair must find what changed itself.
+      for (int more = change == 15 ? 0 : 1000; more < 80; ++more) {
+        (void)grid.setTerrain(
+            {rng.between(0, map.width() - 1), rng.between(0, map.height() - 1), 1, 1},
+            terrains[more % 4]);
+      }
     }
     // Most changes were repaired; the large ones (and each layer's first query) built whole.
     EXPECT_GT(repaired.tableCounts().repairs, 60u);

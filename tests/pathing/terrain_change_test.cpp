@@ -109,6 +109,27 @@ TEST(TerrainChange, RepairedCachesEqualFreshOnes) {
   }
 }
 
+// The grid keeps the areas of its last changes, so caches built at a revision can repair just
+// what changed since: the bounding box of those changes (clipped), empty when none (a call that
+// changed no cell is no change), and nullopt once more changes were made than it keeps.
+TEST(TerrainChange, TheGridTellsWhatChangedSinceARevision) {
+  AnnotatedGrid grid(GridMap(40, 30));
+  EXPECT_EQ(grid.changedSince(0), (CellRect{0, 0, 0, 0}));
+  (void)grid.setTerrain({3, 4, 2, 2}, Terrain::Water);
+  (void)grid.setTerrain({3, 4, 2, 2}, Terrain::Water);  // no cell changes: no revision
+  ASSERT_EQ(grid.revision(), 1u);
+  (void)grid.placeObstacle({36, 27, 8, 8});  // clipped to the map
+  EXPECT_EQ(grid.changedSince(0), (CellRect{3, 4, 37, 26}));
+  EXPECT_EQ(grid.changedSince(1), (CellRect{36, 27, 4, 3}));
+  EXPECT_EQ(grid.changedSince(2), (CellRect{0, 0, 0, 0}));
+  EXPECT_FALSE(grid.changedSince(3));  // a revision the grid has not reached
+  for (std::size_t i = 0; i < AnnotatedGrid::kChangesKept; ++i)
+    (void)grid.setTerrain({0, 0, 1, 1}, i % 2 == 0 ? Terrain::Trees : Terrain::Ground);
+  EXPECT_FALSE(grid.changedSince(0));
+  EXPECT_FALSE(grid.changedSince(1));
+  EXPECT_EQ(grid.changedSince(2), (CellRect{0, 0, 1, 1}));
+}
+
 TEST(TerrainChange, ObstaclesKeepTheTerrainUnderneath) {
   GridMap map(12, 8);
   map.set({4, 4}, Terrain::Swamp);

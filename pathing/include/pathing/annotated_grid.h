@@ -6,9 +6,11 @@
 // which no query may overlap.
 
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -98,6 +100,11 @@ class AnnotatedGrid {
   TerrainChange clearObstacle(CellRect area);
   // Counts the changes made (calls that changed a cell), from 0.
   std::uint64_t revision() const { return revision_; }
+  // The smallest rectangle holding every cell changed after `revision` (empty when none), for
+  // caches that repair rather than rebuild; nullopt when those changes are too many to keep
+  // (the last kChangesKept are), so the cache must find what changed itself.
+  std::optional<CellRect> changedSince(std::uint64_t revision) const;
+  static constexpr std::size_t kChangesKept = 64;
 
  private:
   // Repairs the caches after the cells of `area` changed.
@@ -109,6 +116,7 @@ class AnnotatedGrid {
   std::vector<std::uint16_t> obstacles_;
   std::vector<Terrain> underneath_;
   std::uint64_t revision_ = 0;
+  std::deque<CellRect> changes_;  // the areas of the last changes, the newest (revision_) last
   mutable std::mutex mutex_;
   mutable std::map<Capability, std::unique_ptr<ClearanceField>> clearances_;
   mutable std::map<Agent, std::unique_ptr<AgentLayer>> layers_;

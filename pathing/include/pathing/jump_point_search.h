@@ -17,6 +17,7 @@
 // A query object owns its scratch memory and reuses it; the AnnotatedGrid may be shared.
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "pathing/annotated_grid.h"
@@ -86,6 +87,7 @@ class JumpPointSearch {
     std::vector<std::uint64_t> columns;
   };
   const Bitmap& bitmapFor(Agent agent);
+  std::optional<CellRect> standingChangedSince(Agent agent, std::uint64_t revision) const;
 
   // JPS+: for each cell (row-major) and direction (kTableDirections), the steps to the jump
   // point the jump from that cell ends at (> 0), else minus the steps it can take before a wall
