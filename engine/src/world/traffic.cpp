@@ -335,6 +335,7 @@ void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent) {
     case CooperativeStatus::InvalidStart:
     case CooperativeStatus::InvalidGoal:
     case CooperativeStatus::Unreachable:
+    case CooperativeStatus::Pending:  // never: plan() runs the search to its end
       // Pushed out of its corridor (or its goal changed under it): a new spatial path.
       hold(w, unit);
       w.log(EventKind::Repath, unit, 1);
