@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "cooperative_request.h"
 #include "pathing/aa_star.h"
 #include "pathing/cooperative_search.h"
 #include "pathing/map_io.h"
@@ -22,18 +23,10 @@ namespace {
 
 const Capability kGround = Capability::of({Terrain::Ground});
 
-CooperativeRequest requestFor(Agent agent, Cell start, Cell goal, Tick window) {
-  CooperativeRequest r;
-  r.agent = agent;
-  r.start = start;
-  r.goal = goal;
-  r.self = 1;
-  r.ticksPerCell.fill(10.0);
+// Moves from rest take 3 ticks longer.
+CooperativeRequest requestFrom(Agent agent, Cell start, Cell goal, Tick window) {
+  CooperativeRequest r = requestFor(agent, start, goal, window);
   r.startTicks = 3;
-  r.waitTicks = 5;
-  r.window = window;
-  r.maxWindow = 4 * window;
-  r.holdTicks = 10;
   return r;
 }
 
@@ -64,7 +57,7 @@ void fillTable(const AnnotatedGrid& grid, ReservationTable& table, std::mt19937&
     const Cell goal = standable(grid, agent, rng);
     std::vector<Cell> path;
     if (!astar.findPath(agent, start, goal, &path).found()) continue;
-    CooperativeRequest r = requestFor(agent, start, goal, 80);
+    CooperativeRequest r = requestFrom(agent, start, goal, 80);
     r.self = static_cast<std::uint32_t>(i + 2);
     r.startTick = std::uniform_int_distribution<Tick>(0, 30)(rng);
     ReverseResumableSearch field(grid, agent, goal, start);
@@ -130,7 +123,7 @@ TEST(SlicedCooperativeSearch, SlicesPlanWhatOneShotPlans) {
       std::vector<Cell> path;
       if (!astar.findPath(agent, start, goal, &path).found()) continue;
       // Short and long windows, a tight expansion limit (Blocked), passing room for infantry.
-      CooperativeRequest r = requestFor(agent, start, goal, query % 2 == 0 ? 60 : 600);
+      CooperativeRequest r = requestFrom(agent, start, goal, query % 2 == 0 ? 60 : 600);
       r.startTick = 10;
       r.startsAtRest = query % 2 == 1;
       if (query == 4) r.expansionLimit = 40;
@@ -203,7 +196,7 @@ struct Strip {
   ReservationTable table{16, 5};
   CooperativeSearch search{grid};
   Agent agent{1, kGround};
-  CooperativeRequest request = requestFor(agent, {0, 2}, {12, 2}, 400);
+  CooperativeRequest request = requestFrom(agent, {0, 2}, {12, 2}, 400);
   std::vector<Cell> path = row(2, 0, 12);
   CorridorDistance field{grid, agent, path, 2};
 };
