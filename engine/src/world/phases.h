@@ -112,6 +112,10 @@ inline bool keptOut(const TimedPlan& plan) {
 // Drops the unit's reservations and window but not its place at a passage's gate: it stands
 // where it is and plans a new window as soon as the budget lets it.
 void expireWindow(Refs& w, Unit& unit);
+// Gives the unit a plan to stand at `anchor` from now (Blocked, timed: a wait, not a jam) with
+// that gate claim, holding the anchor for good until its next window.
+void standAt(Refs& w, Unit& unit, pathing::Cell anchor, std::int32_t gate, bool admitted,
+             pathing::Tick gateSince);
 // True when the plan holds the unit where it is at `tick` (a wait, or the end of a window that
 // did not reach the goal).
 bool waitingAt(const TimedPlan& plan, pathing::Tick tick);

@@ -103,20 +103,24 @@ void releaseReservations(Refs& w, Unit& unit) {
   unit.heldSince = -1;
 }
 
+void standAt(Refs& w, Unit& unit, Cell anchor, std::int32_t gate, bool admitted, Tick gateSince) {
+  TimedPlan stub = timedPlan({{anchor, w.state.tick}}, CooperativeStatus::Blocked, true);
+  stub.gate = gate;
+  stub.admitted = admitted;
+  stub.gateSince = gateSince;
+  releaseReservations(w, unit);
+  CooperativeSearch::reserve(*w.state.reservations, stub.steps, w.typeOf(unit).size, ownerOf(unit),
+                             kForever);
+  unit.plan = std::make_shared<const TimedPlan>(std::move(stub));
+}
+
 void expireWindow(Refs& w, Unit& unit) {
   if (!unit.plan || unit.plan->gate < 0) {
     releaseReservations(w, unit);
     return;
   }
-  TimedPlan stub =
-      timedPlan({{nearestStandable(w, unit), w.state.tick}}, CooperativeStatus::Blocked, true);
-  stub.gate = unit.plan->gate;
-  stub.admitted = unit.plan->admitted;
-  stub.gateSince = unit.plan->gateSince;
-  releaseReservations(w, unit);
-  CooperativeSearch::reserve(*w.state.reservations, stub.steps, w.typeOf(unit).size, ownerOf(unit),
-                             kForever);
-  unit.plan = std::make_shared<const TimedPlan>(std::move(stub));
+  standAt(w, unit, nearestStandable(w, unit), unit.plan->gate, unit.plan->admitted,
+          unit.plan->gateSince);
 }
 
 bool waitingAt(const TimedPlan& plan, Tick tick) {
@@ -379,8 +383,9 @@ void Traffic::resumeWindow(Refs& w, std::uint64_t& spent, std::uint64_t limit) {
     work_.expanded += used;
   }
   if (p.status == CooperativeStatus::Pending) {
-    // It stands where it is until its window comes (as units waiting for the budget do).
-    hold(w, unit);
+    // It stands at its start until its window comes, on a plan that says so (a wait that is no
+    // jam, its place at a passage's gate kept) and holds the start for good meanwhile.
+    standAt(w, unit, p.start, p.gate, p.admitted, p.gateSince);
     work_.paused = true;
     return;
   }
@@ -399,7 +404,7 @@ void Traffic::commitWindow(Refs& w, Unit& unit, CooperativePlan found, Cell star
                            Tick gateSince) {
   DistanceField& field = fieldFor(w, unit);
   const bool keptOut = gate >= 0 && !admitted;
-  releaseReservations(w, unit);  // a sliced search's unit held its place meanwhile
+  releaseReservations(w, unit);  // a sliced search's unit stood at its start meanwhile
   MovementStats& stats = w.state.movement;
   stats.expanded += found.metrics.expanded;
   ++stats.windows;
