@@ -692,7 +692,11 @@ void Traffic::breakDeadlocks(Refs& w, std::uint64_t& spent, std::uint64_t limit)
     for (std::uint32_t m : cycle_) {
       // Sliced, one window search at a time within the budget: the others hold their places
       // and plan when their turn comes.
-      if (sliced(w) && (pending_ || spent >= limit)) {
+      if (pending_ && pending_->unit == m) {
+        // Its search goes on: it stands at its start again.
+        standAt(w, all[m], pending_->start, pending_->gate, pending_->admitted,
+                pending_->gateSince);
+      } else if (sliced(w) && (pending_ || spent >= limit)) {
         releaseReservations(w, all[m]);  // hold() reserves again what the release dropped
         hold(w, all[m]);
       } else {
