@@ -251,7 +251,8 @@ class CooperativeSearch {
   // or Pending and no steps while unfinished. Both return Pending until the plan is done, then
   // its status. While it is unfinished the request's pointers, the field and the table must
   // stay alive; the table may change between updates (a resumed search reads it as it is: see
-  // finalizePlanAt), the field and the grid may not.
+  // finalizePlanAt), and others may settle the field further (its distances stay the same), but
+  // the grid may not change nor the field be replaced.
   CooperativeStatus beginPlan(const CooperativeRequest& request, DistanceField& field,
                               const ReservationTable& table);
   CooperativeStatus updatePlan(std::uint64_t maxExpansions);
