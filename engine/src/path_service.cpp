@@ -153,6 +153,11 @@ std::uint64_t PathService::slicedExpanded() const {
   return inFlight_ ? inFlight_->expandedSoFar() : 0;
 }
 
+void PathService::countWindows(std::uint64_t served, std::uint64_t windows, bool paused) {
+  metrics_.maxTickExpanded = std::max(metrics_.maxTickExpanded, served + windows);
+  if (paused) ++metrics_.windowSlices;
+}
+
 void PathService::changeTerrain(const TerrainChange& change) {
   if (!change.changed) return;
   // A search under way read the old terrain (and graphs about to be repaired): begun again.

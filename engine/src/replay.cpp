@@ -380,11 +380,12 @@ Result<Scenario> replayScenario(const Replay& replay) {
     return *it->second;
   };
   // A scenario that does not say `pathing: cooperative` plays back as it was recorded: with
-  // cooperation off before it became the default, and without congestion-aware routes before
-  // they came (no older scenario can name them).
+  // cooperation off before it became the default, without congestion-aware routes before they
+  // came (no older scenario can name them), and with window searches unsliced before they were.
   WorldSettings defaults;
   if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
   if (replay.version < kFirstCongestionReplayVersion) defaults.pathing.congestion = false;
+  if (replay.version < kFirstSlicedWindowsReplayVersion) defaults.pathing.slicedWindows = false;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

@@ -221,7 +221,9 @@ void World::step() {
   // with what is left of the budget.
   const std::uint64_t spent = world::deliverPaths(w, phases_->deliveries);
   const std::uint64_t budget = settings_.pathing.expansionBudget;
-  phases_->traffic.plan(w, budget > spent ? budget - spent : 0);
+  const world::Traffic::TickWork windows =
+      phases_->traffic.plan(w, budget > spent ? budget - spent : 0);
+  state_.paths->countWindows(spent, windows.expanded, windows.paused);
   timer.mark(Phase::Pathing);
   // 3. Targets, steering along paths, fire and shots landing.
   const bool combat = settings_.combat.enabled;

@@ -52,18 +52,18 @@ void ReverseResumableSearch::push(std::uint32_t cell, double g) {
   });
 }
 
-double ReverseResumableSearch::distance(Cell c) {
+bool ReverseResumableSearch::settle(Cell c, std::uint64_t& allowance) {
   // Where the agent cannot stand nothing is reached: answered without searching everything.
-  if (!grid_.canStand(agent_, c)) return kInfinity;
+  if (!grid_.canStand(agent_, c)) return true;
   const std::uint32_t wanted = map_.indexOf(c);
-  if (const auto it = entries_.find(wanted); it != entries_.end() && it->second.closed)
-    return it->second.g;
+  if (const auto it = entries_.find(wanted); it != entries_.end() && it->second.closed) return true;
   const auto order = [](const Open& a, const Open& b) {
     if (a.f != b.f) return a.f > b.f;
     if (a.g != b.g) return a.g < b.g;
     return a.cell > b.cell;
   };
   while (!open_.empty()) {
+    if (allowance == 0) return false;
     std::pop_heap(open_.begin(), open_.end(), order);
     const Open top = open_.back();
     open_.pop_back();
@@ -73,6 +73,7 @@ double ReverseResumableSearch::distance(Cell c) {
     e.closed = true;
     e.g = top.g;
     ++expanded_;
+    --allowance;
     const Cell here = cellAt(map_, top.cell);
     const std::uint8_t mask = moves_[top.cell];
     for (int d = 0; d < kDirectionCount; ++d) {
@@ -86,9 +87,15 @@ double ReverseResumableSearch::distance(Cell c) {
       it->second.g = g;
       push(next, g);
     }
-    if (top.cell == wanted) return top.g;
+    if (top.cell == wanted) return true;
   }
-  return kInfinity;
+  return true;  // the open list ran out: unreachable
+}
+
+double ReverseResumableSearch::settled(Cell c) const {
+  if (!grid_.canStand(agent_, c)) return kInfinity;
+  const auto it = entries_.find(map_.indexOf(c));
+  return it != entries_.end() && it->second.closed ? it->second.g : kInfinity;
 }
 
 // --- Corridor ---
@@ -152,37 +159,48 @@ CorridorDistance::CorridorDistance(const AnnotatedGrid& grid, Agent agent,
   distances_.assign(cells, kInfinity);
 
   // Dijkstra from the goal over the corridor (moves are symmetric; they lead only to cells the
-  // agent may stand on). Final distances do not depend on the order among equal keys: a cell's
-  // distance is the least of its closer neighbours' plus a move, and moves cost at least 1.
+  // agent may stand on), run by settle(). Final distances do not depend on the order among
+  // equal keys, nor on where slices end: a cell's distance is the least of its closer
+  // neighbours' plus a move, and moves cost at least 1.
   if (!grid.canStand(agent, path.back())) return;
-  const std::span<const std::uint8_t> moves = grid.layer(agent).moveMasks();
-  std::vector<Cell> cellOf(cells);
+  map_ = &map;
+  moves_ = grid.layer(agent).moveMasks();
+  cellOf_.resize(cells);
   for (const Run& run : runs_) {
     for (int x = run.x0; x <= run.x1; ++x)
-      cellOf[run.offset + static_cast<std::uint32_t>(x - run.x0)] = {x, run.y};
+      cellOf_[run.offset + static_cast<std::uint32_t>(x - run.x0)] = {x, run.y};
   }
-  std::vector<bool> settled(cells, false);
-  OpenList open;
+  closed_.assign(cells, false);
   const auto goal = static_cast<std::uint32_t>(slot(path.back()));
   distances_[goal] = 0.0;
-  open.push(OpenList::makeKey(0.0, 0.0), goal);
-  while (!open.empty()) {
-    const std::uint32_t current = open.pop();
-    if (settled[current]) continue;
-    settled[current] = true;
+  open_.push(OpenList::makeKey(0.0, 0.0), goal);
+}
+
+bool CorridorDistance::settle(Cell /*c*/, std::uint64_t& allowance) {
+  while (!open_.empty()) {
+    if (allowance == 0) return false;
+    const std::uint32_t current = open_.pop();
+    if (closed_[current]) continue;
+    closed_[current] = true;
     ++expanded_;
+    --allowance;
     const double g = distances_[current];
-    const Cell here = cellOf[current];
-    for (unsigned mask = moves[map.indexOf(here)]; mask != 0; mask &= mask - 1) {
+    const Cell here = cellOf_[current];
+    for (unsigned mask = moves_[map_->indexOf(here)]; mask != 0; mask &= mask - 1) {
       const Direction& dir = kDirections[static_cast<std::size_t>(std::countr_zero(mask))];
       const std::ptrdiff_t at = slot({here.x + dir.dx, here.y + dir.dy});
       if (at < 0) continue;
       double& known = distances_[static_cast<std::size_t>(at)];
       if (known <= g + dir.cost) continue;
       known = g + dir.cost;
-      open.push(OpenList::makeKey(known, known), static_cast<std::uint32_t>(at));
+      open_.push(OpenList::makeKey(known, known), static_cast<std::uint32_t>(at));
     }
   }
+  if (!cellOf_.empty()) {  // done: the scratch goes
+    cellOf_ = {};
+    closed_ = {};
+  }
+  return true;
 }
 
 std::ptrdiff_t CorridorDistance::slot(Cell c) const {
@@ -197,7 +215,7 @@ std::ptrdiff_t CorridorDistance::slot(Cell c) const {
   return -1;
 }
 
-double CorridorDistance::distance(Cell c) {
+double CorridorDistance::settled(Cell c) const {
   const std::ptrdiff_t at = slot(c);
   return at < 0 ? kInfinity : distances_[static_cast<std::size_t>(at)];
 }
@@ -287,179 +305,317 @@ CooperativeSearch::CooperativeSearch(const AnnotatedGrid& grid) : grid_(grid) {}
 
 CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceField& field,
                                         const ReservationTable& table) {
+  beginPlan(r, field, table);
+  updatePlan(kUnboundedExpansions);
+  return finalizePlan();
+}
+
+namespace {
+
+bool openOrder(double fa, Tick ga, std::uint32_t na, double fb, Tick gb, std::uint32_t nb) {
+  if (fa != fb) return fa > fb;
+  if (ga != gb) return ga < gb;
+  return na > nb;
+}
+
+}  // namespace
+
+CooperativeStatus CooperativeSearch::beginPlan(const CooperativeRequest& r, DistanceField& field,
+                                               const ReservationTable& table) {
   const QueryClock clock;
-  CooperativePlan out;
-  const GridMap& map = grid_.map();
+  request_ = r;
+  field_ = &field;
+  table_ = &table;
+  plan_ = {};
+  current_ = -1;
+  phase_ = Phase::Done;
   if (!problemWith(r).empty() || !grid_.canStand(r.agent, r.start)) {
-    out.status = CooperativeStatus::InvalidStart;
-    return out;
+    plan_.status = CooperativeStatus::InvalidStart;
+  } else if (!grid_.canStand(r.agent, r.goal)) {
+    plan_.status = CooperativeStatus::InvalidGoal;
+  } else {
+    plan_.status = CooperativeStatus::Pending;
+    phase_ = Phase::Start;
   }
-  if (!grid_.canStand(r.agent, r.goal)) {
-    out.status = CooperativeStatus::InvalidGoal;
-    return out;
-  }
-  const double startDistance = field.distance(r.start);
-  if (!std::isfinite(startDistance)) {
-    out.status = CooperativeStatus::Unreachable;
-    return out;
-  }
-  double minTicks = kInfinity;
-  for (int slot = 0; slot < kTraversableTerrainSlots; ++slot) {
-    const double t = r.ticksPerCell[static_cast<std::size_t>(slot)];
-    if (r.agent.capability.allows(static_cast<Terrain>(slot)) && t > 0.0 && std::isfinite(t))
-      minTicks = std::min(minTicks, t);
-  }
-  const int size = r.agent.size;
-  const int half = size / 2;
-  const std::span<const std::uint8_t> moves = grid_.layer(r.agent).moveMasks();
-  const Tick windowEnd = r.startTick + r.window;
-  const Tick hardEnd = r.startTick + r.maxWindow;
+  plan_.metrics.microseconds = clock.elapsedMicroseconds();
+  return plan_.status;
+}
 
-  nodes_.clear();
-  open_.clear();
-  seen_.clear();
-  const auto order = [](const Open& a, const Open& b) {
-    if (a.f != b.f) return a.f > b.f;
-    if (a.g != b.g) return a.g < b.g;
-    return a.node > b.node;
-  };
-  const auto key = [&](std::uint32_t cell, Tick tick) {
-    return static_cast<std::uint64_t>(cell) << 32 | static_cast<std::uint32_t>(tick - r.startTick);
-  };
-  const auto add = [&](std::uint32_t cell, Tick tick, std::int32_t parent, double h) {
-    if (!seen_.try_emplace(key(cell, tick), static_cast<std::uint32_t>(nodes_.size())).second)
-      return;
-    const bool moved = parent >= 0 && nodes_[static_cast<std::size_t>(parent)].cell != cell;
-    const std::uint32_t moveCount =
-        (parent >= 0 ? nodes_[static_cast<std::size_t>(parent)].moves : 0) + (moved ? 1 : 0);
-    nodes_.push_back({cell, tick, parent, moveCount});
-    const Tick g = tick - r.startTick;
-    open_.push_back({static_cast<double>(g) + kMoveCost * moveCount + h * minTicks, g,
-                     static_cast<std::uint32_t>(nodes_.size() - 1)});
-    std::push_heap(open_.begin(), open_.end(), order);
-    ++out.metrics.generated;
-  };
+bool CooperativeSearch::settle(Cell c, std::uint64_t& allowance) {
+  const std::uint64_t before = allowance;
+  const bool done = field_->settle(c, allowance);
+  plan_.fieldExpanded += before - allowance;
+  return done;
+}
+
+std::size_t CooperativeSearch::movesFrom(Cell here, std::array<Move, kDirectionCount>& out) const {
+  const GridMap& map = grid_.map();
+  const int half = request_.agent.size / 2;
+  const std::uint8_t mask = grid_.layer(request_.agent).moveMasks()[map.indexOf(here)];
+  std::size_t count = 0;
+  for (int d = 0; d < kDirectionCount; ++d) {
+    if ((mask & (1u << d)) == 0) continue;
+    const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+    const Cell next{here.x + dir.dx, here.y + dir.dy};
+    const Terrain under = map.at({next.x + half, next.y + half});
+    if (!isTraversable(under)) continue;
+    const double perCell = request_.ticksPerCell[static_cast<std::size_t>(under)];
+    if (!(perCell > 0.0) || !std::isfinite(perCell)) continue;
+    out[count++] = {next,
+                    std::max<Tick>(1, static_cast<Tick>(std::ceil(dir.cost * perCell - 1e-9)))};
+  }
+  return count;
+}
+
+void CooperativeSearch::add(std::uint32_t cell, Tick tick, std::int32_t parent, double h) {
+  const CooperativeRequest& r = request_;
+  const auto key =
+      static_cast<std::uint64_t>(cell) << 32 | static_cast<std::uint32_t>(tick - r.startTick);
+  if (!seen_.try_emplace(key, static_cast<std::uint32_t>(nodes_.size())).second) return;
+  const bool moved = parent >= 0 && nodes_[static_cast<std::size_t>(parent)].cell != cell;
+  const std::uint32_t moveCount =
+      (parent >= 0 ? nodes_[static_cast<std::size_t>(parent)].moves : 0) + (moved ? 1 : 0);
+  nodes_.push_back({cell, tick, parent, moveCount});
+  const Tick g = tick - r.startTick;
+  open_.push_back({static_cast<double>(g) + kMoveCost * moveCount + h * minTicks_, g,
+                   static_cast<std::uint32_t>(nodes_.size() - 1)});
+  std::push_heap(open_.begin(), open_.end(), [](const Open& x, const Open& y) {
+    return openOrder(x.f, x.g, x.node, y.f, y.g, y.node);
+  });
+  ++plan_.metrics.generated;
+}
+
+bool CooperativeSearch::startChain(std::int32_t at) const {
   // True for the start and the waits at it that lead the plan.
-  const auto startChain = [&](std::int32_t at) {
-    for (; at >= 0; at = nodes_[static_cast<std::size_t>(at)].parent) {
-      if (nodes_[static_cast<std::size_t>(at)].cell != nodes_.front().cell) return false;
-    }
-    return true;
-  };
-  const auto free = [&](Cell c, Tick from, Tick to) {
-    return r.sharing != nullptr ? table.isFree(c, size, from, to, r.self, *r.sharing)
-                                : table.isFree(c, size, from, to, r.self);
-  };
-  // Whoever shares the start with the agent now (bodies are not cells: two can round to one
-  // anchor) does not stop it from staying there at first or leaving; anyone else who reserved
-  // it later does.
-  const std::vector<std::uint32_t> sharing =
-      table.holders(r.start, size, r.startTick, r.startTick + 1, r.self);
-  const auto freeAtStart = [&](Tick from, Tick to) {
-    return table.isFree(r.start, size, from, to, r.self, sharing);
-  };
-  const auto keptOut = [&](Cell anchor) {
-    int level = 0;
-    if (r.keepOut == nullptr) return level;
-    for (int dy = 0; dy < size; ++dy) {
-      for (int dx = 0; dx < size; ++dx) {
-        const Cell c{anchor.x + dx, anchor.y + dy};
-        if (map.contains(c)) level = std::max<int>(level, (*r.keepOut)[map.indexOf(c)]);
-      }
-    }
-    return level;
-  };
+  for (; at >= 0; at = nodes_[static_cast<std::size_t>(at)].parent) {
+    if (nodes_[static_cast<std::size_t>(at)].cell != nodes_.front().cell) return false;
+  }
+  return true;
+}
 
-  add(map.indexOf(r.start), r.startTick, -1, startDistance);
-  std::int32_t found = -1;
-  std::int32_t deepest = 0;  // the node reached latest: the longest safe prefix
-  double deepestH = startDistance;
-  while (!open_.empty() && out.metrics.expanded < r.expansionLimit) {
-    std::pop_heap(open_.begin(), open_.end(), order);
-    const auto index = static_cast<std::int32_t>(open_.back().node);
-    open_.pop_back();
+bool CooperativeSearch::free(Cell c, Tick from, Tick to) const {
+  const CooperativeRequest& r = request_;
+  return r.sharing != nullptr ? table_->isFree(c, r.agent.size, from, to, r.self, *r.sharing)
+                              : table_->isFree(c, r.agent.size, from, to, r.self);
+}
+
+bool CooperativeSearch::freeAtStart(const std::vector<std::uint32_t>& startSharing, Tick from,
+                                    Tick to) const {
+  return table_->isFree(request_.start, request_.agent.size, from, to, request_.self, startSharing);
+}
+
+int CooperativeSearch::keptOut(Cell anchor) const {
+  int level = 0;
+  if (request_.keepOut == nullptr) return level;
+  const GridMap& map = grid_.map();
+  for (int dy = 0; dy < request_.agent.size; ++dy) {
+    for (int dx = 0; dx < request_.agent.size; ++dx) {
+      const Cell c{anchor.x + dx, anchor.y + dy};
+      if (map.contains(c)) level = std::max<int>(level, (*request_.keepOut)[map.indexOf(c)]);
+    }
+  }
+  return level;
+}
+
+CooperativeStatus CooperativeSearch::updatePlan(std::uint64_t maxExpansions) {
+  if (phase_ != Phase::Start && phase_ != Phase::Search) return plan_.status;
+  const QueryClock clock;
+  const CooperativeRequest& r = request_;
+  const GridMap& map = grid_.map();
+  std::uint64_t allowance = sliceEnd(expandedSoFar(), maxExpansions) - expandedSoFar();
+  if (phase_ == Phase::Start) {
+    if (!settle(r.start, allowance)) {
+      plan_.metrics.microseconds += clock.elapsedMicroseconds();
+      return plan_.status;
+    }
+    const double startDistance = field_->settled(r.start);
+    if (!std::isfinite(startDistance)) {
+      finish(CooperativeStatus::Unreachable, -1);
+      plan_.metrics.microseconds += clock.elapsedMicroseconds();
+      return plan_.status;
+    }
+    minTicks_ = kInfinity;
+    for (int slot = 0; slot < kTraversableTerrainSlots; ++slot) {
+      const double t = r.ticksPerCell[static_cast<std::size_t>(slot)];
+      if (r.agent.capability.allows(static_cast<Terrain>(slot)) && t > 0.0 && std::isfinite(t))
+        minTicks_ = std::min(minTicks_, t);
+    }
+    windowEnd_ = r.startTick + r.window;
+    hardEnd_ = r.startTick + r.maxWindow;
+    nodes_.clear();
+    open_.clear();
+    seen_.clear();
+    startSharing_ = table_->holders(r.start, r.agent.size, r.startTick, r.startTick + 1, r.self);
+    add(map.indexOf(r.start), r.startTick, -1, startDistance);
+    deepest_ = 0;
+    deepestH_ = startDistance;
+    phase_ = Phase::Search;
+  }
+  const auto order = [](const Open& a, const Open& b) {
+    return openOrder(a.f, a.g, a.node, b.f, b.g, b.node);
+  };
+  std::array<Move, kDirectionCount> moves{};
+  while (phase_ == Phase::Search) {
+    if (current_ < 0) {
+      if (open_.empty() || plan_.metrics.expanded >= r.expansionLimit) {
+        finish(CooperativeStatus::Blocked, deepest_);
+        break;
+      }
+      if (allowance == 0) break;
+      std::pop_heap(open_.begin(), open_.end(), order);
+      current_ = static_cast<std::int32_t>(open_.back().node);
+      open_.pop_back();
+    }
+    // What follows is done again for the same node when a slice ends before its expansion:
+    // everything up to the expansion only reads (the deepest node is the same again).
+    const std::int32_t index = current_;
     const Node node = nodes_[static_cast<std::size_t>(index)];
     const Cell here = cellAt(map, node.cell);
-    const double h = field.distance(here);
-    if (node.tick > nodes_[static_cast<std::size_t>(deepest)].tick ||
-        (node.tick == nodes_[static_cast<std::size_t>(deepest)].tick && h < deepestH)) {
-      deepest = index;
-      deepestH = h;
+    if (!settle(here, allowance)) break;
+    const double h = field_->settled(here);
+    if (node.tick > nodes_[static_cast<std::size_t>(deepest_)].tick ||
+        (node.tick == nodes_[static_cast<std::size_t>(deepest_)].tick && h < deepestH_)) {
+      deepest_ = index;
+      deepestH_ = h;
     }
     if (here == r.goal && free(here, node.tick, kForever)) {
-      out.status = CooperativeStatus::ReachedGoal;
-      found = index;
+      finish(CooperativeStatus::ReachedGoal, index);
       break;
     }
     // Within a wait of the window's end counts as there, so waiting is never outdone by a
     // shuffle that lands on the end tick exactly.
     const int level = keptOut(here);
-    if (node.tick + r.waitTicks > windowEnd && free(here, node.tick, node.tick + r.holdTicks) &&
+    if (node.tick + r.waitTicks > windowEnd_ && free(here, node.tick, node.tick + r.holdTicks) &&
         (((r.passing == nullptr || (*r.passing)[node.cell] != 0) && level == 0) ||
-         node.tick >= hardEnd)) {
-      out.status = CooperativeStatus::Windowed;
-      found = index;
+         node.tick >= hardEnd_)) {
+      finish(CooperativeStatus::Windowed, index);
       break;
     }
-    ++out.metrics.expanded;
-    if (node.tick >= hardEnd) continue;  // a dead end: not free to stay, and no time left
-    // The agent stands at its start already: staying there at first, and leaving it, are
-    // checked against the table without those who share it now (freeAtStart).
-    const bool atStart = node.cell == nodes_.front().cell && node.tick - r.startTick <= r.window &&
-                         startChain(index);
-    // A move from rest takes longer: the schedule is one the agent can keep to.
-    const bool atRest = node.parent < 0
-                            ? r.startsAtRest
-                            : nodes_[static_cast<std::size_t>(node.parent)].cell == node.cell;
-    const std::uint8_t mask = moves[node.cell];
-    // Whether the agent may hold `here` until each leaving time asked so far: moves differ in
-    // length and terrain, but few leave at different times.
-    std::array<std::pair<Tick, bool>, kDirectionCount> leaving{};
-    std::size_t leavings = 0;
-    const auto mayLeaveBy = [&](Tick leaveBy) {
-      for (std::size_t i = 0; i < leavings; ++i) {
-        if (leaving[i].first == leaveBy) return leaving[i].second;
-      }
-      const bool ok = atStart ? freeAtStart(node.tick, leaveBy) : free(here, node.tick, leaveBy);
-      leaving[leavings++] = {leaveBy, ok};
-      return ok;
-    };
-    for (int d = 0; d < kDirectionCount; ++d) {
-      if ((mask & (1u << d)) == 0) continue;
-      const Direction& dir = kDirections[static_cast<std::size_t>(d)];
-      const Cell next{here.x + dir.dx, here.y + dir.dy};
-      const Terrain under = map.at({next.x + half, next.y + half});
-      if (!isTraversable(under)) continue;
-      const double perCell = r.ticksPerCell[static_cast<std::size_t>(under)];
-      if (!(perCell > 0.0) || !std::isfinite(perCell)) continue;
-      const Tick duration =
-          std::max<Tick>(1, static_cast<Tick>(std::ceil(dir.cost * perCell - 1e-9))) +
-          (atRest ? r.startTicks : 0);
-      const double nextH = field.distance(next);
-      if (!std::isfinite(nextH)) continue;
-      if (const int nextLevel = keptOut(next); nextLevel > 0 && nextLevel >= level) continue;
-      const MoveSpan span = moveSpan(node.tick, duration);
-      if (!mayLeaveBy(span.leaveBy) || !free(next, span.enterAt, node.tick + duration)) continue;
-      add(map.indexOf(next), node.tick + duration, index, nextH);
+    // The expansion: the distances of the cells its moves reach first, then one expansion.
+    const bool deadEnd = node.tick >= hardEnd_;  // not free to stay, and no time left
+    bool settled = true;
+    const std::size_t count = deadEnd ? 0 : movesFrom(here, moves);
+    for (std::size_t i = 0; i < count && settled; ++i)
+      settled = settle(moves[i].next, allowance);
+    if (!settled || allowance == 0) break;
+    --allowance;
+    ++plan_.metrics.expanded;
+    current_ = -1;
+    if (!deadEnd) expand(index, here, h, level, std::span(moves).first(count));
+  }
+  plan_.metrics.microseconds += clock.elapsedMicroseconds();
+  return plan_.status;
+}
+
+void CooperativeSearch::expand(std::int32_t index, Cell here, double h, int level,
+                               std::span<const Move> moves) {
+  const CooperativeRequest& r = request_;
+  const GridMap& map = grid_.map();
+  const Node node = nodes_[static_cast<std::size_t>(index)];
+  // The agent stands at its start already: staying there at first, and leaving it, are
+  // checked against the table without those who share it now (startSharing_).
+  const bool atStart =
+      node.cell == nodes_.front().cell && node.tick - r.startTick <= r.window && startChain(index);
+  // A move from rest takes longer: the schedule is one the agent can keep to.
+  const bool atRest = node.parent < 0
+                          ? r.startsAtRest
+                          : nodes_[static_cast<std::size_t>(node.parent)].cell == node.cell;
+  // Whether the agent may hold `here` until each leaving time asked so far: moves differ in
+  // length and terrain, but few leave at different times.
+  std::array<std::pair<Tick, bool>, kDirectionCount> leaving{};
+  std::size_t leavings = 0;
+  const auto mayLeaveBy = [&](Tick leaveBy) {
+    for (std::size_t i = 0; i < leavings; ++i) {
+      if (leaving[i].first == leaveBy) return leaving[i].second;
     }
-    // Nobody waits where others cannot pass or where kept out (but one already standing there
-    // may stay at first).
-    const bool roomToWait = (r.passing == nullptr || (*r.passing)[node.cell] != 0) && level == 0;
-    if (atStart ? freeAtStart(node.tick, node.tick + r.waitTicks)
-                : roomToWait && free(here, node.tick, node.tick + r.waitTicks))
-      add(node.cell, node.tick + r.waitTicks, index, h);
+    const bool ok =
+        atStart ? freeAtStart(startSharing_, node.tick, leaveBy) : free(here, node.tick, leaveBy);
+    leaving[leavings++] = {leaveBy, ok};
+    return ok;
+  };
+  for (const Move& move : moves) {
+    const Cell next = move.next;
+    const Tick duration = move.ticks + (atRest ? r.startTicks : 0);
+    const double nextH = field_->settled(next);
+    if (!std::isfinite(nextH)) continue;
+    if (const int nextLevel = keptOut(next); nextLevel > 0 && nextLevel >= level) continue;
+    const MoveSpan span = moveSpan(node.tick, duration);
+    if (!mayLeaveBy(span.leaveBy) || !free(next, span.enterAt, node.tick + duration)) continue;
+    add(map.indexOf(next), node.tick + duration, index, nextH);
   }
-  if (found < 0) {
-    out.status = CooperativeStatus::Blocked;
-    found = deepest;
-  }
-  for (std::int32_t at = found; at >= 0; at = nodes_[static_cast<std::size_t>(at)].parent) {
+  // Nobody waits where others cannot pass or where kept out (but one already standing there
+  // may stay at first).
+  const bool roomToWait = (r.passing == nullptr || (*r.passing)[node.cell] != 0) && level == 0;
+  if (atStart ? freeAtStart(startSharing_, node.tick, node.tick + r.waitTicks)
+              : roomToWait && free(here, node.tick, node.tick + r.waitTicks))
+    add(node.cell, node.tick + r.waitTicks, index, h);
+}
+
+void CooperativeSearch::finish(CooperativeStatus status, std::int32_t at) {
+  plan_.status = status;
+  phase_ = Phase::Done;
+  current_ = -1;
+  const GridMap& map = grid_.map();
+  for (; at >= 0; at = nodes_[static_cast<std::size_t>(at)].parent) {
     const Node& n = nodes_[static_cast<std::size_t>(at)];
-    out.steps.push_back({cellAt(map, n.cell), n.tick});
+    plan_.steps.push_back({cellAt(map, n.cell), n.tick});
   }
-  std::reverse(out.steps.begin(), out.steps.end());
-  out.metrics.microseconds = clock.elapsedMicroseconds();
+  std::reverse(plan_.steps.begin(), plan_.steps.end());
+}
+
+CooperativePlan CooperativeSearch::finalizePlan() const {
+  if (phase_ != Phase::Done) {
+    CooperativePlan pending;
+    pending.status = CooperativeStatus::Pending;
+    pending.metrics = plan_.metrics;
+    pending.fieldExpanded = plan_.fieldExpanded;
+    return pending;
+  }
+  return plan_;
+}
+
+CooperativePlan CooperativeSearch::finalizePlanAt(Tick startTick) const {
+  CooperativePlan out = finalizePlan();
+  const Tick delay = startTick - request_.startTick;
+  if (out.steps.empty() || delay <= 0) return out;
+  // Planned at speed, the first move now starts from rest (a leading wait was planned so).
+  const bool slower =
+      !request_.startsAtRest && out.steps.size() > 1 && out.steps[1].cell != out.steps[0].cell;
+  for (std::size_t i = 0; i < out.steps.size(); ++i)
+    out.steps[i].tick += delay + (slower && i > 0 ? request_.startTicks : 0);
+  if (!stillFree(out)) {
+    out.status = CooperativeStatus::Blocked;
+    out.steps = {{request_.start, startTick}};
+  }
   return out;
+}
+
+bool CooperativeSearch::stillFree(const CooperativePlan& plan) const {
+  const CooperativeRequest& r = request_;
+  const std::vector<TimedCell>& steps = plan.steps;
+  const std::vector<std::uint32_t> startSharing =
+      table_->holders(r.start, r.agent.size, steps.front().tick, steps.front().tick + 1, r.self);
+  bool atStart = true;  // the start and the waits there that lead the plan
+  for (std::size_t i = 0; i + 1 < steps.size(); ++i) {
+    const TimedCell& a = steps[i];
+    const TimedCell& b = steps[i + 1];
+    atStart = atStart && a.cell == r.start && a.tick - steps.front().tick <= r.window;
+    if (b.cell == a.cell) {
+      if (!(atStart ? freeAtStart(startSharing, a.tick, b.tick) : free(a.cell, a.tick, b.tick)))
+        return false;
+      continue;
+    }
+    const MoveSpan span = moveSpan(a.tick, b.tick - a.tick);
+    if (!(atStart ? freeAtStart(startSharing, a.tick, span.leaveBy)
+                  : free(a.cell, a.tick, span.leaveBy)) ||
+        !free(b.cell, span.enterAt, b.tick))
+      return false;
+  }
+  const TimedCell& last = steps.back();
+  Tick hold = r.waitTicks;
+  if (plan.status == CooperativeStatus::Windowed) hold = r.holdTicks;
+  if (plan.status == CooperativeStatus::ReachedGoal) hold = kForever - last.tick;
+  return free(last.cell, last.tick, last.tick + hold);
 }
 
 void CooperativeSearch::reserve(ReservationTable& table, std::span<const TimedCell> steps, int size,

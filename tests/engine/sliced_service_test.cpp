@@ -184,8 +184,8 @@ Report runToEnd(const Scenario& s) {
   return r.report();
 }
 
-// A bundled scenario with a budget small enough that searches span ticks: no tick's path
-// service spends more than the budget, every expectation still holds and
+// A bundled scenario with a budget small enough that searches span ticks: no tick spends more
+// than the budget and one batch of window searches, every expectation still holds and
 // every group has as many arrivals as the scenario as bundled (whose budget no tick reaches);
 // the run is deterministic. (Unsliced with the small budget, timings shift and one tank of the
 // demo fails to arrive in time, so that run is not the reference.)
@@ -199,9 +199,10 @@ TEST(SlicedPathService, ABundledScenarioReachesTheSameArrivals) {
   const Report sliced = runToEnd(s);
   const int cluster = s.settings.pathing.clusterSize;
   EXPECT_GT(unsliced.pathing.maxTickExpanded, s.settings.pathing.expansionBudget);
-  // The budget holds a whole insertion, so no tick spends more than the budget.
+  // The budget holds a whole insertion, so no tick's searches spend more than the budget, and
+  // the windows at most one batch more (when the spatial searches left less).
   ASSERT_GE(s.settings.pathing.expansionBudget, static_cast<std::uint64_t>(cluster * cluster));
-  EXPECT_LE(sliced.pathing.maxTickExpanded, s.settings.pathing.expansionBudget);
+  EXPECT_LE(sliced.pathing.maxTickExpanded, s.settings.pathing.expansionBudget + kWindowBatch);
   EXPECT_GT(sliced.pathing.slices, 0u);
   EXPECT_TRUE(sliced.passed());
   ASSERT_EQ(sliced.arrivals.size(), bundled.arrivals.size());
@@ -212,6 +213,34 @@ TEST(SlicedPathService, ABundledScenarioReachesTheSameArrivals) {
   const Report again = runToEnd(s);
   EXPECT_EQ(again.stateHash, sliced.stateHash);
   EXPECT_EQ(again, sliced);
+}
+
+// The window searches share the tick's budget (replay format 9): at the door (60 infantry) and
+// in the 4-wide corridor (two tanks head on) with a budget of 300, far below what a window
+// search takes there, searches pause and resume, no tick spends more than the budget and one
+// batch, every unit arrives as the scenario expects, and the run is deterministic.
+TEST(SlicedPathService, WindowSearchesPauseAtTheBudgetAtChokepoints) {
+  for (const std::string name : {"chokepoints/door_30v30", "chokepoints/corridor_tanks_4"}) {
+    Scenario s = loadBundled(name);
+    ASSERT_TRUE(s.settings.pathing.cooperative && s.settings.pathing.slicedWindows) << name;
+    s.settings.pathing.sliced = true;
+    s.settings.pathing.expansionBudget = 300;
+    const Report sliced = runToEnd(s);
+    EXPECT_GT(sliced.pathing.windowSlices, 10u) << name;
+    EXPECT_LE(sliced.pathing.maxTickExpanded, s.settings.pathing.expansionBudget + kWindowBatch)
+        << name;
+    EXPECT_TRUE(sliced.passed()) << name;
+    for (const ArrivalStats& a : sliced.arrivals)
+      EXPECT_EQ(a.arrived, a.units) << name;
+    const Report again = runToEnd(s);
+    EXPECT_EQ(again.stateHash, sliced.stateHash) << name;
+    EXPECT_EQ(again, sliced) << name;
+    // Run whole, the same windows overrun the budget by far.
+    s.settings.pathing.sliced = false;
+    EXPECT_GT(runToEnd(s).pathing.maxTickExpanded,
+              s.settings.pathing.expansionBudget + kWindowBatch)
+        << name;
+  }
 }
 
 // The scenario key: `pathing: {sliced: true}`, default false.

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "cooperative_request.h"
 #include "pathing/aa_star.h"
 #include "pathing/cooperative_search.h"
 #include "pathing/map_io.h"
@@ -56,20 +57,6 @@ TEST(ReservationTable, KeepsOnlyTrackedCells) {
   table.reserve({0, 0}, 2, 0, 10, 1);
   EXPECT_FALSE(table.isFree({0, 0}, 1, 0, 10, 2));
   EXPECT_TRUE(table.isFree({1, 0}, 1, 0, 10, 2));
-}
-
-CooperativeRequest requestFor(Agent agent, Cell start, Cell goal, Tick window) {
-  CooperativeRequest r;
-  r.agent = agent;
-  r.start = start;
-  r.goal = goal;
-  r.self = 1;
-  r.ticksPerCell.fill(10.0);
-  r.waitTicks = 5;
-  r.window = window;
-  r.maxWindow = 4 * window;
-  r.holdTicks = 10;
-  return r;
 }
 
 // Each step is a wait or one legal move lasting what its terrain says.

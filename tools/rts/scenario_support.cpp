@@ -127,6 +127,7 @@ nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& 
                   {"max_queue", m.maxQueue},
                   {"max_tick_expanded", m.maxTickExpanded},
                   {"slices", m.slices},
+                  {"window_slices", m.windowSlices},
                   {"congestion", ps.cooperative && ps.congestion},
                   {"congested_searches", m.congestedSearches},
                   {"search_us", m.microseconds},

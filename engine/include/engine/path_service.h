@@ -65,9 +65,19 @@ struct PathServiceSettings {
   // Answers are planned as unsliced ones, delivered when done (congestion waits: those expected
   // when the search began, read as the queues stand while it runs). Off by default: the request
   // that crosses the budget runs to its end, as scenarios always have.
+  // With cooperation the window searches (engine/src/world/traffic.cpp) are sliced too: they
+  // spend what the spatial searches left of the budget (at least kWindowBatch a tick), a
+  // search that reaches it pauses and resumes next tick while its unit stands where it is, and
+  // its plan is checked against the reservations when it ends (docs/cooperative.md).
   bool sliced = false;
+  // Not a scenario key: false plays back replays of format 8, whose sliced runs sliced only the
+  // spatial searches (kFirstSlicedWindowsReplayVersion).
+  bool slicedWindows = true;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
+// [Unit: expansions] what sliced window searches may spend in a tick the spatial searches left
+// less of the budget: one batch, so that windows never wait for the budget forever.
+inline constexpr std::uint64_t kWindowBatch = 256;
 // [Unit: clusters] side of a chunk of graph repair (PathService::changeTerrain).
 inline constexpr int kRepairChunkClusters = 4;
 
@@ -127,15 +137,18 @@ struct PathServiceMetrics {
   // Searches that met a queue on the way (congestion-aware routes): planned with the waits as
   // surcharges, the cache passed by.
   std::uint64_t congestedSearches = 0;
-  std::uint64_t maxTickExpanded = 0;  // the most one serve() spent (searches and repairs)
-  std::uint64_t slices = 0;           // sliced searches' pauses at the end of a tick's budget
+  // The most one tick spent: serve()'s searches and repairs, and with cooperation the window
+  // searches' space-time and distance-field nodes (countWindows).
+  std::uint64_t maxTickExpanded = 0;
+  std::uint64_t slices = 0;        // sliced searches' pauses at the end of a tick's budget
+  std::uint64_t windowSlices = 0;  // sliced window searches' pauses (countWindows)
   bool operator==(const PathServiceMetrics& o) const {  // wall-clock fields excluded
     return std::tie(requests, cacheHits, searches, found, failed, expanded, maxQueue,
                     terrainChanges, cacheDropped, repairChunks, repairExpanded, congestedSearches,
-                    maxTickExpanded, slices) ==
+                    maxTickExpanded, slices, windowSlices) ==
            std::tie(o.requests, o.cacheHits, o.searches, o.found, o.failed, o.expanded, o.maxQueue,
                     o.terrainChanges, o.cacheDropped, o.repairChunks, o.repairExpanded,
-                    o.congestedSearches, o.maxTickExpanded, o.slices);
+                    o.congestedSearches, o.maxTickExpanded, o.slices, o.windowSlices);
   }
 };
 
@@ -161,6 +174,10 @@ class PathService {
   // With sliced searches: the expansions the search of the request at the head of the queue
   // has spent in earlier ticks (0 when none is under way).
   std::uint64_t slicedExpanded() const;
+  // The tick's cooperative windows, for the metrics: `served` what this tick's serve() spent,
+  // `windows` what the window searches expanded after it, `paused` whether one stopped at the
+  // budget.
+  void countWindows(std::uint64_t served, std::uint64_t windows, bool paused);
 
   // The grid's terrain changed (AnnotatedGrid::setTerrain or an obstacle): drops the cached
   // answers the change touches (paths that cross the changed cells, and every failed answer,

@@ -34,9 +34,11 @@ namespace warpath::engine {
 // cooperative movement on (the default since this format; older files play back with it off
 // unless their scenario switched it on). 8: the same records; with cooperation, routes avoid
 // queues at narrow places (congestion-aware routes, engine/congestion.h; older files play back
-// without them), and the hashes cover each queued request's speed. Version-1 files (move orders
-// only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 8;
+// without them), and the hashes cover each queued request's speed. 9: the same records and
+// hashes; with `pathing: sliced` the cooperative window searches are sliced too (older files
+// play back with only the spatial searches sliced). Version-1 files (move orders only) are
+// refused with a message saying so.
+inline constexpr std::uint32_t kReplayVersion = 9;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -46,6 +48,9 @@ inline constexpr std::uint32_t kFirstTerrainReplayVersion = 6;
 inline constexpr std::uint32_t kCooperativeByDefaultReplayVersion = 7;
 // Formats before this one were recorded before congestion-aware routes: they play back without.
 inline constexpr std::uint32_t kFirstCongestionReplayVersion = 8;
+// Formats before this one were recorded when `sliced` sliced the spatial searches only: they play
+// back with window searches run to their end (PathServiceSettings::slicedWindows off).
+inline constexpr std::uint32_t kFirstSlicedWindowsReplayVersion = 9;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

@@ -21,7 +21,8 @@ namespace warpath::engine {
 struct Since {
   std::uint32_t format;
 };
-inline constexpr std::uint32_t kStateFormat = 8;  // the newest layout (format 7 kept 6's)
+// The newest layout (format 7 kept 6's, format 9 kept 8's).
+inline constexpr std::uint32_t kStateFormat = 8;
 
 template <class V>
 void describe(V& v, const pathing::Cell& c) {

@@ -112,6 +112,10 @@ inline bool keptOut(const TimedPlan& plan) {
 // Drops the unit's reservations and window but not its place at a passage's gate: it stands
 // where it is and plans a new window as soon as the budget lets it.
 void expireWindow(Refs& w, Unit& unit);
+// Gives the unit a plan to stand at `anchor` from now (Blocked, timed: a wait, not a jam) with
+// that gate claim, holding the anchor for good until its next window.
+void standAt(Refs& w, Unit& unit, pathing::Cell anchor, std::int32_t gate, bool admitted,
+             pathing::Tick gateSince);
 // True when the plan holds the unit where it is at `tick` (a wait, or the end of a window that
 // did not reach the goal).
 bool waitingAt(const TimedPlan& plan, pathing::Tick tick);
@@ -124,13 +128,22 @@ class Traffic {
  public:
   Traffic();
   ~Traffic();
+  // What one tick's windows cost.
+  struct TickWork {
+    std::uint64_t expanded = 0;  // space-time and distance-field nodes
+    bool paused = false;         // a sliced window search stopped at the budget
+  };
   // Units that follow no plan hold their footprint; the windows that ran low, or that their
   // units fell off, are planned again in priority order (the unit that waited longest first,
-  // then the lower id) within `budget` expansions (at least one a tick); once a second, cycles
-  // of units waiting on each other are broken. Nothing happens when cooperation is off.
-  void plan(Refs& w, std::uint64_t budget);
+  // then the lower id) within `budget` expansions (at least one window a tick); once a second,
+  // cycles of units waiting on each other are broken. With sliced windows (sliced()) the
+  // searches stop at the budget (at least kWindowBatch a tick, path_service.h) and resume next
+  // tick, the unit holding meanwhile (docs/cooperative.md). Nothing happens when cooperation is
+  // off.
+  TickWork plan(Refs& w, std::uint64_t budget);
   // The terrain changed: the caches that follow from the map (passing room, distance fields,
-  // what is known of tracked cells ahead) are dropped and built again when next needed.
+  // what is known of tracked cells ahead) are dropped and built again when next needed, and a
+  // window search under way is abandoned.
   void terrainChanged();
 
  private:
@@ -190,10 +203,42 @@ class Traffic {
   // Marks a unit with no chokepoint ahead as cruising: it follows its path, holding nothing.
   void cruise(Refs& w, Unit& unit);
   bool needsWindow(const Refs& w, const Unit& unit);
-  void planWindow(Refs& w, Unit& unit, std::uint64_t& spent);
+  // Window searches pause at the budget (PathServiceSettings::sliced with slicedWindows).
+  static bool sliced(const Refs& w);
+  // Plans the unit's window: to its end, or sliced, up to `limit` expansions spent this tick
+  // (then it is pending and the unit holds).
+  void planWindow(Refs& w, Unit& unit, std::uint64_t& spent, std::uint64_t limit);
+  // Advances the pending window search up to `limit` spent; commits its plan when done.
+  void resumeWindow(Refs& w, std::uint64_t& spent, std::uint64_t limit);
+  // The pending search's unit still wants that window (same order, path and goal).
+  bool stillPending(const Refs& w) const;
+  // Hands the unit its new window and reserves it.
+  void commitWindow(Refs& w, Unit& unit, pathing::CooperativePlan found, pathing::Cell start,
+                    const pathing::CooperativeRequest& request, std::int32_t gate, bool admitted,
+                    pathing::Tick gateSince);
   std::optional<std::uint32_t> waitsFor(Refs& w, const Unit& unit);
-  void breakDeadlocks(Refs& w, std::uint64_t& spent);
+  void breakDeadlocks(Refs& w, std::uint64_t& spent, std::uint64_t limit);
 
+  // A sliced window search that stopped at a tick's budget: resumed first next tick. What its
+  // request points to is kept here; its keep-out cells are set in keepOut_ only while it runs.
+  struct PendingWindow {
+    std::uint32_t unit = kNone;
+    SharedPath path;  // the unit's path and goal when it began
+    pathing::Cell goal;
+    pathing::Cell start;
+    std::int32_t gate = -1;
+    bool admitted = false;
+    pathing::Tick gateSince = 0;
+    pathing::CooperativeRequest request;
+    std::vector<std::uint8_t> sharing;
+    std::vector<std::pair<std::uint32_t, std::uint8_t>> keepOut;
+    pathing::CooperativeStatus status = pathing::CooperativeStatus::Pending;
+  };
+  // Sets (or clears) the cells a request keeps out of in keepOut_.
+  void markKeepOut(const std::vector<std::pair<std::uint32_t, std::uint8_t>>& cells, bool set);
+
+  std::optional<PendingWindow> pending_;
+  TickWork work_;
   // Scratch, and caches that are pure functions of the map and the units' paths.
   std::optional<pathing::CooperativeSearch> search_;
   std::map<pathing::Agent, std::vector<std::uint8_t>> passing_;

@@ -103,20 +103,24 @@ void releaseReservations(Refs& w, Unit& unit) {
   unit.heldSince = -1;
 }
 
+void standAt(Refs& w, Unit& unit, Cell anchor, std::int32_t gate, bool admitted, Tick gateSince) {
+  TimedPlan stub = timedPlan({{anchor, w.state.tick}}, CooperativeStatus::Blocked, true);
+  stub.gate = gate;
+  stub.admitted = admitted;
+  stub.gateSince = gateSince;
+  releaseReservations(w, unit);
+  CooperativeSearch::reserve(*w.state.reservations, stub.steps, w.typeOf(unit).size, ownerOf(unit),
+                             kForever);
+  unit.plan = std::make_shared<const TimedPlan>(std::move(stub));
+}
+
 void expireWindow(Refs& w, Unit& unit) {
   if (!unit.plan || unit.plan->gate < 0) {
     releaseReservations(w, unit);
     return;
   }
-  TimedPlan stub =
-      timedPlan({{nearestStandable(w, unit), w.state.tick}}, CooperativeStatus::Blocked, true);
-  stub.gate = unit.plan->gate;
-  stub.admitted = unit.plan->admitted;
-  stub.gateSince = unit.plan->gateSince;
-  releaseReservations(w, unit);
-  CooperativeSearch::reserve(*w.state.reservations, stub.steps, w.typeOf(unit).size, ownerOf(unit),
-                             kForever);
-  unit.plan = std::make_shared<const TimedPlan>(std::move(stub));
+  standAt(w, unit, nearestStandable(w, unit), unit.plan->gate, unit.plan->admitted,
+          unit.plan->gateSince);
 }
 
 bool waitingAt(const TimedPlan& plan, Tick tick) {
@@ -156,7 +160,11 @@ CooperativeRequest Traffic::requestFor(const Refs& w, const Unit& unit, Cell sta
   // little longer, so a re-plan that waits a tick for the budget still finds it free.
   r.holdTicks = r.window / 2 + r.waitTicks;
   r.passing = &passingRoom(w, r.agent);
-  r.expansionLimit = std::min<std::uint64_t>(settings.expansionBudget, kWindowExpansionLimit);
+  // A window searched whole within a tick is bounded by the tick's budget too; a sliced one
+  // spreads over ticks instead.
+  r.expansionLimit = sliced(w)
+                         ? kWindowExpansionLimit
+                         : std::min<std::uint64_t>(settings.expansionBudget, kWindowExpansionLimit);
   // Units heading the same way share reservations: they queue behind one another as in the
   // open, and the table arbitrates only between flows that meet head on or cross.
   sharing_.assign(w.state.units.size(), 0);
@@ -170,6 +178,7 @@ CooperativeRequest Traffic::requestFor(const Refs& w, const Unit& unit, Cell sta
 }
 
 void Traffic::terrainChanged() {
+  pending_.reset();  // its search read the old terrain (and its field goes)
   passing_.clear();
   fields_.clear();
   lookahead_.clear();
@@ -283,7 +292,17 @@ bool Traffic::needsWindow(const Refs& w, const Unit& unit) {
   return plan.timed && !keptOut(plan) && !onSchedule(w, unit);
 }
 
-void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent) {
+bool Traffic::sliced(const Refs& w) {
+  return w.settings.pathing.sliced && w.settings.pathing.slicedWindows;
+}
+
+void Traffic::markKeepOut(const std::vector<std::pair<std::uint32_t, std::uint8_t>>& cells,
+                          bool set) {
+  for (const auto& [cell, level] : cells)
+    keepOut_[cell] = set ? level : 0;
+}
+
+void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent, std::uint64_t limit) {
   // The gate of the passage ahead: a unit let through keeps its turn from window to window;
   // one kept out plans around the passage and its mouth.
   const std::int32_t gate = aheadOf(w, unit);
@@ -309,25 +328,84 @@ void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent) {
   const Cell start = nearestStandable(w, unit);
   CooperativeRequest request = requestFor(w, unit, start);
   const bool keptOut = gate >= 0 && !admitted;
-  const std::vector<std::pair<std::uint32_t, std::uint8_t>> noCells;
-  const auto& closed = keptOut ? passages_[static_cast<std::size_t>(gate)].keepOut : noCells;
-  // Nor does it stand in the stream coming out of the passage.
-  const std::vector<std::uint32_t> noStream;
-  const auto& stream = keptOut ? streams_[static_cast<std::size_t>(gate)] : noStream;
-  for (const std::uint32_t cell : stream)
-    keepOut_[cell] = 1;
-  for (const auto& [cell, level] : closed)
-    keepOut_[cell] = level;
-  if (keptOut) request.keepOut = &keepOut_;
+  // Kept out of the passage and its mouth, nor does it stand in the stream coming out.
+  std::vector<std::pair<std::uint32_t, std::uint8_t>> closed;
+  if (keptOut) {
+    for (const std::uint32_t cell : streams_[static_cast<std::size_t>(gate)])
+      closed.emplace_back(cell, 1);
+    const auto& passage = passages_[static_cast<std::size_t>(gate)].keepOut;
+    closed.insert(closed.end(), passage.begin(), passage.end());
+    request.keepOut = &keepOut_;
+  }
   DistanceField& field = fieldFor(w, unit);
   if (!search_) search_.emplace(w.grid);
-  CooperativePlan found = search_->plan(request, field, *w.state.reservations);
-  for (const auto& [cell, level] : closed)
-    keepOut_[cell] = 0;
-  for (const std::uint32_t cell : stream)
-    keepOut_[cell] = 0;
+  if (!sliced(w)) {
+    markKeepOut(closed, true);
+    CooperativePlan found = search_->plan(request, field, *w.state.reservations);
+    markKeepOut(closed, false);
+    spent += found.metrics.expanded;
+    work_.expanded += found.metrics.expanded + found.fieldExpanded;
+    commitWindow(w, unit, std::move(found), start, request, gate, admitted, gateSince);
+    return;
+  }
+  // Sliced: what the request points to lives as long as the search.
+  PendingWindow& p = pending_.emplace();
+  p.unit = unit.id.index;
+  p.path = unit.path;
+  p.goal = unit.goalCell;
+  p.start = start;
+  p.gate = gate;
+  p.admitted = admitted;
+  p.gateSince = gateSince;
+  p.sharing = sharing_;
+  p.keepOut = std::move(closed);
+  p.request = request;
+  p.request.sharing = &p.sharing;
+  p.status = search_->beginPlan(p.request, field, *w.state.reservations);
+  resumeWindow(w, spent, limit);
+}
+
+bool Traffic::stillPending(const Refs& w) const {
+  const Unit& unit = w.state.units[pending_->unit];
+  return following(unit) && unit.path == pending_->path && unit.goalCell == pending_->goal;
+}
+
+void Traffic::resumeWindow(Refs& w, std::uint64_t& spent, std::uint64_t limit) {
+  PendingWindow& p = *pending_;
+  Unit& unit = w.state.units[p.unit];
+  if (p.status == CooperativeStatus::Pending) {
+    markKeepOut(p.keepOut, true);
+    const std::uint64_t before = search_->expandedSoFar();
+    p.status = search_->updatePlan(limit > spent ? limit - spent : 0);
+    markKeepOut(p.keepOut, false);
+    const std::uint64_t used = search_->expandedSoFar() - before;
+    spent += used;
+    work_.expanded += used;
+  }
+  if (p.status == CooperativeStatus::Pending) {
+    // It stands at its start until its window comes, on a plan that says so (a wait that is no
+    // jam, its place at a passage's gate kept) and holds the start for good meanwhile.
+    standAt(w, unit, p.start, p.gate, p.admitted, p.gateSince);
+    work_.paused = true;
+    return;
+  }
+  // The plan starts now: the unit has stood at its start since the search began, and others
+  // may have reserved in its way meanwhile (then it stands and plans again, first in order as
+  // its wait ages it).
+  CooperativePlan found = search_->finalizePlanAt(w.state.tick);
+  const PendingWindow done = std::move(p);
+  pending_.reset();
+  commitWindow(w, unit, std::move(found), done.start, done.request, done.gate, done.admitted,
+               done.gateSince);
+}
+
+void Traffic::commitWindow(Refs& w, Unit& unit, CooperativePlan found, Cell start,
+                           const CooperativeRequest& request, std::int32_t gate, bool admitted,
+                           Tick gateSince) {
+  DistanceField& field = fieldFor(w, unit);
+  const bool keptOut = gate >= 0 && !admitted;
+  releaseReservations(w, unit);  // a sliced search's unit stood at its start meanwhile
   MovementStats& stats = w.state.movement;
-  spent += found.metrics.expanded;
   stats.expanded += found.metrics.expanded;
   ++stats.windows;
   const int size = w.typeOf(unit).size;
@@ -335,6 +413,7 @@ void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent) {
     case CooperativeStatus::InvalidStart:
     case CooperativeStatus::InvalidGoal:
     case CooperativeStatus::Unreachable:
+    case CooperativeStatus::Pending:  // never: planWindow and resumeWindow commit done plans
       // Pushed out of its corridor (or its goal changed under it): a new spatial path.
       hold(w, unit);
       w.log(EventKind::Repath, unit, 1);
@@ -577,7 +656,7 @@ std::optional<std::uint32_t> Traffic::waitsFor(Refs& w, const Unit& unit) {
                                        ownerOf(unit));
 }
 
-void Traffic::breakDeadlocks(Refs& w, std::uint64_t& spent) {
+void Traffic::breakDeadlocks(Refs& w, std::uint64_t& spent, std::uint64_t limit) {
   // Each waiting unit waits for at most one other: a cycle is found by walking from each unit
   // in id order, marking the walk with its start.
   std::vector<Unit>& all = w.state.units;
@@ -611,7 +690,18 @@ void Traffic::breakDeadlocks(Refs& w, std::uint64_t& spent) {
     for (std::uint32_t m : cycle_)
       w.state.reservations->release(ownerOf(all[m]));
     for (std::uint32_t m : cycle_) {
-      planWindow(w, all[m], spent);
+      // Sliced, one window search at a time within the budget: the others hold their places
+      // and plan when their turn comes.
+      if (pending_ && pending_->unit == m) {
+        // Its search goes on: it stands at its start again.
+        standAt(w, all[m], pending_->start, pending_->gate, pending_->admitted,
+                pending_->gateSince);
+      } else if (sliced(w) && (pending_ || spent >= limit)) {
+        releaseReservations(w, all[m]);  // hold() reserves again what the release dropped
+        hold(w, all[m]);
+      } else {
+        planWindow(w, all[m], spent, limit);
+      }
       planned_[m] = 1;
     }
     ++w.state.movement.deadlocksBroken;
@@ -625,8 +715,12 @@ bool Traffic::before(const Unit& a, const Unit& b) {
   return a.id.index < b.id.index;
 }
 
-void Traffic::plan(Refs& w, std::uint64_t budget) {
-  if (!w.settings.pathing.cooperative) return;
+Traffic::TickWork Traffic::plan(Refs& w, std::uint64_t budget) {
+  work_ = {};
+  if (!w.settings.pathing.cooperative) return work_;
+  // A window search left pending goes on only for the window it began: same order, path and
+  // goal (else the unit plans anew in priority order).
+  if (pending_ && !stillPending(w)) pending_.reset();
   ReservationTable& table = *w.state.reservations;
   const Tick now = w.state.tick;
   table.forget(now);
@@ -662,6 +756,7 @@ void Traffic::plan(Refs& w, std::uint64_t budget) {
     // Far from any chokepoint a unit needs no window: Box2D alone keeps it apart from others
     // there, as nothing is reserved in the open (docs/cooperative.md).
     if (following(unit) && (!unit.plan || !unit.plan->timed) && !chokepointAheadNow(w, unit)) {
+      if (pending_ && pending_->unit == unit.id.index) pending_.reset();  // needs none now
       cruise(w, unit);
       unit.waitSince = -1;
       continue;
@@ -675,18 +770,27 @@ void Traffic::plan(Refs& w, std::uint64_t budget) {
     if (needsWindow(w, unit)) candidates_.push_back(unit.id.index);
   }
   std::uint64_t spent = 0;
+  // Sliced, the searches stop at the budget, or at one batch when the spatial searches left
+  // less; the one left pending goes first (its unit has waited longest).
+  const bool slicing = sliced(w);
+  const std::uint64_t limit = slicing ? std::max(budget, kWindowBatch) : budget;
+  if (pending_) {
+    planned_[pending_->unit] = 1;
+    resumeWindow(w, spent, limit);
+  }
   // Once a second (staggered by nothing: all at once, so a cycle is seen whole).
   const auto second = static_cast<Tick>(std::max(1.0, std::round(w.settings.tickRate)));
-  if (now % second == 0) breakDeadlocks(w, spent);
+  if (now % second == 0) breakDeadlocks(w, spent, limit);
   std::sort(candidates_.begin(), candidates_.end(),
             [&](std::uint32_t a, std::uint32_t b) { return before(all[a], all[b]); });
   bool first = true;
   for (std::uint32_t index : candidates_) {
     if (planned_[index] != 0 || !following(all[index])) continue;
-    // The budget is what the spatial searches left; a tick always plans at least one window.
-    if (!first && spent >= budget) break;
+    // The budget is what the spatial searches left; a tick always plans at least one window
+    // (sliced: begins one while nothing is pending and the limit is not reached).
+    if (slicing ? pending_ || spent >= limit : !first && spent >= budget) break;
     first = false;
-    planWindow(w, all[index], spent);
+    planWindow(w, all[index], spent, limit);
     planned_[index] = 1;
   }
   // A cruising unit that nears a chokepoint without a window stands until it gets one.
@@ -709,6 +813,7 @@ void Traffic::plan(Refs& w, std::uint64_t budget) {
       unit.waitSince = -1;
     }
   }
+  return work_;
 }
 
 units::ScheduleResult followSchedule(const Refs& w, const Unit& unit, double maxSpeed) {

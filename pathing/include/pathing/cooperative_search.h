@@ -22,19 +22,32 @@
 
 #include "pathing/annotated_grid.h"
 #include "pathing/enum_names.h"
+#include "pathing/moves.h"
+#include "pathing/open_list.h"
 #include "pathing/reservation_table.h"
 #include "pathing/search.h"
 
 namespace warpath::pathing {
 
 // Distances to one goal for one agent kind, ignoring other agents. Non-const: the searches
-// behind them resume lazily.
+// behind them run lazily, and can be advanced in slices (settle) so that a sliced
+// CooperativeSearch counts their work against its allowance.
 class DistanceField {
  public:
   virtual ~DistanceField() = default;
   // [Unit: move cost, 1 a cardinal step, √2 a diagonal] +inf when the goal cannot be reached
-  // from `c` (or, for a corridor, `c` lies outside it).
-  virtual double distance(Cell c) = 0;
+  // from `c` (or, for a corridor, `c` lies outside it). Settles `c` first, without bound.
+  double distance(Cell c) {
+    std::uint64_t unbounded = kUnboundedExpansions;
+    settle(c, unbounded);
+    return settled(c);
+  }
+  // Advances the search behind the field until distance(c) is known, by at most `allowance`
+  // expansions (decremented by those taken); false when they ran out first (call again: the
+  // search resumes where it stopped, so the field is the same however it was sliced).
+  virtual bool settle(Cell c, std::uint64_t& allowance) = 0;
+  // distance(c) of a cell settle() answered true for.
+  virtual double settled(Cell c) const = 0;
   // Nodes expanded so far building the field (a measurement).
   virtual std::uint64_t expanded() const = 0;
 };
@@ -45,7 +58,8 @@ class DistanceField {
 class ReverseResumableSearch final : public DistanceField {
  public:
   ReverseResumableSearch(const AnnotatedGrid& grid, Agent agent, Cell goal, Cell start);
-  double distance(Cell c) override;
+  bool settle(Cell c, std::uint64_t& allowance) override;
+  double settled(Cell c) const override;
   std::uint64_t expanded() const override { return expanded_; }
 
  private:
@@ -72,12 +86,15 @@ class ReverseResumableSearch final : public DistanceField {
 
 // The cells within Chebyshev distance `radius` of `path` (the agent's path from the
 // hierarchical planner, start to goal) where the agent can stand, with exact distances to
-// path.back() inside them from one backward Dijkstra over them; +inf outside. Built once.
+// path.back() inside them from one backward Dijkstra over them; +inf outside. The corridor is
+// laid out on construction; the Dijkstra runs on the first settle (to its end: every distance
+// waits for it), in slices when settled with an allowance.
 class CorridorDistance final : public DistanceField {
  public:
   // [Limit: !path.empty(), radius >= 0]
   CorridorDistance(const AnnotatedGrid& grid, Agent agent, std::span<const Cell> path, int radius);
-  double distance(Cell c) override;
+  bool settle(Cell c, std::uint64_t& allowance) override;
+  double settled(Cell c) const override;
   std::uint64_t expanded() const override { return expanded_; }
 
  private:
@@ -97,6 +114,12 @@ class CorridorDistance final : public DistanceField {
   std::vector<Run> runs_;
   std::vector<double> distances_;  // +inf until reached
   std::uint64_t expanded_ = 0;
+  // The Dijkstra under way (from the goal's slot), dropped when done.
+  const GridMap* map_ = nullptr;
+  std::span<const std::uint8_t> moves_;
+  std::vector<Cell> cellOf_;  // per slot
+  std::vector<bool> closed_;  // per slot
+  OpenList open_;
 };
 
 // One byte per cell: 1 where two agents of this kind could stand side by side around an
@@ -172,14 +195,16 @@ enum class CooperativeStatus : std::uint8_t {
   InvalidStart,  // the agent cannot stand at the start
   InvalidGoal,   // … or at the goal
   Unreachable,   // the distance field says the goal cannot be reached from the start
+  Pending,       // a sliced plan not finished yet (updatePlan it again)
 };
-inline constexpr EnumNames<CooperativeStatus, 6> kCooperativeStatusNames{{{
+inline constexpr EnumNames<CooperativeStatus, 7> kCooperativeStatusNames{{{
     {CooperativeStatus::ReachedGoal, "reached-goal"},
     {CooperativeStatus::Windowed, "windowed"},
     {CooperativeStatus::Blocked, "blocked"},
     {CooperativeStatus::InvalidStart, "invalid-start"},
     {CooperativeStatus::InvalidGoal, "invalid-goal"},
     {CooperativeStatus::Unreachable, "unreachable"},
+    {CooperativeStatus::Pending, "pending"},
 }}};
 
 struct CooperativePlan {
@@ -187,7 +212,10 @@ struct CooperativePlan {
   // From {start, startTick}; consecutive entries are one legal move or a wait on one cell;
   // ticks strictly increase. Empty for InvalidStart, InvalidGoal and Unreachable.
   std::vector<TimedCell> steps;
-  SearchMetrics metrics;
+  SearchMetrics metrics;  // expanded: space-time nodes
+  // Nodes the distance field expanded for this plan (the corridor's Dijkstra, RRA*'s resumed
+  // search): work besides metrics.expanded, counted against a sliced plan's allowance.
+  std::uint64_t fieldExpanded = 0;
 };
 
 // Empty when the request's [Limit]s hold, else the first that does not and why.
@@ -211,8 +239,34 @@ class CooperativeSearch {
   explicit CooperativeSearch(const AnnotatedGrid& grid);
 
   // [Limit: problemWith(request) empty — otherwise InvalidStart with no steps]
+  // beginPlan, one unbounded updatePlan and finalizePlan.
   CooperativePlan plan(const CooperativeRequest& request, DistanceField& field,
                        const ReservationTable& table);
+
+  // The same plan sliced (as search.h's queries): beginPlan starts it (abandoning any
+  // unfinished one) and answers at once what needs no search; updatePlan advances it by at most
+  // `maxExpansions` expansions, the field's and the space-time search's together (so it never
+  // spends more: a state is expanded only once the field knows every distance it needs);
+  // finalizePlan gives what plan() returns for the same query (microseconds summing the calls'),
+  // or Pending and no steps while unfinished. Both return Pending until the plan is done, then
+  // its status. While it is unfinished the request's pointers, the field and the table must
+  // stay alive; the table may change between updates (a resumed search reads it as it is: see
+  // finalizePlanAt), and others may settle the field further (its distances stay the same), but
+  // the grid may not change nor the field be replaced.
+  CooperativeStatus beginPlan(const CooperativeRequest& request, DistanceField& field,
+                              const ReservationTable& table);
+  CooperativeStatus updatePlan(std::uint64_t maxExpansions);
+  CooperativePlan finalizePlan() const;
+  // The finished plan as begun at `startTick` (>= the request's) instead: the agent stood at
+  // its start until then. Its ticks are shifted; a first move planned at speed (not
+  // startsAtRest) takes startTicks longer, as the agent now starts it from rest; and the whole
+  // is checked against the table as it is now, by the search's rules (each move's and wait's
+  // footprints, the last cell's hold: holdTicks when Windowed, for good when ReachedGoal,
+  // waitTicks when Blocked). A plan that is no longer free is dropped: Blocked with the start
+  // alone, at startTick. The same as finalizePlan() when startTick is the request's.
+  CooperativePlan finalizePlanAt(Tick startTick) const;
+  // The plan's expansions so far, the field's included.
+  std::uint64_t expandedSoFar() const { return plan_.metrics.expanded + plan_.fieldExpanded; }
 
   // Reserves what the search checked for a plan's steps, for `owner`: each move's two
   // footprints over their moveSpan, each wait's footprint over the wait, and the last cell over
@@ -232,8 +286,47 @@ class CooperativeSearch {
     Tick g;
     std::uint32_t node;
   };
+  // A move the agent's layer allows from a cell onto terrain it may enter.
+  struct Move {
+    Cell next;
+    Tick ticks;  // at speed (startTicks not included)
+  };
+  enum class Phase : std::uint8_t { Idle, Start, Search, Done };
+
+  // The moves from `here`; returns how many were written.
+  std::size_t movesFrom(Cell here, std::array<Move, kDirectionCount>& out) const;
+  // Settles `c` in the field within `allowance`, counting the field's expansions.
+  bool settle(Cell c, std::uint64_t& allowance);
+  void add(std::uint32_t cell, Tick tick, std::int32_t parent, double h);
+  // Expands the node by `moves` (movesFrom(here), every distance they need settled) and a wait.
+  void expand(std::int32_t index, Cell here, double h, int level, std::span<const Move> moves);
+  // Ends the search: the plan's steps from node `at` back to the start.
+  void finish(CooperativeStatus status, std::int32_t at);
+  bool startChain(std::int32_t at) const;
+  // The agent's footprint at `c` is free of others' reservations over [from, to) (its own and
+  // `sharing` owners' ignored); at the start, of those not in `startSharing` either.
+  bool free(Cell c, Tick from, Tick to) const;
+  bool freeAtStart(const std::vector<std::uint32_t>& startSharing, Tick from, Tick to) const;
+  int keptOut(Cell anchor) const;
+  // The plan's steps and its last cell's hold are free in the table as it is now.
+  bool stillFree(const CooperativePlan& plan) const;
 
   const AnnotatedGrid& grid_;
+  // The query under way.
+  Phase phase_ = Phase::Idle;
+  CooperativeRequest request_;
+  DistanceField* field_ = nullptr;
+  const ReservationTable* table_ = nullptr;
+  CooperativePlan plan_;
+  double minTicks_ = 0.0;  // the least ticksPerCell: h in ticks per unit of distance
+  Tick windowEnd_ = 0;
+  Tick hardEnd_ = 0;
+  // Who shares the start with the agent at startTick (bodies are not cells: two can round to
+  // one anchor): they do not stop it from staying there at first or leaving.
+  std::vector<std::uint32_t> startSharing_;
+  std::int32_t deepest_ = 0;  // the node reached latest: the longest safe prefix
+  double deepestH_ = 0.0;
+  std::int32_t current_ = -1;  // popped, waiting for its distances to be settled
   // Scratch, kept between queries.
   std::vector<Node> nodes_;
   std::vector<Open> open_;
