@@ -21,6 +21,7 @@
 #include "pathing/haa_star.h"
 #include "pathing/jump_point_search.h"
 #include "pathing/map_io.h"
+#include "pathing/planner.h"
 #include "pathing/random.h"
 #include "pathing/terrain_costs.h"
 #include "support/completeness.h"
@@ -78,27 +79,27 @@ TEST_P(MovingAiMap, EveryScenQueryMatchesItsOptimalLength) {
   ASSERT_TRUE(fits) << fits.error().describe();
 
   const AnnotatedGrid grid(std::move(map).value());
-  // Both optimal planners: AA* and jump point search.
-  AnnotatedAStar aa(grid);
-  JumpPointSearch jps(grid);
+  // Every optimal planner: AA*, jump point search, and JPS+ (its tables).
+  Planner aa(grid, Algorithm::AStar, nullptr);
+  Planner jps(grid, Algorithm::Jps, nullptr);
+  Planner jpsPlus(grid, Algorithm::JpsPlus, nullptr);
   std::vector<Cell> path;
   int failures = 0;
   for (const ScenQuery& q : scen.value()) {
     // MovingAI semantics: size 1, capability = the start cell's movement class.
     const Agent agent{1, movingAiClassOf(grid.map().at(q.start))};
-    for (const bool jumps : {false, true}) {
-      const PathResult result = jumps ? jps.findPath(agent, q.start, q.goal, &path)
-                                      : aa.findPath(agent, q.start, q.goal, &path);
+    for (Planner* planner : {&aa, &jps, &jpsPlus}) {
+      const PathResult result = planner->findPath(agent, q.start, q.goal, &path);
       const bool ok = result.found() && std::abs(result.cost - q.optimalLength) <= 0.01 &&
                       findIllegalStep(grid, agent, path).empty();
       if (!ok && ++failures <= 5) {
-        ADD_FAILURE() << c.scen.string() << ":" << q.line << ": " << (jumps ? "JPS" : "AA*")
+        ADD_FAILURE() << c.scen.string() << ":" << q.line << ": " << toString(planner->algorithm())
                       << " expected " << q.optimalLength << ", got " << toString(result.status)
                       << " " << result.cost;
       }
     }
   }
-  EXPECT_EQ(failures, 0) << "of " << 2 * scen.value().size() << " answers";
+  EXPECT_EQ(failures, 0) << "of " << 3 * scen.value().size() << " answers";
   EXPECT_FALSE(scen.value().empty());
 }
 
@@ -128,6 +129,11 @@ TEST_P(MovingAiMap, HaaFindsAPathExactlyWhenAStarDoes) {
       if (quality == AbstractionQuality::High) {
         HybridPlanner hybrid(abstraction);
         testing::checkCompleteness(grid, cases, hybrid, label + " hybrid", tally);
+        // The JPS+ attempt does not depend on the clusters: one graph is enough.
+        if (clusterSize == 16) {
+          HybridPlanner jumping(abstraction, HybridOptions{.attempt = HybridAttempt::JumpPoints});
+          testing::checkCompleteness(grid, cases, jumping, label + " hybrid jps+", tally);
+        }
       }
     }
   }
