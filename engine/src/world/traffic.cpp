@@ -348,8 +348,10 @@ void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent, std::uint64_
     commitWindow(w, unit, std::move(found), start, request, gate, admitted, gateSince);
     return;
   }
-  // Sliced: what the request points to lives as long as the search.
-  PendingWindow& p = pending_.emplace();
+  // Sliced: what the request points to lives as long as the search. (Not emplace(): clang
+  // decides whether the nested struct, with its member initializers, is default-constructible
+  // while Traffic is still incomplete, and says no.)
+  PendingWindow& p = pending_.emplace(PendingWindow{});
   p.unit = unit.id.index;
   p.path = unit.path;
   p.goal = unit.goalCell;
