@@ -98,11 +98,20 @@ constexpr int kLargestTabledSide = INT16_MAX;
 
 }  // namespace
 
-bool JumpPointSearch::Query::walkable(int x, int y) const {
-  if (!bounds.contains({x, y})) return false;
-  const std::size_t word = static_cast<std::size_t>(y) * static_cast<std::size_t>(bits->rowWords) +
+bool JumpPointSearch::Bitmap::stands(int x, int y) const {
+  const std::size_t word = static_cast<std::size_t>(y) * static_cast<std::size_t>(rowWords) +
                            static_cast<std::size_t>(x >> 6);
-  return (bits->rows[word] >> (x & 63)) & 1u;
+  return ((rows[word] >> (x & 63)) & 1u) != 0;
+}
+
+bool JumpPointSearch::Query::walkable(int x, int y) const {
+  return bounds.contains({x, y}) && bits->stands(x, y);
+}
+
+const std::int16_t* JumpPointSearch::Query::entries(int x, int y) const {
+  return table + (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                  static_cast<std::size_t>(x)) *
+                     8;
 }
 
 std::uint32_t JumpPointSearch::Query::indexOf(int x, int y) const {
@@ -127,14 +136,14 @@ JumpPointSearch::JumpPointSearch(const AnnotatedGrid& grid, JumpDistances distan
 std::size_t JumpPointSearch::bitmapBytes() const {
   std::size_t bytes = 0;
   for (const Bitmap& b : bitmaps_)
-    bytes += (b.rows.size() + b.columns.size()) * sizeof(std::uint64_t);
+    bytes += b.bytes();
   return bytes;
 }
 
 std::vector<LayerBytes> JumpPointSearch::layerBytes() const {
   std::vector<LayerBytes> layers;
   for (const Bitmap& b : bitmaps_) {
-    std::size_t bytes = (b.rows.size() + b.columns.size()) * sizeof(std::uint64_t);
+    std::size_t bytes = b.bytes();
     for (const JumpTable& t : tables_) {
       if (t.agent == b.agent)
         bytes += t.distances.size() * sizeof(std::int16_t) + t.standing.size();
@@ -361,63 +370,49 @@ const JumpPointSearch::JumpTable& JumpPointSearch::tableFor(Agent agent) {
     return *it;
   }
   JumpTable& t = *it;
+  const bool fresh = t.distances.empty();
   // Known before bitmapFor brings the bit maps up to date.
   const std::optional<CellRect> known =
-      t.distances.empty() ? std::nullopt : standingChangedSince(agent, t.revision);
+      fresh ? std::nullopt : standingChangedSince(agent, t.revision);
   const Bitmap& bits = bitmapFor(agent);
   const GridMap& map = grid_.map();
   const int width = map.width();
   const int height = map.height();
   const std::size_t framed = static_cast<std::size_t>(width + 2);
-  const auto standsAt = [&](int x, int y) {
-    return static_cast<std::uint8_t>(
-        (bits.rows[static_cast<std::size_t>(y) * static_cast<std::size_t>(bits.rowWords) +
-                   static_cast<std::size_t>(x >> 6)] >>
-         (x & 63)) &
-        1u);
-  };
-  const auto slot = [&](int x, int y) {
-    return static_cast<std::size_t>(y + 1) * framed + static_cast<std::size_t>(x + 1);
-  };
   t.revision = grid_.revision();
-  if (!t.distances.empty()) {
-    // The cells whose standing may have changed: those of the grid's changes it still knows,
-    // else all; their bounding box where it did change.
-    const CellRect area = known.value_or(CellRect{0, 0, width, height});
-    int x0 = width, y0 = height, x1 = -1, y1 = -1;
-    for (int y = area.y; y < area.y + area.height; ++y) {
-      for (int x = area.x; x < area.x + area.width; ++x) {
-        const std::uint8_t now = standsAt(x, y);
-        if (t.standing[slot(x, y)] == now) continue;
-        t.standing[slot(x, y)] = now;
-        x0 = std::min(x0, x);
-        x1 = std::max(x1, x);
-        y0 = std::min(y0, y);
-        y1 = std::max(y1, y);
-      }
-    }
-    if (y1 < 0) return t;  // this layer did not change
-    const std::size_t changed =
-        static_cast<std::size_t>(x1 - x0 + 1) * static_cast<std::size_t>(y1 - y0 + 1);
-    TableSweeps sweeps(t.standing, width, height, t.distances);
-    if (changed * 8 <= map.cellCount()) {
-      sweeps.around({x0, y0, x1 - x0 + 1, y1 - y0 + 1});
-      ++tableCounts_.repairs;
-    } else {
-      sweeps.all();
-      ++tableCounts_.builds;
-    }
-    return t;
+  if (fresh) {
+    t.standing.assign(framed * static_cast<std::size_t>(height + 2), 0);
+    t.distances.assign(map.cellCount() * 8, 0);
   }
-  std::vector<std::uint8_t> standing(framed * static_cast<std::size_t>(height + 2), 0);
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x)
-      standing[slot(x, y)] = standsAt(x, y);
+  // The byte map set again where the standing may have changed (the grid's changes it still
+  // knows, else everywhere), and the bounding box of the cells where it did.
+  const CellRect area = known.value_or(CellRect{0, 0, width, height});
+  int x0 = width, y0 = height, x1 = -1, y1 = -1;
+  for (int y = area.y; y < area.y + area.height; ++y) {
+    for (int x = area.x; x < area.x + area.width; ++x) {
+      const auto now = static_cast<std::uint8_t>(bits.stands(x, y));
+      std::uint8_t& slot =
+          t.standing[static_cast<std::size_t>(y + 1) * framed + static_cast<std::size_t>(x + 1)];
+      if (slot == now) continue;
+      slot = now;
+      x0 = std::min(x0, x);
+      x1 = std::max(x1, x);
+      y0 = std::min(y0, y);
+      y1 = std::max(y1, y);
+    }
   }
-  t.standing = std::move(standing);
-  t.distances.assign(map.cellCount() * 8, 0);
-  TableSweeps(t.standing, width, height, t.distances).all();
-  ++tableCounts_.builds;
+  if (y1 < 0 && !fresh) return t;  // this layer did not change
+  TableSweeps sweeps(t.standing, width, height, t.distances);
+  const auto changed = [&] {
+    return static_cast<std::size_t>(x1 - x0 + 1) * static_cast<std::size_t>(y1 - y0 + 1);
+  };
+  if (!fresh && changed() * 8 <= map.cellCount()) {
+    sweeps.around({x0, y0, x1 - x0 + 1, y1 - y0 + 1});
+    ++tableCounts_.repairs;
+  } else {
+    sweeps.all();
+    ++tableCounts_.builds;
+  }
   return t;
 }
 
@@ -470,11 +465,7 @@ std::uint32_t JumpPointSearch::jump(const Query& q, int x, int y, int dx, int dy
 // (ahead on a straight line within reach, or on the line of a straight jump from a cell of the
 // diagonal run that reaches it: the cell in the goal's row or column, the nearer one).
 Cell JumpPointSearch::jumpByTable(const Query& q, int x, int y, int dx, int dy) const {
-  const std::int16_t* here =
-      q.table + (static_cast<std::size_t>(y) * static_cast<std::size_t>(q.width) +
-                 static_cast<std::size_t>(x)) *
-                    8;
-  const int v = here[tableEntry(dx, dy)];
+  const int v = q.entries(x, y)[tableEntry(dx, dy)];
   const int reach = v > 0 ? v : -v;
   const int aheadX = (q.goal.x - x) * dx;
   const int aheadY = (q.goal.y - y) * dy;
@@ -488,10 +479,7 @@ Cell JumpPointSearch::jumpByTable(const Query& q, int x, int y, int dx, int dy) 
       const int cx = x + k * dx;
       const int cy = y + k * dy;
       if (k == v) return {cx, cy};
-      const std::int16_t* at =
-          q.table + (static_cast<std::size_t>(cy) * static_cast<std::size_t>(q.width) +
-                     static_cast<std::size_t>(cx)) *
-                        8;
+      const std::int16_t* at = q.entries(cx, cy);
       const int s = aheadX > aheadY ? at[tableEntry(dx, 0)] : at[tableEntry(0, dy)];
       if (std::abs(aheadX - aheadY) <= (s > 0 ? s : -s)) return {cx, cy};
     }

@@ -85,6 +85,9 @@ class JumpPointSearch {
     int columnWords = 0;
     std::vector<std::uint64_t> rows;
     std::vector<std::uint64_t> columns;
+
+    bool stands(int x, int y) const;  // (x, y) inside the map
+    std::size_t bytes() const { return (rows.size() + columns.size()) * sizeof(std::uint64_t); }
   };
   const Bitmap& bitmapFor(Agent agent);
   std::optional<CellRect> standingChangedSince(Agent agent, std::uint64_t revision) const;
@@ -113,6 +116,7 @@ class JumpPointSearch {
     std::uint32_t indexOf(int x, int y) const;
     const std::uint64_t* row(int y) const;  // row y's words (null outside the bounds)
     const std::uint64_t* column(int x) const;
+    const std::int16_t* entries(int x, int y) const;  // JPS+: (x, y)'s 8 table entries
   };
 
   void resetScratch();
