@@ -4,7 +4,11 @@ again and the files come out byte for byte the same. Usage: tools/generate_maps.
 
 tools/generate_maps.py --large SIZE FILE writes a SIZE x SIZE map like stress512.map (the same
 mix of lakes, forests, swamps and rocks per area, open lanes every 64 cells) to FILE, for the
-scaling benchmarks of docs/benchmarks.md (2048 and 4096: too big to keep in the repository)."""
+scaling benchmarks of docs/benchmarks.md (2048 and 4096: too big to keep in the repository).
+
+tools/generate_maps.py --maze SIZE CORRIDOR FILE writes a SIZE x SIZE maze like MovingAI's
+maze512-CORRIDOR-0 (corridors CORRIDOR cells wide, walls one cell thick, one path between any
+two places: a randomised depth-first maze, seeded by SIZE and CORRIDOR), where A* floods."""
 import os
 import random
 import sys
@@ -110,6 +114,40 @@ def stress(size=512):
     return g
 
 
+def maze(size, corridor):
+    # Maze cells of corridor x corridor ground on a lattice of pitch corridor + 1; the walls
+    # between lattice neighbours are knocked down along a randomised depth-first tree.
+    rng = random.Random(size * 1000 + corridor)
+    g = blank(size, size, "@")
+    pitch = corridor + 1
+    n = (size - 1) // pitch
+    seen = [[False] * n for _ in range(n)]
+
+    def open_cell(i, j):
+        rect(g, 1 + i * pitch, 1 + j * pitch, 1 + i * pitch + corridor, 1 + j * pitch + corridor,
+             ".")
+
+    stack = [(0, 0)]
+    seen[0][0] = True
+    open_cell(0, 0)
+    while stack:
+        i, j = stack[-1]
+        nexts = [(i + di, j + dj) for di, dj in ((1, 0), (-1, 0), (0, 1), (0, -1))
+                 if 0 <= i + di < n and 0 <= j + dj < n and not seen[i + di][j + dj]]
+        if not nexts:
+            stack.pop()
+            continue
+        a, b = rng.choice(nexts)
+        seen[a][b] = True
+        open_cell(a, b)
+        # The wall between: the corridor's width along the shared side.
+        x0 = 1 + min(i, a) * pitch + (corridor if a != i else 0)
+        y0 = 1 + min(j, b) * pitch + (corridor if b != j else 0)
+        rect(g, x0, y0, x0 + (1 if a != i else corridor), y0 + (1 if b != j else corridor), ".")
+        stack.append((a, b))
+    return g
+
+
 def ambush():
     # 96x48: a river (x 44-51) crossed by a bridge (rows 20-27); forests on the east bank on
     # both sides of the bridge road hide the ambushers; a swamp ford in the south (rows 40-42).
@@ -157,6 +195,11 @@ if __name__ == "__main__" and len(sys.argv) == 4 and sys.argv[1] == "--large":
     if size < 512 or size % 512 != 0:
         sys.exit("generate_maps: --large SIZE must be a multiple of 512")
     save_to(sys.argv[3], stress(size))
+elif __name__ == "__main__" and len(sys.argv) == 5 and sys.argv[1] == "--maze":
+    size, corridor = int(sys.argv[2]), int(sys.argv[3])
+    if size < 16 or corridor < 1 or corridor > size // 4:
+        sys.exit("generate_maps: --maze SIZE CORRIDOR needs SIZE >= 16 and 1 <= CORRIDOR <= SIZE/4")
+    save_to(sys.argv[4], maze(size, corridor))
 elif __name__ == "__main__":
     for name, make in [("river.map", river), ("forest.map", forest), ("pass.map", narrow_pass),
                        ("swamp.map", swamp), ("demo.map", demo), ("stress512.map", stress),

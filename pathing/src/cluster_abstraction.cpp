@@ -34,6 +34,9 @@ std::string problemWith(const AbstractionSpec& spec) {
     if (!spec.capabilities[0].isSubsetOf(spec.costs->capability()))
       return "costs must give a cost to every terrain of capabilities[0]";
   }
+  if (spec.levels < 1 || spec.levels > 2) return limits::between("levels", 1, 2, spec.levels);
+  if (spec.levels == 2 && (spec.levelTwoSize < 2 || spec.levelTwoSize > 256))
+    return limits::between("levelTwoSize", 2, 256, spec.levelTwoSize);
   return {};
 }
 
@@ -154,11 +157,11 @@ class AbstractionBuilder {
   // one more each way (moves look at neighbours); the clusters holding such cells find their
   // intra-edges again, the borders whose two strips hold any find their entrances again, and
   // so do the clusters beside those borders (their transitions change).
-  void repair(CellRect area, RepairStats& stats) {
+  void repair(CellRect area, RepairStats& stats, std::vector<bool>& redo) {
     const CellRect reach = map_.clip({area.x - maxSize_, area.y - maxSize_,
                                       area.width + maxSize_ + 1, area.height + maxSize_ + 1});
     const int clusters = g_.clusterCount();
-    std::vector<bool> redo(static_cast<std::size_t>(clusters), false);
+    redo.assign(static_cast<std::size_t>(clusters), false);
     std::vector<std::pair<int, bool>> borders;  // (cluster, east)
     const int b = g_.spec_.clusterSize;
     const int cx0 = reach.x / b;
@@ -898,7 +901,10 @@ class AbstractionBuilder {
 
 ClusterAbstraction ClusterAbstraction::build(const AnnotatedGrid& grid, AbstractionSpec spec) {
   limits::require(problemWith(spec));
-  return AbstractionBuilder(grid, std::move(spec)).build();
+  ClusterAbstraction built = AbstractionBuilder(grid, std::move(spec)).build();
+  built.buildLevelTwo(nullptr);
+  built.stats_.buildMilliseconds += built.stats_.levelTwoMilliseconds;
+  return built;
 }
 
 RepairStats ClusterAbstraction::repair(const TerrainChange& change) {
@@ -912,13 +918,25 @@ RepairStats ClusterAbstraction::repair(const TerrainChange& change) {
   for (std::size_t i = 0; i < effective_.size(); ++i)
     newTerrain = newTerrain || (spec_.capabilities[i].mask() & added & ~effective_[i].mask()) != 0;
   if (newTerrain) {
-    *this = AbstractionBuilder(*grid_, spec_).build();
+    *this = build(*grid_, spec_);
     stats.rebuilt = true;
     stats.clusters = clusterCount();
     stats.expanded = stats_.buildExpanded;
   } else {
     if (costs_) costs_->update(*grid_, change.area);
-    AbstractionBuilder(*this).repair(change.area, stats);
+    std::vector<bool> redo;
+    AbstractionBuilder(*this).repair(change.area, stats, redo);
+    if (spec_.levels == 2) {
+      // Level 2 again in every level-2 cluster holding a cluster whose level-1 edges changed.
+      std::vector<bool> blocks(levelTwoPaths_.size(), false);
+      for (int k = 0; k < clusterCount(); ++k) {
+        if (!redo[static_cast<std::size_t>(k)]) continue;
+        const int cx = (k % clustersX_) / spec_.levelTwoSize;
+        const int cy = (k / clustersX_) / spec_.levelTwoSize;
+        blocks[static_cast<std::size_t>(cy * levelTwoX_ + cx)] = true;
+      }
+      buildLevelTwo(&blocks);
+    }
   }
   stats.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();

@@ -1,6 +1,7 @@
 #include "pathing/haa_star.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -47,17 +48,27 @@ struct HierarchicalAStar::Scratch {
   std::vector<Cell> smoothed;
   std::vector<std::uint8_t> steps;
   std::vector<double> prefixCost;
+  std::vector<std::int16_t> rayLengths;  // smoothing: per path cell and direction
 
   // Abstract search over the graph's nodes plus two: start (n) and goal (n + 1).
   std::vector<std::uint32_t> stamp;  // generation * 2 + {0 open, 1 closed}
   std::vector<double> g;
   std::vector<std::uint32_t> parent;
   std::vector<const AbstractEdge*> parentEdge;  // null for the start and goal links
+  std::vector<std::uint8_t> parentIsLevelTwo;   // parentEdge is a level-2 edge
   std::vector<std::uint32_t> goalLinkStamp;
   std::vector<double> goalLinkCost;
   std::vector<std::pair<std::uint32_t, double>> startLinks;
+  // The abstract path's level-1 nodes, start..goal, and the edge into each (null for links).
   std::vector<std::uint32_t> abstractPath;
+  std::vector<const AbstractEdge*> pathEdges;
+  std::vector<std::pair<std::uint32_t, const AbstractEdge*>> levelOneSteps;
   OpenList open;
+  // Level 2 (the graph has it and no surcharge is asked): the level-2 clusters of the start
+  // and goal, searched at level 1; every other is crossed by level-2 edges.
+  bool levelTwo = false;
+  int startBlock = -1;
+  int goalBlock = -1;
   std::uint32_t generation = 0;
 
   // The query under way (result.status Pending until done).
@@ -83,6 +94,7 @@ struct HierarchicalAStar::Scratch {
       g.assign(nodes + 2, 0.0);
       parent.assign(nodes + 2, kNone);
       parentEdge.assign(nodes + 2, nullptr);
+      parentIsLevelTwo.assign(nodes + 2, 0);
       goalLinkStamp.assign(nodes + 2, 0);
       goalLinkCost.assign(nodes + 2, 0.0);
       generation = 0;
@@ -95,6 +107,7 @@ struct HierarchicalAStar::Scratch {
     open.clear();
     startLinks.clear();
     abstractPath.clear();
+    pathEdges.clear();
   }
 };
 
@@ -145,7 +158,47 @@ class StraightWalker {
   StraightWalker(const GridMap& map, const AgentLayer& layer, const CostField* costs)
       : map_(map), layer_(layer), costs_(costs) {}
 
-  bool tryAppend(Cell a, Cell b, double budget, std::vector<Cell>* out) const {
+  // The legal moves in a row from each cell of a path in each direction, up to `cap`, found at
+  // first ask. A walk's shape opens with a run of one direction and the two-run shapes close
+  // with one, and moves are legal both ways, so a walk whose opening run is longer than the
+  // ray from its start, or closing run longer than the ray back from its end, is illegal
+  // without walking it. On winding paths (mazes) nearly every candidate shortcut is, and
+  // walking them was most of a query's time.
+  class Rays {
+   public:
+    Rays(const StraightWalker& walker, std::span<const Cell> cells, int cap,
+         std::vector<std::int16_t>& lengths)
+        : walker_(walker), cells_(cells), cap_(cap), lengths_(lengths) {
+      lengths_.assign(cells.size() * 8, -1);
+    }
+    int operator()(std::size_t at, int d) {
+      std::int16_t& length = lengths_[at * 8 + static_cast<std::size_t>(d)];
+      if (length >= 0) return length;
+      const std::uint8_t* masks = walker_.layer_.moveMasks().data();
+      const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+      Cell c = cells_[at];
+      int n = 0;
+      while (n < cap_ && (masks[walker_.map_.indexOf(c)] & (1u << d)) != 0) {
+        c = {c.x + dir.dx, c.y + dir.dy};
+        ++n;
+      }
+      length = static_cast<std::int16_t>(n);
+      return n;
+    }
+
+   private:
+    const StraightWalker& walker_;
+    std::span<const Cell> cells_;
+    int cap_;
+    std::vector<std::int16_t>& lengths_;
+  };
+
+  // A shortcut from path cell i to path cell j; `rays` over the path, with a cap of at least
+  // the walk's moves.
+  bool tryAppend(std::size_t i, std::size_t j, std::span<const Cell> cells, double budget,
+                 Rays& rays, std::vector<Cell>* out) const {
+    const Cell a = cells[i];
+    const Cell b = cells[j];
     const int dx = b.x - a.x;
     const int dy = b.y - a.y;
     const int ax = std::abs(dx);
@@ -157,7 +210,23 @@ class StraightWalker {
     const int diagonal = directionOf(sx, sy);
     const int straight = ax >= ay ? directionOf(sx, 0) : directionOf(0, sy);
     const int total = diagonals + straights;
-    for (int shape = 0; shape < 3; ++shape) {
+    // A walk of one direction has one shape.
+    const int shapes = diagonals == 0 || straights == 0 ? 1 : 3;
+    for (int shape = 0; shape < shapes; ++shape) {
+      // The opening run: shape 0 the diagonals, shape 1 the straights, the interleaved shape
+      // ceil(straights / diagonals) straights before its first diagonal. Shapes 0 and 1 of
+      // two directions close with a run of the other.
+      const bool diagonalFirst = straights == 0 || (shape == 0 && diagonals > 0);
+      const int opening = straights == 0   ? diagonals
+                          : diagonals == 0 ? straights
+                          : shape == 0     ? diagonals
+                          : shape == 1     ? straights
+                                           : (straights + diagonals - 1) / diagonals;
+      if (rays(i, diagonalFirst ? diagonal : straight) < opening) continue;
+      if (shapes == 3 && shape < 2) {
+        const int closingDirection = oppositeDirection(shape == 0 ? straight : diagonal);
+        if (rays(j, closingDirection) < (shape == 0 ? straights : diagonals)) continue;
+      }
       const auto moveAt = [&](int k) {
         if (diagonals == 0) return straight;
         if (straights == 0) return diagonal;
@@ -387,6 +456,12 @@ void HierarchicalAStar::beginAbstract() {
   s.open.push(
       OpenList::makeKey(scale * octileDistance(s.goal.x - s.start.x, s.goal.y - s.start.y), 0.0),
       startNode);
+  // Surcharges price level-1 edges one by one, which level-2 edges cannot: searched at level 1.
+  s.levelTwo = abstraction_.hasLevelTwo() && !s.surcharge;
+  if (s.levelTwo) {
+    s.startBlock = abstraction_.levelTwoClusterOf(s.start);
+    s.goalBlock = abstraction_.levelTwoClusterOf(s.goal);
+  }
   s.phase = Phase::Abstract;
 }
 
@@ -404,13 +479,14 @@ std::uint64_t HierarchicalAStar::searchAbstract(std::uint64_t budget) {
   const std::uint32_t openStamp = s.generation * 2;
   const std::uint32_t closedStamp = openStamp + 1;
   const auto relax = [&](std::uint32_t from, std::uint32_t to, double cost,
-                         const AbstractEdge* edge, Cell toCell) {
+                         const AbstractEdge* edge, Cell toCell, bool levelTwo = false) {
     const double ng = s.g[from] + cost;
     if (s.stamp[to] == closedStamp || (s.stamp[to] == openStamp && ng >= s.g[to])) return;
     s.stamp[to] = openStamp;
     s.g[to] = ng;
     s.parent[to] = from;
     s.parentEdge[to] = edge;
+    s.parentIsLevelTwo[to] = levelTwo ? 1 : 0;
     s.open.push(OpenList::makeKey(ng + heuristic(toCell), ng), to);
     ++metrics.generated;
   };
@@ -423,9 +499,7 @@ std::uint64_t HierarchicalAStar::searchAbstract(std::uint64_t budget) {
     ++metrics.abstractExpanded;
     ++spent;
     if (u == goalNode) {
-      for (std::uint32_t at = goalNode; at != Scratch::kNone; at = s.parent[at])
-        s.abstractPath.push_back(at);
-      std::reverse(s.abstractPath.begin(), s.abstractPath.end());
+      tracePath();
       s.refined.push_back(s.start);
       s.refineIndex = 1;
       s.refineSearching = false;
@@ -436,6 +510,23 @@ std::uint64_t HierarchicalAStar::searchAbstract(std::uint64_t budget) {
       for (const auto& [n, cost] : s.startLinks)
         relax(u, n, cost, nullptr, abstraction_.nodeCell(n));
       continue;
+    }
+    if (s.levelTwo) {
+      // Inside a level-2 cluster of neither end (entered at a level-2 node): its level-2
+      // edges, and the level-1 edges that leave it.
+      const int block = abstraction_.levelTwoClusterOfNode(u);
+      if (block != s.startBlock && block != s.goalBlock) {
+        for (const AbstractEdge& e : abstraction_.levelTwoEdgesOf(u)) {
+          if (e.usableBy(agent))
+            relax(u, e.target, e.cost, &e, abstraction_.nodeCell(e.target), true);
+        }
+        for (const AbstractEdge& e : abstraction_.edgesOf(u)) {
+          if (!e.intra && e.usableBy(agent) &&
+              abstraction_.levelTwoClusterOfNode(e.target) != block)
+            relax(u, e.target, e.cost, &e, abstraction_.nodeCell(e.target));
+        }
+        continue;
+      }
     }
     for (const AbstractEdge& e : abstraction_.edgesOf(u)) {
       if (!e.usableBy(agent)) continue;
@@ -453,6 +544,32 @@ std::uint64_t HierarchicalAStar::searchAbstract(std::uint64_t budget) {
   return spent;
 }
 
+// The abstract path found, start to goal, in `abstractPath` and `pathEdges`, its level-2 edges
+// replaced by the level-1 edges they stand for.
+void HierarchicalAStar::tracePath() {
+  Scratch& s = *scratch_;
+  const std::uint32_t goalNode = abstraction_.nodeCount() + 1;
+  for (std::uint32_t at = goalNode; at != Scratch::kNone; at = s.parent[at]) {
+    const std::uint32_t from = s.parent[at];
+    if (from == Scratch::kNone || !s.parentIsLevelTwo[at]) {
+      s.abstractPath.push_back(at);
+      s.pathEdges.push_back(s.parentEdge[at]);
+      continue;
+    }
+    s.levelOneSteps.clear();
+    abstraction_.appendLevelOneSteps(from, *s.parentEdge[at], &s.levelOneSteps);
+    std::uint32_t to = at;
+    for (auto it = s.levelOneSteps.rbegin(); it != s.levelOneSteps.rend(); ++it) {
+      WARPATH_INVARIANT(it->second->target == to, "level 2: steps must join its ends");
+      s.abstractPath.push_back(to);
+      s.pathEdges.push_back(it->second);
+      to = it->first;
+    }
+  }
+  std::reverse(s.abstractPath.begin(), s.abstractPath.end());
+  std::reverse(s.pathEdges.begin(), s.pathEdges.end());
+}
+
 // Refinement: the start link (the start's Dijkstra tree), each abstract edge's cached path
 // (or, without cached paths, AA* re-planned inside its cluster, sliced), the goal link (the
 // goal's tree, walked backwards). Fills `refined` from start to goal and completes the query;
@@ -466,6 +583,7 @@ std::uint64_t HierarchicalAStar::refine(std::uint64_t budget) {
   for (; s.refineIndex < s.abstractPath.size(); ++s.refineIndex) {
     const std::uint32_t from = s.abstractPath[s.refineIndex - 1];
     const std::uint32_t to = s.abstractPath[s.refineIndex];
+    const AbstractEdge* pathEdge = s.pathEdges[s.refineIndex];
     if (from == startNode) {
       s.steps.clear();
       s.startSearch.appendSteps(abstraction_.nodeCell(to), &s.steps);
@@ -480,7 +598,7 @@ std::uint64_t HierarchicalAStar::refine(std::uint64_t budget) {
         cells.push_back(at);
       }
     } else {
-      const AbstractEdge& edge = *s.parentEdge[to];
+      const AbstractEdge& edge = *pathEdge;
       if (!edge.intra || edge.path != AbstractEdge::kNoPath) {
         abstraction_.appendEdgeCells(from, edge, &cells);
         continue;
@@ -566,6 +684,7 @@ void HierarchicalAStar::smooth(const AgentLayer& layer) {
   const double scale = costs ? costs->cheapest() : 1.0;
   const std::size_t lookahead = static_cast<std::size_t>(abstraction_.spec().clusterSize) * 3;
   const StraightWalker walker(map, layer, costs);
+  StraightWalker::Rays rays(walker, cells, static_cast<int>(lookahead), s.rayLengths);
   std::vector<Cell>& out = s.smoothed;
   out.clear();
   out.push_back(cells[0]);
@@ -590,7 +709,7 @@ void HierarchicalAStar::smooth(const AgentLayer& layer) {
       const double direct =
           scale * octileDistance(cells[j].x - cells[i].x, cells[j].y - cells[i].y);
       if (direct >= budget) continue;
-      if (walker.tryAppend(cells[i], cells[j], budget, &out)) {
+      if (walker.tryAppend(i, j, cells, budget, rays, &out)) {
         next = j;
         break;
       }

@@ -61,6 +61,15 @@ void addPlannerOptions(CLI::App& cmd, PlannerChoice& choice) {
   cmd.add_option("--cluster-size", choice.clusterSize,
                  "side of the clusters of the hierarchical algorithms, in cells")
       ->capture_default_str();
+  cmd.add_option("--levels", choice.levels,
+                 "hierarchical algorithms: levels of clusters (2: blocks of --level-two-size "
+                 "clusters a side are crossed by exact level-2 edges)")
+      ->check(CLI::Range(1, 2))
+      ->capture_default_str();
+  cmd.add_option("--level-two-size", choice.levelTwoSize,
+                 "hierarchical algorithms with --levels 2: side of a level-2 cluster, in clusters")
+      ->check(CLI::Range(2, 256))
+      ->capture_default_str();
   cmd.add_option("--tau", choice.tau,
                  "hybrid: node budget of the short-query AA* attempt; queries up to sqrt(tau)/2 "
                  "apart try it first")
@@ -135,7 +144,9 @@ PreparedPlanner preparePlanner(const AnnotatedGrid& grid, Algorithm algorithm,
                                                       .maxAgentSize = needs.maxAgentSize,
                                                       .capabilities = std::move(needs.capabilities),
                                                       .quality = *quality,
-                                                      .cachePaths = true}));
+                                                      .cachePaths = true,
+                                                      .levels = choice.levels,
+                                                      .levelTwoSize = choice.levelTwoSize}));
   });
 }
 
@@ -145,8 +156,10 @@ PreparedPlanner prepareCostPlanner(const AnnotatedGrid& grid, Algorithm algorith
   return prepare(algorithm, choice, [&](PreparedPlanner& prepared) {
     grid.layer(agent);
     if (const auto quality = abstractionQualityFor(algorithm)) {
-      prepared.abstraction.emplace(buildAbstractionOrThrow(
-          grid, weightedAbstractionSpec(agent, costs, choice.clusterSize, *quality)));
+      AbstractionSpec spec = weightedAbstractionSpec(agent, costs, choice.clusterSize, *quality);
+      spec.levels = choice.levels;
+      spec.levelTwoSize = choice.levelTwoSize;
+      prepared.abstraction.emplace(buildAbstractionOrThrow(grid, std::move(spec)));
     } else {
       prepared.aaCosts.emplace(grid, agent, costs);
     }
@@ -164,6 +177,12 @@ void writeAbstractionKeys(const AbstractionStats& stats, nlohmann::json& out) {
   out["abstract_intra_edges"] = stats.intraEdges;
   out["abstraction_bytes"] = stats.graphBytes;
   out["cached_path_bytes"] = stats.pathBytes;
+  if (stats.levelTwoNodes > 0) {
+    out["level_two_nodes"] = stats.levelTwoNodes;
+    out["level_two_edges"] = stats.levelTwoEdges;
+    out["level_two_bytes"] = stats.levelTwoBytes;
+    out["level_two_build_ms"] = stats.levelTwoMilliseconds;
+  }
 }
 
 }  // namespace warpath::tools

@@ -37,13 +37,15 @@ nlohmann::json agentJson(pathing::Agent agent);
 struct PlannerChoice {
   std::string algo = "aa";
   int clusterSize = pathing::AbstractionSpec{}.clusterSize;
+  int levels = pathing::AbstractionSpec{}.levels;
+  int levelTwoSize = pathing::AbstractionSpec{}.levelTwoSize;
   std::uint64_t tau = pathing::HybridOptions{}.tau;
   std::string attempt{pathing::kHybridAttemptNames.name(pathing::HybridOptions{}.attempt)};
   bool noSmooth = false;
 };
 
-// Adds --algo, --cluster-size, --tau, --attempt and --no-smooth to `cmd`, bound to `choice` (which
-// must outlive the parse).
+// Adds --algo, --cluster-size, --levels, --level-two-size, --tau, --attempt and --no-smooth to
+// `cmd`, bound to `choice` (which must outlive the parse).
 void addPlannerOptions(CLI::App& cmd, PlannerChoice& choice);
 
 // The algorithm named by `name` ("aa", "haa-hq", "haa-lq", "hybrid"); throws BadInput.

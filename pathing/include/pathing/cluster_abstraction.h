@@ -59,6 +59,15 @@ struct AbstractionSpec {
   // compares those costs. One graph per cost profile: a footprint's cost depends on its size.
   // [Limit: exactly one capability, every terrain of which has a cost]
   std::optional<TerrainCosts> costs = std::nullopt;
+  // Levels of the hierarchy (HPA*'s levels, Botea et al. 2004). With 2, every levelTwoSize ×
+  // levelTwoSize block of clusters is a level-2 cluster: its level-1 nodes with an inter-edge
+  // leaving the block are joined by level-2 edges, the shortest paths over the level-1 graph
+  // inside the block for every agent the graph serves (annotated like any edge). A query
+  // searches level 1 only in the level-2 clusters of its start and goal and crosses the others
+  // by level-2 edges, so long queries expand far fewer nodes; answers cost what level 1 alone
+  // gives (the level-2 edges are exact over level 1). [Limit: 1..2]
+  int levels = 1;
+  int levelTwoSize = 4;  // [Unit: clusters] [Limit: 2..256] side of a level-2 cluster
 };
 
 // The spec of a weighted graph (AbstractionSpec::costs): it serves `agent` alone (its size and
@@ -96,6 +105,13 @@ struct AbstractionStats {
   std::size_t pathBytes = 0;   // cached refinement paths
   double buildMilliseconds = 0.0;
   std::uint64_t buildExpanded = 0;  // cells the build's intra-edge searches expanded
+  // Level 2 (spec.levels == 2): level-1 nodes that are level-2 nodes (on a level-2 border),
+  // level-2 edges (directed: stored at their source), their bytes with the level-1 edge lists
+  // they refine to, and the share of buildMilliseconds that built them.
+  std::size_t levelTwoNodes = 0;
+  std::size_t levelTwoEdges = 0;
+  std::size_t levelTwoBytes = 0;
+  double levelTwoMilliseconds = 0.0;
 };
 
 // What one repair did (ClusterAbstraction::repair).
@@ -147,6 +163,25 @@ class ClusterAbstraction {
     return clusterNodes_[static_cast<std::size_t>(cluster)];
   }
 
+  // Level 2 (spec().levels == 2; otherwise no node has level-2 edges).
+  bool hasLevelTwo() const { return spec_.levels == 2; }
+  int levelTwoClusterOf(Cell c) const {
+    const int side = spec_.clusterSize * spec_.levelTwoSize;
+    return (c.y / side) * levelTwoX_ + c.x / side;
+  }
+  // The level-2 cluster of a node, read from a table (queries ask it at every expansion).
+  int levelTwoClusterOfNode(std::uint32_t node) const { return nodeLevelTwo_[node]; }
+  // A level-2 node's level-2 edges, each the shortest level-1 path inside its level-2 cluster
+  // for the agents its annotation admits (AbstractEdge::intra is true, path is internal).
+  std::span<const AbstractEdge> levelTwoEdgesOf(std::uint32_t node) const {
+    return node < levelTwoEdges_.size() ? std::span<const AbstractEdge>(levelTwoEdges_[node])
+                                        : std::span<const AbstractEdge>();
+  }
+  // Appends the level-1 steps of level-2 edge `edge` taken from `from`: for each, the level-1
+  // node it leaves and the level-1 edge it takes, in order.
+  void appendLevelOneSteps(std::uint32_t from, const AbstractEdge& edge,
+                           std::vector<std::pair<std::uint32_t, const AbstractEdge*>>* out) const;
+
   // Appends the grid cells of `edge`, taken from node `from`, excluding `from`'s cell and
   // including the target's. [Limit: edge.path != kNoPath or !edge.intra; a programming error,
   // checked as an invariant in debug and sanitizer builds]
@@ -154,7 +189,10 @@ class ClusterAbstraction {
 
  private:
   friend class AbstractionBuilder;
+  friend class LevelTwoBuilder;
   ClusterAbstraction() = default;
+  // Level 2 of the level-2 clusters marked (all when null), after a build or repair of level 1.
+  void buildLevelTwo(const std::vector<bool>* levelTwoClusters);
 
   // The cached grid paths of one cluster's intra-edges: path p's moves (moves.h), source to
   // target, are steps[begin[p]] up to steps[begin[p + 1]]. Per cluster, so that a repair
@@ -178,6 +216,25 @@ class ClusterAbstraction {
   std::vector<std::vector<std::uint32_t>> clusterNodes_;  // per cluster, by cell index
   std::vector<ClusterPaths> paths_;                       // per cluster
   std::vector<std::uint32_t> freeNodes_;                  // ids a repair left unused
+
+  // Level 2. A level-2 edge's path is its level-1 edges, each (source node, index in
+  // edges_[source]), source to target; per level-2 cluster, so that a repair replaces one
+  // cluster's. Level-1 edge indices hold until a repair touches the node's cluster, and a
+  // repair builds level 2 again for every level-2 cluster holding such a cluster.
+  struct LevelOneRef {
+    std::uint32_t node = 0;
+    std::uint32_t edge = 0;
+  };
+  struct LevelTwoPaths {
+    std::vector<std::uint32_t> begin{0};
+    std::vector<LevelOneRef> steps;
+  };
+  int levelTwoX_ = 0;
+  int levelTwoY_ = 0;
+  std::vector<int> nodeLevelTwo_;                          // per node
+  std::vector<std::vector<AbstractEdge>> levelTwoEdges_;   // per node
+  std::vector<LevelTwoPaths> levelTwoPaths_;               // per level-2 cluster
+  std::vector<std::vector<std::uint32_t>> levelTwoNodes_;  // per level-2 cluster
 };
 
 }  // namespace warpath::pathing

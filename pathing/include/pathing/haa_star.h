@@ -102,6 +102,7 @@ class HierarchicalAStar {
   void insertEndpoint(bool goalSide);
   void beginAbstract();
   std::uint64_t searchAbstract(std::uint64_t budget);
+  void tracePath();
   std::uint64_t refine(std::uint64_t budget);
   // Smoothing, cost and the total of the phases: the query is Found.
   void complete();

@@ -1,0 +1,281 @@
+// Level 2 of the cluster hierarchy (AbstractionSpec::levels): HPA*'s next level (Botea et al.
+// 2004), built over the annotated level-1 graph the way HAA* builds level 1 over the grid.
+//
+// Completeness and exactness: a level-2 cluster's level-2 nodes are its level-1 nodes with an
+// inter-edge leaving it. Any level-1 path crossing a level-2 cluster it neither starts nor ends
+// in enters and leaves it at such nodes, and between them runs inside it. For every agent the
+// graph serves (each capability of the spec, each size) and every pair of level-2 nodes, the
+// shortest such inside run over the level-1 edges the agent may use becomes a level-2 edge,
+// annotated with the union of its edges' capabilities and the least of their clearances, so
+// the agent may use it; dominance removes an edge only for another as cheap that every agent
+// able to use it may use. A query that crosses other level-2 clusters by level-2 edges alone
+// therefore finds a path exactly when level 1 does, at the same cost.
+
+#include <algorithm>
+#include <chrono>
+#include <functional>
+#include <queue>
+
+#include "pathing/cluster_abstraction.h"
+#include "pathing/invariant.h"
+
+namespace warpath::pathing {
+
+class LevelTwoBuilder {
+ public:
+  explicit LevelTwoBuilder(ClusterAbstraction& g) : g_(g) {}
+
+  // Builds the level-2 edges of level-2 cluster `block` again from the level-1 graph.
+  void rebuild(int block) {
+    ClusterAbstraction::LevelTwoPaths& paths = g_.levelTwoPaths_[static_cast<std::size_t>(block)];
+    paths = {};
+    collectNodes(block);
+    for (std::uint32_t i = 0; i < entries_.size(); ++i) {
+      candidates_.clear();
+      const std::uint32_t u = entries_[i];
+      for (const Capability& capability : g_.spec_.capabilities) {
+        const int smallest = g_.costs_ ? g_.spec_.maxAgentSize : 1;
+        for (int size = smallest; size <= g_.spec_.maxAgentSize; ++size)
+          searchFrom(u, Agent{size, capability}, i);
+      }
+      keepUndominated(u, paths);
+    }
+    for (std::uint32_t n : nodes_)
+      localOf_[n] = kNone;
+  }
+
+ private:
+  static constexpr std::uint32_t kNone = UINT32_MAX;
+
+  struct Candidate {
+    std::uint32_t target = 0;  // graph node
+    double cost = 0.0;
+    Capability capability;
+    std::uint8_t clearance = 0;
+    std::uint32_t stepsBegin = 0;  // in steps_
+    std::uint32_t stepsEnd = 0;
+    bool removed = false;
+  };
+
+  // The block's level-1 nodes (cluster by cluster, each cluster's in its order), their local
+  // indices, and its level-2 nodes; the old level-2 nodes' edges are dropped.
+  void collectNodes(int block) {
+    const AbstractionSpec& spec = g_.spec_;
+    const int bx = block % g_.levelTwoX_;
+    const int by = block / g_.levelTwoX_;
+    std::vector<std::uint32_t>& old = g_.levelTwoNodes_[static_cast<std::size_t>(block)];
+    for (std::uint32_t n : old)
+      g_.levelTwoEdges_[n].clear();
+    old.clear();
+    nodes_.clear();
+    for (int cy = by * spec.levelTwoSize;
+         cy < std::min(g_.clustersY_, (by + 1) * spec.levelTwoSize); ++cy) {
+      for (int cx = bx * spec.levelTwoSize;
+           cx < std::min(g_.clustersX_, (bx + 1) * spec.levelTwoSize); ++cx) {
+        for (std::uint32_t n : g_.nodesInCluster(cy * g_.clustersX_ + cx))
+          nodes_.push_back(n);
+      }
+    }
+    if (localOf_.size() < g_.nodeCells_.size()) localOf_.resize(g_.nodeCells_.size(), kNone);
+    if (g_.levelTwoEdges_.size() < g_.nodeCells_.size())
+      g_.levelTwoEdges_.resize(g_.nodeCells_.size());
+    if (g_.nodeLevelTwo_.size() < g_.nodeCells_.size())
+      g_.nodeLevelTwo_.resize(g_.nodeCells_.size(), -1);
+    entries_.clear();
+    for (std::uint32_t i = 0; i < nodes_.size(); ++i) {
+      const std::uint32_t n = nodes_[i];
+      localOf_[n] = i;
+      g_.nodeLevelTwo_[n] = block;
+      const auto edges = g_.edgesOf(n);
+      if (std::any_of(edges.begin(), edges.end(), [&](const AbstractEdge& e) {
+            return !e.intra && g_.levelTwoClusterOf(g_.nodeCells_[e.target]) != block;
+          }))
+        entries_.push_back(n);
+    }
+    old = entries_;
+    dist_.assign(nodes_.size(), 0.0);
+    parent_.assign(nodes_.size(), kNone);
+    parentEdge_.assign(nodes_.size(), 0);
+    stamp_.assign(nodes_.size(), 0);
+    generation_ = 0;
+  }
+
+  // Dijkstra from level-2 node `u` over the block's level-1 edges `agent` may use; a candidate
+  // for every level-2 node after it in entries_ (the edge's reverse serves the other way: level-1
+  // edges are undirected, so the cost is the same both ways).
+  void searchFrom(std::uint32_t u, Agent agent, std::uint32_t entryIndex) {
+    const auto usable = g_.edgesOf(u);
+    if (std::none_of(usable.begin(), usable.end(),
+                     [&](const AbstractEdge& e) { return e.usableBy(agent); }))
+      return;
+    ++generation_;
+    const std::uint32_t open = generation_ * 2;
+    const std::uint32_t closed = open + 1;
+    using Entry = std::pair<double, std::uint32_t>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> heap;
+    const std::uint32_t source = localOf_[u];
+    stamp_[source] = open;
+    dist_[source] = 0.0;
+    parent_[source] = kNone;
+    heap.push({0.0, source});
+    while (!heap.empty()) {
+      const auto [d, x] = heap.top();
+      heap.pop();
+      if (stamp_[x] == closed) continue;
+      stamp_[x] = closed;
+      const auto edges = g_.edgesOf(nodes_[x]);
+      for (std::uint32_t k = 0; k < edges.size(); ++k) {
+        const AbstractEdge& e = edges[k];
+        if (!e.usableBy(agent)) continue;
+        const std::uint32_t y = localOf_[e.target];
+        if (y == kNone || stamp_[y] == closed) continue;
+        const double nd = d + e.cost;
+        if (stamp_[y] == open && nd >= dist_[y]) continue;
+        stamp_[y] = open;
+        dist_[y] = nd;
+        parent_[y] = x;
+        parentEdge_[y] = k;
+        heap.push({nd, y});
+      }
+    }
+    for (std::uint32_t j = entryIndex + 1; j < entries_.size(); ++j) {
+      const std::uint32_t v = localOf_[entries_[j]];
+      if (stamp_[v] != closed) continue;
+      Candidate c;
+      c.target = entries_[j];
+      c.cost = dist_[v];
+      c.clearance = UINT8_MAX;
+      c.stepsBegin = static_cast<std::uint32_t>(steps_.size());
+      for (std::uint32_t at = v; at != source; at = parent_[at]) {
+        const std::uint32_t from = nodes_[parent_[at]];
+        const AbstractEdge& e = g_.edges_[from][parentEdge_[at]];
+        c.capability = Capability::fromMask(c.capability.mask() | e.capability.mask());
+        c.clearance = std::min(c.clearance, e.clearance);
+        steps_.push_back({from, parentEdge_[at]});
+      }
+      std::reverse(steps_.begin() + c.stepsBegin, steps_.end());
+      c.stepsEnd = static_cast<std::uint32_t>(steps_.size());
+      candidates_.push_back(c);
+    }
+  }
+
+  // Of the candidates from `u` to each node, those no other dominates (as cheap, capability a
+  // subset, clearance at least; of equals the first), stored at both ends.
+  void keepUndominated(std::uint32_t u, ClusterAbstraction::LevelTwoPaths& paths) {
+    constexpr double kSame = 1e-9;
+    std::stable_sort(candidates_.begin(), candidates_.end(),
+                     [](const Candidate& l, const Candidate& r) { return l.target < r.target; });
+    for (std::size_t i = 0; i < candidates_.size(); ++i) {
+      Candidate& a = candidates_[i];
+      for (std::size_t j = i; j-- > 0 && candidates_[j].target == a.target;) {
+        const Candidate& b = candidates_[j];
+        if (!b.removed && b.cost <= a.cost + kSame && b.capability.isSubsetOf(a.capability) &&
+            b.clearance >= a.clearance) {
+          a.removed = true;
+          break;
+        }
+      }
+      if (a.removed) continue;
+      // A later candidate may dominate earlier ones it is strictly better than.
+      for (std::size_t j = i; j-- > 0 && candidates_[j].target == a.target;) {
+        Candidate& b = candidates_[j];
+        if (!b.removed && a.cost <= b.cost + kSame && a.capability.isSubsetOf(b.capability) &&
+            a.clearance >= b.clearance)
+          b.removed = true;
+      }
+    }
+    for (const Candidate& c : candidates_) {
+      if (c.removed) continue;
+      AbstractEdge forward;
+      forward.target = c.target;
+      forward.path = static_cast<std::uint32_t>(paths.begin.size() - 1);
+      forward.cost = c.cost;
+      forward.capability = c.capability;
+      forward.clearance = c.clearance;
+      forward.intra = true;
+      paths.steps.insert(paths.steps.end(), steps_.begin() + c.stepsBegin,
+                         steps_.begin() + c.stepsEnd);
+      paths.begin.push_back(static_cast<std::uint32_t>(paths.steps.size()));
+      AbstractEdge backward = forward;
+      backward.target = u;
+      backward.reversed = true;
+      g_.levelTwoEdges_[u].push_back(forward);
+      g_.levelTwoEdges_[c.target].push_back(backward);
+    }
+    steps_.clear();
+  }
+
+  ClusterAbstraction& g_;
+  std::vector<std::uint32_t> nodes_;    // the block's level-1 nodes
+  std::vector<std::uint32_t> entries_;  // its level-2 nodes
+  std::vector<std::uint32_t> localOf_;  // graph node -> index in nodes_, kNone outside
+  std::vector<double> dist_;
+  std::vector<std::uint32_t> parent_;
+  std::vector<std::uint32_t> parentEdge_;  // index in the parent's edges
+  std::vector<std::uint32_t> stamp_;       // generation * 2 + {0 open, 1 closed}
+  std::uint32_t generation_ = 0;
+  std::vector<Candidate> candidates_;
+  std::vector<ClusterAbstraction::LevelOneRef> steps_;
+};
+
+void ClusterAbstraction::buildLevelTwo(const std::vector<bool>* levelTwoClusters) {
+  if (spec_.levels != 2) return;
+  const auto began = std::chrono::steady_clock::now();
+  const int side = spec_.levelTwoSize;
+  levelTwoX_ = (clustersX_ + side - 1) / side;
+  levelTwoY_ = (clustersY_ + side - 1) / side;
+  const auto blocks = static_cast<std::size_t>(levelTwoX_ * levelTwoY_);
+  if (!levelTwoClusters) {
+    levelTwoEdges_.assign(nodeCells_.size(), {});
+    nodeLevelTwo_.assign(nodeCells_.size(), -1);
+    levelTwoPaths_.assign(blocks, {});
+    levelTwoNodes_.assign(blocks, {});
+  }
+  LevelTwoBuilder builder(*this);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    if (!levelTwoClusters || (*levelTwoClusters)[b]) builder.rebuild(static_cast<int>(b));
+  }
+  // Statistics of the whole level (a sweep over the blocks' node lists, not over the grid).
+  stats_.levelTwoNodes = 0;
+  stats_.levelTwoEdges = 0;
+  stats_.levelTwoBytes = nodeLevelTwo_.size() * (sizeof(int) + sizeof(std::vector<AbstractEdge>));
+  for (std::size_t b = 0; b < blocks; ++b) {
+    stats_.levelTwoNodes += levelTwoNodes_[b].size();
+    for (std::uint32_t n : levelTwoNodes_[b])
+      stats_.levelTwoEdges += levelTwoEdges_[n].size();
+    stats_.levelTwoBytes += levelTwoNodes_[b].size() * sizeof(std::uint32_t) +
+                            levelTwoPaths_[b].begin.size() * sizeof(std::uint32_t) +
+                            levelTwoPaths_[b].steps.size() * sizeof(LevelOneRef);
+  }
+  stats_.levelTwoBytes += stats_.levelTwoEdges * sizeof(AbstractEdge);
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
+  if (!levelTwoClusters) stats_.levelTwoMilliseconds = ms;
+}
+
+void ClusterAbstraction::appendLevelOneSteps(
+    std::uint32_t from, const AbstractEdge& edge,
+    std::vector<std::pair<std::uint32_t, const AbstractEdge*>>* out) const {
+  const LevelTwoPaths& paths = levelTwoPaths_[static_cast<std::size_t>(nodeLevelTwo_[from])];
+  const auto first = paths.steps.begin() + paths.begin[edge.path];
+  const auto last = paths.steps.begin() + paths.begin[edge.path + 1];
+  if (!edge.reversed) {
+    for (auto it = first; it != last; ++it)
+      out->push_back({it->node, &edges_[it->node][it->edge]});
+    return;
+  }
+  // Walked backwards: each level-1 edge by its reverse, stored at its target.
+  for (auto it = last; it != first;) {
+    --it;
+    const AbstractEdge& e = edges_[it->node][it->edge];
+    const auto back = edgesOf(e.target);
+    const auto reverse = std::find_if(back.begin(), back.end(), [&](const AbstractEdge& r) {
+      return r.target == it->node && r.intra == e.intra && r.cost == e.cost &&
+             r.capability == e.capability && r.clearance == e.clearance;
+    });
+    WARPATH_INVARIANT(reverse != back.end(), "level 2: a level-1 edge without its reverse");
+    out->push_back({e.target, &*reverse});
+  }
+}
+
+}  // namespace warpath::pathing
