@@ -223,23 +223,28 @@ class StraightWalker {
                           : shape == 1     ? straights
                                            : (straights + diagonals - 1) / diagonals;
       if (rays(i, diagonalFirst ? diagonal : straight) < opening) continue;
+      // The moves known legal from the rays: the opening run, or both runs of shapes 0 and 1.
+      int certified = opening;
       if (shapes == 3 && shape < 2) {
         const int closingDirection = oppositeDirection(shape == 0 ? straight : diagonal);
         if (rays(j, closingDirection) < (shape == 0 ? straights : diagonals)) continue;
+        certified = total;
       }
-      const auto moveAt = [&](int k) {
-        if (diagonals == 0) return straight;
-        if (straights == 0) return diagonal;
-        if (shape == 0) return k < diagonals ? diagonal : straight;
-        if (shape == 1) return k < straights ? straight : diagonal;
-        // Interleaved: step k is diagonal when the running share of diagonals crosses an
-        // integer, like a line drawn from a to b.
-        return ((k + 1) * diagonals) / total != (k * diagonals) / total ? diagonal : straight;
-      };
-      if (walkCost(a, total, moveAt, budget) < budget) {
+      const Moves moves{.shape = shape,
+                        .diagonals = diagonals,
+                        .total = total,
+                        .diagonal = diagonal,
+                        .straight = straight};
+      // Uniform costs: a legal walk costs the octile distance, which the caller found below
+      // the budget (a walk of at most 3 * clusterSize moves is never within 1e-9 of a longer
+      // path's length unless it is as long), so only legality is left to walk.
+      const bool accepted = costs_ ? walkCost(a, moves, certified, budget) < budget
+                                   : walkIsLegal(a, moves, certified);
+      if (accepted) {
+        Moves::Cursor cursor;
         Cell at = a;
         for (int k = 0; k < total; ++k) {
-          const Direction& dir = kDirections[static_cast<std::size_t>(moveAt(k))];
+          const Direction& dir = kDirections[static_cast<std::size_t>(moves.next(cursor))];
           at = {at.x + dir.dx, at.y + dir.dy};
           out->push_back(at);
         }
@@ -250,18 +255,59 @@ class StraightWalker {
   }
 
  private:
-  // The walk's cost, or infinity when a move of it is illegal for the agent; stops early, with
-  // what it has summed, once that reaches `budget`.
-  template <class MoveAt>
-  double walkCost(Cell from, int total, const MoveAt& moveAt, double budget) const {
+  // The moves of a walk of one shape, in order (next() from a fresh cursor).
+  struct Moves {
+    int shape;
+    int diagonals;
+    int total;
+    int diagonal;
+    int straight;
+    struct Cursor {
+      int k = 0;
+      int share = 0;  // k * diagonals mod total, for the interleaved shape
+    };
+    int next(Cursor& c) const {
+      const int k = c.k++;
+      if (diagonals == 0) return straight;
+      if (diagonals == total) return diagonal;
+      if (shape == 0) return k < diagonals ? diagonal : straight;
+      if (shape == 1) return k < total - diagonals ? straight : diagonal;
+      // Interleaved: step k is diagonal when the running share of diagonals crosses an
+      // integer (floor((k + 1) d / t) > floor(k d / t)), like a line drawn from a to b.
+      c.share += diagonals;
+      if (c.share < total) return straight;
+      c.share -= total;
+      return diagonal;
+    }
+  };
+
+  // Whether every move of the walk is legal for the agent; the first `certified` are known to be.
+  bool walkIsLegal(Cell from, const Moves& moves, int certified) const {
     const std::uint8_t* masks = layer_.moveMasks().data();
+    Moves::Cursor cursor;
+    Cell at = from;
+    for (int k = 0; k < moves.total; ++k) {
+      const int d = moves.next(cursor);
+      if (k >= certified && (masks[map_.indexOf(at)] & (1u << d)) == 0) return false;
+      at = {at.x + kDirections[static_cast<std::size_t>(d)].dx,
+            at.y + kDirections[static_cast<std::size_t>(d)].dy};
+    }
+    return true;
+  }
+
+  // The walk's cost under the costs, or infinity when a move of it is illegal for the agent;
+  // stops early, with what it has summed, once that reaches `budget`. Its first `certified`
+  // moves are known legal.
+  double walkCost(Cell from, const Moves& moves, int certified, double budget) const {
+    const std::uint8_t* masks = layer_.moveMasks().data();
+    Moves::Cursor cursor;
     Cell at = from;
     double cost = 0.0;
-    for (int k = 0; k < total; ++k) {
-      const int d = moveAt(k);
-      if ((masks[map_.indexOf(at)] & (1u << d)) == 0)
+    for (int k = 0; k < moves.total; ++k) {
+      const int d = moves.next(cursor);
+      if (k >= certified && (masks[map_.indexOf(at)] & (1u << d)) == 0)
         return std::numeric_limits<double>::infinity();
-      cost += costs_ ? costs_->moveCost(at, d) : kDirections[static_cast<std::size_t>(d)].cost;
+      cost += costs_->moveCost(at, d);
       if (cost >= budget) return cost;
       at = {at.x + kDirections[static_cast<std::size_t>(d)].dx,
             at.y + kDirections[static_cast<std::size_t>(d)].dy};
