@@ -603,7 +603,7 @@ void HierarchicalAStar::tracePath() {
       continue;
     }
     s.levelOneSteps.clear();
-    abstraction_.appendLevelOneSteps(from, *s.parentEdge[at], &s.levelOneSteps);
+    abstraction_.appendLevelOneSteps(from, *s.parentEdge[at], s.agent, &s.levelOneSteps);
     std::uint32_t to = at;
     for (auto it = s.levelOneSteps.rbegin(); it != s.levelOneSteps.rend(); ++it) {
       WARPATH_INVARIANT(it->second->target == to, "level 2: steps must join its ends");

@@ -147,11 +147,10 @@ class LevelTwoBuilder {
       c.clearance = UINT8_MAX;
       c.stepsBegin = static_cast<std::uint32_t>(steps_.size());
       for (std::uint32_t at = v; at != source; at = parent_[at]) {
-        const std::uint32_t from = nodes_[parent_[at]];
-        const AbstractEdge& e = g_.edges_[from][parentEdge_[at]];
+        const AbstractEdge& e = g_.edges_[nodes_[parent_[at]]][parentEdge_[at]];
         c.capability = Capability::fromMask(c.capability.mask() | e.capability.mask());
         c.clearance = std::min(c.clearance, e.clearance);
-        steps_.push_back({from, parentEdge_[at]});
+        steps_.push_back(nodes_[at]);
       }
       std::reverse(steps_.begin() + c.stepsBegin, steps_.end());
       c.stepsEnd = static_cast<std::uint32_t>(steps_.size());
@@ -193,9 +192,9 @@ class LevelTwoBuilder {
       forward.capability = c.capability;
       forward.clearance = c.clearance;
       forward.intra = true;
-      paths.steps.insert(paths.steps.end(), steps_.begin() + c.stepsBegin,
+      paths.nodes.insert(paths.nodes.end(), steps_.begin() + c.stepsBegin,
                          steps_.begin() + c.stepsEnd);
-      paths.begin.push_back(static_cast<std::uint32_t>(paths.steps.size()));
+      paths.begin.push_back(static_cast<std::uint32_t>(paths.nodes.size()));
       AbstractEdge backward = forward;
       backward.target = u;
       backward.reversed = true;
@@ -215,7 +214,7 @@ class LevelTwoBuilder {
   std::vector<std::uint32_t> stamp_;       // generation * 2 + {0 open, 1 closed}
   std::uint32_t generation_ = 0;
   std::vector<Candidate> candidates_;
-  std::vector<ClusterAbstraction::LevelOneRef> steps_;
+  std::vector<std::uint32_t> steps_;  // candidates' paths (level-1 nodes after the source)
 };
 
 void ClusterAbstraction::buildLevelTwo(const std::vector<bool>* levelTwoClusters) {
@@ -245,7 +244,7 @@ void ClusterAbstraction::buildLevelTwo(const std::vector<bool>* levelTwoClusters
       stats_.levelTwoEdges += levelTwoEdges_[n].size();
     stats_.levelTwoBytes += levelTwoNodes_[b].size() * sizeof(std::uint32_t) +
                             levelTwoPaths_[b].begin.size() * sizeof(std::uint32_t) +
-                            levelTwoPaths_[b].steps.size() * sizeof(LevelOneRef);
+                            levelTwoPaths_[b].nodes.size() * sizeof(std::uint32_t);
   }
   stats_.levelTwoBytes += stats_.levelTwoEdges * sizeof(AbstractEdge);
   const double ms =
@@ -254,27 +253,27 @@ void ClusterAbstraction::buildLevelTwo(const std::vector<bool>* levelTwoClusters
 }
 
 void ClusterAbstraction::appendLevelOneSteps(
-    std::uint32_t from, const AbstractEdge& edge,
+    std::uint32_t from, const AbstractEdge& edge, Agent agent,
     std::vector<std::pair<std::uint32_t, const AbstractEdge*>>* out) const {
   const LevelTwoPaths& paths = levelTwoPaths_[static_cast<std::size_t>(nodeLevelTwo_[from])];
-  const auto first = paths.steps.begin() + paths.begin[edge.path];
-  const auto last = paths.steps.begin() + paths.begin[edge.path + 1];
-  if (!edge.reversed) {
-    for (auto it = first; it != last; ++it)
-      out->push_back({it->node, &edges_[it->node][it->edge]});
-    return;
-  }
-  // Walked backwards: each level-1 edge by its reverse, stored at its target.
-  for (auto it = last; it != first;) {
-    --it;
-    const AbstractEdge& e = edges_[it->node][it->edge];
-    const auto back = edgesOf(e.target);
-    const auto reverse = std::find_if(back.begin(), back.end(), [&](const AbstractEdge& r) {
-      return r.target == it->node && r.intra == e.intra && r.cost == e.cost &&
-             r.capability == e.capability && r.clearance == e.clearance;
-    });
-    WARPATH_INVARIANT(reverse != back.end(), "level 2: a level-1 edge without its reverse");
-    out->push_back({e.target, &*reverse});
+  const std::span<const std::uint32_t> passed(paths.nodes.data() + paths.begin[edge.path],
+                                              paths.begin[edge.path + 1] - paths.begin[edge.path]);
+  // The stored path runs from the edge's source; a reversed edge walks it back to its start,
+  // `edge.target`.
+  const std::size_t count = passed.size();
+  const auto nodeAt = [&](std::size_t k) {  // k-th node from `from`, 0 = from
+    if (!edge.reversed) return k == 0 ? from : passed[k - 1];
+    return k == count ? edge.target : passed[count - 1 - k];
+  };
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::uint32_t a = nodeAt(k);
+    const std::uint32_t b = nodeAt(k + 1);
+    const AbstractEdge* best = nullptr;
+    for (const AbstractEdge& e : edges_[a]) {
+      if (e.target == b && e.usableBy(agent) && (!best || e.cost < best->cost)) best = &e;
+    }
+    WARPATH_INVARIANT(best != nullptr, "level 2: a level-1 step the agent cannot take");
+    out->push_back({a, best});
   }
 }
 

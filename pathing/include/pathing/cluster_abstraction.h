@@ -177,9 +177,10 @@ class ClusterAbstraction {
     return node < levelTwoEdges_.size() ? std::span<const AbstractEdge>(levelTwoEdges_[node])
                                         : std::span<const AbstractEdge>();
   }
-  // Appends the level-1 steps of level-2 edge `edge` taken from `from`: for each, the level-1
-  // node it leaves and the level-1 edge it takes, in order.
-  void appendLevelOneSteps(std::uint32_t from, const AbstractEdge& edge,
+  // Appends the level-1 steps of level-2 edge `edge` taken from `from` by `agent` (one it may
+  // use): for each, the level-1 node it leaves and the level-1 edge it takes (the cheapest one
+  // the agent may use between the two nodes), in order.
+  void appendLevelOneSteps(std::uint32_t from, const AbstractEdge& edge, Agent agent,
                            std::vector<std::pair<std::uint32_t, const AbstractEdge*>>* out) const;
 
   // Appends the grid cells of `edge`, taken from node `from`, excluding `from`'s cell and
@@ -217,17 +218,13 @@ class ClusterAbstraction {
   std::vector<ClusterPaths> paths_;                       // per cluster
   std::vector<std::uint32_t> freeNodes_;                  // ids a repair left unused
 
-  // Level 2. A level-2 edge's path is its level-1 edges, each (source node, index in
-  // edges_[source]), source to target; per level-2 cluster, so that a repair replaces one
-  // cluster's. Level-1 edge indices hold until a repair touches the node's cluster, and a
-  // repair builds level 2 again for every level-2 cluster holding such a cluster.
-  struct LevelOneRef {
-    std::uint32_t node = 0;
-    std::uint32_t edge = 0;
-  };
+  // Level 2. A level-2 edge's path is the level-1 nodes it passes, source excluded, target
+  // included, in the order from source to target; per level-2 cluster, so that a repair
+  // replaces one cluster's. A repair builds level 2 again for every level-2 cluster holding a
+  // cluster whose level-1 edges it changed.
   struct LevelTwoPaths {
     std::vector<std::uint32_t> begin{0};
-    std::vector<LevelOneRef> steps;
+    std::vector<std::uint32_t> nodes;
   };
   int levelTwoX_ = 0;
   int levelTwoY_ = 0;
