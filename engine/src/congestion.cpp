@@ -258,4 +258,19 @@ double Congestion::Surcharge::on(const pathing::ClusterAbstraction& graph, std::
   return seconds_ ? waits : waits * speed_;
 }
 
+bool Congestion::Surcharge::freeWithin(const pathing::ClusterAbstraction& graph,
+                                       int levelTwoCluster) const {
+  Congestion& c = congestion_;
+  Layer& layer = c.layerFor(agent_.capability);
+  if (layer.places.empty()) return true;
+  const pathing::CellRect r = graph.levelTwoClusterBounds(levelTwoCluster);
+  for (int y = r.y; y < r.y + r.height; y += c.clusterSize_) {
+    for (int x = r.x; x < r.x + r.width; x += c.clusterSize_) {
+      if (c.anyQueueNear(layer, (y / c.clusterSize_) * c.clustersX_ + x / c.clusterSize_, now_))
+        return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace warpath::engine

@@ -30,6 +30,10 @@ std::string problemWith(const PathServiceSettings& settings) {
     return "clusterSize must be 2.." + std::to_string(kMaxClusterSize) + " (got " +
            std::to_string(settings.clusterSize) + ")";
   }
+  if (settings.levels < 1 || settings.levels > 2)
+    return "levels must be 1..2 (got " + std::to_string(settings.levels) + ")";
+  if (settings.levelTwoSize < 2 || settings.levelTwoSize > 256)
+    return "levelTwoSize must be 2..256 (got " + std::to_string(settings.levelTwoSize) + ")";
   if (settings.expansionBudget < 1) return "expansionBudget must be >= 1 (got 0)";
   if (settings.window < 1 || settings.window > kMaxCooperativeWindow) {
     return "window must be 1.." + std::to_string(kMaxCooperativeWindow) + " (got " +
@@ -80,6 +84,8 @@ PathService::PathService(const AnnotatedGrid& grid, const PathServiceSettings& s
     spec.maxAgentSize = maxAgentSize;
     spec.capabilities = std::move(capabilities);
     spec.quality = *quality;
+    spec.levels = settings.levels;
+    spec.levelTwoSize = settings.levelTwoSize;
     abstraction_ = std::make_unique<ClusterAbstraction>(ClusterAbstraction::build(grid, spec));
   }
   // Requests without a profile plan in the uniform model (by AA* when the algorithm needs a
@@ -123,8 +129,12 @@ PathService::WeightedPlanner& PathService::weightedPlanner(int costProfile) {
   // A unit that can enter no terrain with a cost has no graph to build: AA* answers it
   // (InvalidStart).
   if (quality && !w.agent.capability.empty()) {
-    w.abstraction = std::make_unique<ClusterAbstraction>(ClusterAbstraction::build(
-        grid_, weightedAbstractionSpec(w.agent, w.costs, settings_.clusterSize, *quality)));
+    AbstractionSpec spec =
+        weightedAbstractionSpec(w.agent, w.costs, settings_.clusterSize, *quality);
+    spec.levels = settings_.levels;
+    spec.levelTwoSize = settings_.levelTwoSize;
+    w.abstraction =
+        std::make_unique<ClusterAbstraction>(ClusterAbstraction::build(grid_, std::move(spec)));
     w.planner.emplace(grid_, settings_.algorithm, w.abstraction.get());
   } else {
     w.field.emplace(grid_, w.agent, w.costs);

@@ -64,11 +64,13 @@ struct HierarchicalAStar::Scratch {
   std::vector<const AbstractEdge*> pathEdges;
   std::vector<std::pair<std::uint32_t, const AbstractEdge*>> levelOneSteps;
   OpenList open;
-  // Level 2 (the graph has it and no surcharge is asked): the level-2 clusters of the start
-  // and goal, searched at level 1; every other is crossed by level-2 edges.
+  // Level 2 (the graph has it): the level-2 clusters of the start and goal are searched at
+  // level 1, and so are those a surcharge may charge within (asked once a query: `blockFree`
+  // holds generation * 2 + {0 charged, 1 free}); every other is crossed by level-2 edges.
   bool levelTwo = false;
   int startBlock = -1;
   int goalBlock = -1;
+  std::vector<std::uint32_t> blockFree;
   std::uint32_t generation = 0;
 
   // The query under way (result.status Pending until done).
@@ -502,11 +504,12 @@ void HierarchicalAStar::beginAbstract() {
   s.open.push(
       OpenList::makeKey(scale * octileDistance(s.goal.x - s.start.x, s.goal.y - s.start.y), 0.0),
       startNode);
-  // Surcharges price level-1 edges one by one, which level-2 edges cannot: searched at level 1.
-  s.levelTwo = abstraction_.hasLevelTwo() && !s.surcharge;
+  s.levelTwo = abstraction_.hasLevelTwo();
   if (s.levelTwo) {
     s.startBlock = abstraction_.levelTwoClusterOf(s.start);
     s.goalBlock = abstraction_.levelTwoClusterOf(s.goal);
+    const auto blocks = static_cast<std::size_t>(abstraction_.levelTwoClusterCount());
+    if (s.blockFree.size() != blocks || s.generation == 1) s.blockFree.assign(blocks, 0);
   }
   s.phase = Phase::Abstract;
 }
@@ -561,7 +564,15 @@ std::uint64_t HierarchicalAStar::searchAbstract(std::uint64_t budget) {
       // Inside a level-2 cluster of neither end (entered at a level-2 node): its level-2
       // edges, and the level-1 edges that leave it.
       const int block = abstraction_.levelTwoClusterOfNode(u);
-      if (block != s.startBlock && block != s.goalBlock) {
+      // Surcharges price level-1 edges one by one: level-2 edges only where none is charged.
+      const auto chargeFree = [&] {
+        if (!s.surcharge) return true;
+        std::uint32_t& known = s.blockFree[static_cast<std::size_t>(block)];
+        if (known / 2 != s.generation)
+          known = s.generation * 2 + (s.surcharge->freeWithin(abstraction_, block) ? 1 : 0);
+        return known % 2 == 1;
+      };
+      if (block != s.startBlock && block != s.goalBlock && chargeFree()) {
         for (const AbstractEdge& e : abstraction_.levelTwoEdgesOf(u)) {
           if (e.usableBy(agent))
             relax(u, e.target, e.cost, &e, abstraction_.nodeCell(e.target), true);

@@ -252,6 +252,14 @@ void ClusterAbstraction::buildLevelTwo(const std::vector<bool>* levelTwoClusters
   if (!levelTwoClusters) stats_.levelTwoMilliseconds = ms;
 }
 
+CellRect ClusterAbstraction::levelTwoClusterBounds(int levelTwoCluster) const {
+  const int side = spec_.clusterSize * spec_.levelTwoSize;
+  const int x = (levelTwoCluster % levelTwoX_) * side;
+  const int y = (levelTwoCluster / levelTwoX_) * side;
+  const GridMap& map = grid_->map();
+  return {x, y, std::min(side, map.width() - x), std::min(side, map.height() - y)};
+}
+
 void ClusterAbstraction::appendLevelOneSteps(
     std::uint32_t from, const AbstractEdge& edge, Agent agent,
     std::vector<std::pair<std::uint32_t, const AbstractEdge*>>* out) const {

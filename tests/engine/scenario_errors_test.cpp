@@ -257,6 +257,8 @@ TEST(Limits, WorldSettingsAreReportedAtTheirKey) {
   expectRefusedAt("pathing: {cluster_size: 1}\n", "1}", "cluster_size must be between 2 and 4096");
   expectRefusedAt("pathing: {cluster_size: 4097}\n", "4097",
                   "cluster_size must be between 2 and 4096");
+  expectRefusedAt("pathing: {levels: 3}\n", "3}", "levels must be between 1 and 2");
+  expectRefusedAt("pathing: {level_two_size: 1}\n", "1}", "level_two_size must be between 2 and 256");
   expectRefusedAt("pathing: {budget: 0}\n", "0}", "budget must be between 1 and 1000000000");
   expectRefusedAt("pathing: {cache: -1}\n", "-1", "cache must be between 0 and 100000000");
   expectRefusedAt("stuck: {seconds: 0}\n", "0}", "stuck seconds must be between 0.01 and 1e+06");
@@ -321,11 +323,12 @@ TEST(Limits, WeaponLimitsAreReportedAtTheirKey) {
 // within the limits World and PathService enforce (their constructors would throw otherwise).
 TEST(Limits, SettingsAtTheEdgesOfTheirRangesAreUsable) {
   for (const std::string extra :
-       {"tick_rate: 1\npathing: {cluster_size: 2, budget: 1, cache: 0}\n"
+       {"tick_rate: 1\npathing: {cluster_size: 2, levels: 1, level_two_size: 2, budget: 1, "
+        "cache: 0}\n"
         "stuck: {seconds: 0.01, min_progress: 0, flag_after: 1}\n"
         "combat: {wreck_seconds: 0, scan_every: 1, sight_through_trees: -1}\n",
-        "tick_rate: 1000\npathing: {algo: haa-lq, cluster_size: 4096, budget: 1000000000, "
-        "cache: 100000000}\nstuck: {seconds: 1000000, min_progress: 1000000, flag_after: "
+        "tick_rate: 1000\npathing: {algo: haa-lq, cluster_size: 4096, levels: 2, "
+        "level_two_size: 256, budget: 1000000000, cache: 100000000}\nstuck: {seconds: 1000000, min_progress: 1000000, flag_after: "
         "1000000}\ncombat: {wreck_seconds: 1000000, scan_every: 1000000}\n"}) {
     const Result<Scenario> r = parseScenario(scenario(extra, kGroup), kFile);
     ASSERT_TRUE(r.ok()) << r.error().describe();

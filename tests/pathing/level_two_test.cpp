@@ -191,9 +191,10 @@ TEST(LevelTwo, SlicedReturnsExactlyWhatOneShotReturns) {
   EXPECT_GT(found, 50);
 }
 
-// Surcharges price level-1 edges one by one: such queries search level 1 everywhere, and answer
-// exactly what a graph without level 2 answers.
-TEST(LevelTwo, SurchargedQueriesSearchLevelOne) {
+// Surcharges price level-1 edges one by one: such queries search level 1 in every level-2
+// cluster the surcharge does not declare free (EdgeSurcharge::freeWithin), and answer exactly
+// what a graph without level 2 answers; in the free ones they take level-2 edges.
+TEST(LevelTwo, SurchargedQueriesSearchLevelOneWhereCharged) {
   class EveryCrossing : public EdgeSurcharge {
    public:
     double on(const ClusterAbstraction&, std::uint32_t, const AbstractEdge& edge,
@@ -201,25 +202,46 @@ TEST(LevelTwo, SurchargedQueriesSearchLevelOne) {
       return edge.intra ? 0.0 : 2.5;
     }
   };
-  const EveryCrossing surcharge;
+  // Charges nothing, and says so of every other level-2 cluster.
+  class NothingEvenFree : public EdgeSurcharge {
+   public:
+    double on(const ClusterAbstraction&, std::uint32_t, const AbstractEdge&,
+              double) const override {
+      return 0.0;
+    }
+    bool freeWithin(const ClusterAbstraction&, int levelTwoCluster) const override {
+      return levelTwoCluster % 2 == 0;
+    }
+  };
+  const EveryCrossing everyCrossing;
+  const NothingEvenFree nothing;
   const AnnotatedGrid grid(randomTerrainMap(8, 100, 90, 2, 10));
   const ClusterAbstraction one =
       ClusterAbstraction::build(grid, spec(6, AbstractionQuality::High, 1, 2));
   const ClusterAbstraction two =
       ClusterAbstraction::build(grid, spec(6, AbstractionQuality::High, 2, 3));
-  HierarchicalAStar first(one);
-  HierarchicalAStar second(two);
+  HierarchicalAStar first(one, HaaOptions{.smooth = false});
+  HierarchicalAStar second(two, HaaOptions{.smooth = false});
   std::vector<Cell> a;
   std::vector<Cell> b;
   int found = 0;
+  std::uint64_t allLevelOne = 0;
+  std::uint64_t mixed = 0;
   for (const CompletenessCase& c : drawCompletenessCases(grid, completenessAgents(1), 4, 0, 8, 0)) {
-    const PathResult ra = first.findPath(c.agent, c.query.start, c.query.goal, &a, &surcharge);
-    const PathResult rb = second.findPath(c.agent, c.query.start, c.query.goal, &b, &surcharge);
+    PathResult ra = first.findPath(c.agent, c.query.start, c.query.goal, &a, &everyCrossing);
+    PathResult rb = second.findPath(c.agent, c.query.start, c.query.goal, &b, &everyCrossing);
     EXPECT_EQ(ra.metrics.abstractExpanded, rb.metrics.abstractExpanded);
     EXPECT_EQ(a, b);
     found += ra.found() ? 1 : 0;
+    ra = first.findPath(c.agent, c.query.start, c.query.goal, &a, &nothing);
+    rb = second.findPath(c.agent, c.query.start, c.query.goal, &b, &nothing);
+    EXPECT_EQ(ra.status, rb.status);
+    EXPECT_NEAR(ra.cost, rb.cost, 1e-6);
+    allLevelOne += ra.metrics.abstractExpanded;
+    mixed += rb.metrics.abstractExpanded;
   }
   EXPECT_GT(found, 20);
+  EXPECT_LT(mixed, allLevelOne);
 }
 
 TEST(LevelTwo, SpecsAreValidated) {

@@ -116,6 +116,7 @@ nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& 
   const engine::PathServiceSettings& ps = run.world().pathService().settings();
   j["pathing"] = {{"algo", std::string(pathing::toString(ps.algorithm))},
                   {"cluster_size", ps.clusterSize},
+                  {"levels", ps.levels},
                   {"budget", ps.expansionBudget},
                   {"sliced", ps.sliced},
                   {"requests", m.requests},

@@ -57,6 +57,8 @@ class Congestion {
         : congestion_(congestion), agent_(agent), speed_(speed), now_(now), seconds_(seconds) {}
     double on(const pathing::ClusterAbstraction& graph, std::uint32_t from,
               const pathing::AbstractEdge& edge, double g) const override;
+    // No cluster of the level-2 cluster has a queue near (so `on` is 0 inside it).
+    bool freeWithin(const pathing::ClusterAbstraction& graph, int levelTwoCluster) const override;
 
    private:
     Congestion& congestion_;

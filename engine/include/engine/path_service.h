@@ -28,7 +28,12 @@ namespace warpath::engine {
 
 struct PathServiceSettings {
   pathing::Algorithm algorithm = pathing::Algorithm::Hybrid;
-  int clusterSize = 16;                   // [Unit: cells] [Limit: 2..pathing::kMaxClusterSize]
+  int clusterSize = 16;  // [Unit: cells] [Limit: 2..pathing::kMaxClusterSize]
+  // Levels of the HAA* graph (pathing::AbstractionSpec::levels): 2 adds level-2 clusters of
+  // levelTwoSize × levelTwoSize clusters, crossed by exact level-2 edges (the same path costs;
+  // fewer nodes expanded on long queries across large maps, more memory). [Limit: 1..2]
+  int levels = 1;
+  int levelTwoSize = 4;                   // [Unit: clusters] [Limit: 2..256]
   std::uint64_t expansionBudget = 20000;  // [Limit: >= 1] node expansions per tick
   std::size_t cacheCapacity = 4096;       // answers kept; the oldest go first
   // Cooperative movement (docs/cooperative.md): moving units plan space-time windows against

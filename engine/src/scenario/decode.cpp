@@ -350,14 +350,17 @@ raw::Timing timing(const Reader& r, const YAML::Node& root) {
 inline constexpr EnumNames<bool, 2> kCooperativeSearchNames{{{{true, "cpra"}, {false, "whca"}}}};
 
 raw::Pathing pathing(const Reader& r, const YAML::Node& node) {
-  r.checkKeys(node, "pathing",
-              {"algo", "cluster_size", "budget", "cache", "cooperative", "window",
-               "cooperative_search", "corridor", "congestion", "terrain_costs", "sliced"});
+  r.checkKeys(
+      node, "pathing",
+      {"algo", "cluster_size", "levels", "level_two_size", "budget", "cache", "cooperative",
+       "window", "cooperative_search", "corridor", "congestion", "terrain_costs", "sliced"});
   raw::Pathing p;
   p.algorithm = r.maybe(node, "algo", [&](const YAML::Node& v) {
     return r.named(v, "algo", pathing::kAlgorithmNames, "algo", pathing::kAlgorithmNames.list());
   });
   p.clusterSize = r.maybeInteger(node, "cluster_size", "cluster_size");
+  p.levels = r.maybeInteger(node, "levels", "levels");
+  p.levelTwoSize = r.maybeInteger(node, "level_two_size", "level_two_size");
   p.budget = r.maybeInteger(node, "budget", "budget");
   p.cache = r.maybeInteger(node, "cache", "cache");
   p.cooperative = r.maybeBoolean(node, "cooperative", "cooperative");

@@ -98,6 +98,8 @@ struct Timing {
 struct Pathing {
   Maybe<pathing::Algorithm> algorithm;
   Maybe<int> clusterSize;
+  Maybe<int> levels;
+  Maybe<int> levelTwoSize;
   Maybe<int> budget;
   Maybe<int> cache;
   Maybe<bool> cooperative;

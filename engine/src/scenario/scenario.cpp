@@ -268,6 +268,8 @@ void applyPathing(const Checker& c, const raw::Pathing& in, PathServiceSettings&
   if (in.algorithm) out.algorithm = in.algorithm->value;
   if (in.clusterSize)
     out.clusterSize = c.range(*in.clusterSize, "cluster_size", 2, kMaxClusterSize);
+  if (in.levels) out.levels = c.range(*in.levels, "levels", 1, 2);
+  if (in.levelTwoSize) out.levelTwoSize = c.range(*in.levelTwoSize, "level_two_size", 2, 256);
   if (in.budget)
     out.expansionBudget = static_cast<std::uint64_t>(c.range(*in.budget, "budget", 1, 1000000000));
   if (in.cache)

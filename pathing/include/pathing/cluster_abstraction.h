@@ -169,6 +169,8 @@ class ClusterAbstraction {
     const int side = spec_.clusterSize * spec_.levelTwoSize;
     return (c.y / side) * levelTwoX_ + c.x / side;
   }
+  int levelTwoClusterCount() const { return levelTwoX_ * levelTwoY_; }
+  CellRect levelTwoClusterBounds(int levelTwoCluster) const;
   // The level-2 cluster of a node, read from a table (queries ask it at every expansion).
   int levelTwoClusterOfNode(std::uint32_t node) const { return nodeLevelTwo_[node]; }
   // A level-2 node's level-2 edges, each the shortest level-1 path inside its level-2 cluster

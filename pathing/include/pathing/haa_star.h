@@ -29,6 +29,14 @@ class EdgeSurcharge {
   // reached at cost `g` from the start.
   virtual double on(const ClusterAbstraction& graph, std::uint32_t from, const AbstractEdge& edge,
                     double g) const = 0;
+  // True when `on` is 0 for every edge with both ends in level-2 cluster `levelTwoCluster` of
+  // `graph` (AbstractionSpec::levels), whatever g: a search may then cross it by level-2
+  // edges. The default, false, has surcharged searches expand level 1 there.
+  virtual bool freeWithin(const ClusterAbstraction& graph, int levelTwoCluster) const {
+    (void)graph;
+    (void)levelTwoCluster;
+    return false;
+  }
 };
 
 struct HaaOptions {
