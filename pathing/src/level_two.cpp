@@ -30,7 +30,8 @@ class LevelTwoBuilder {
     ClusterAbstraction::LevelTwoPaths& paths = g_.levelTwoPaths_[static_cast<std::size_t>(block)];
     paths = {};
     collectNodes(block);
-    for (std::uint32_t i = 0; i < entries_.size(); ++i) {
+    // The last level-2 node has no later one to search for: its edges are the others' reverses.
+    for (std::uint32_t i = 0; i + 1 < entries_.size(); ++i) {
       candidates_.clear();
       const std::uint32_t u = entries_[i];
       for (const Capability& capability : g_.spec_.capabilities) {
@@ -82,6 +83,7 @@ class LevelTwoBuilder {
     if (g_.nodeLevelTwo_.size() < g_.nodeCells_.size())
       g_.nodeLevelTwo_.resize(g_.nodeCells_.size(), -1);
     entries_.clear();
+    entryOf_.assign(nodes_.size(), kNone);
     for (std::uint32_t i = 0; i < nodes_.size(); ++i) {
       const std::uint32_t n = nodes_[i];
       localOf_[n] = i;
@@ -89,8 +91,10 @@ class LevelTwoBuilder {
       const auto edges = g_.edgesOf(n);
       if (std::any_of(edges.begin(), edges.end(), [&](const AbstractEdge& e) {
             return !e.intra && g_.levelTwoClusterOf(g_.nodeCells_[e.target]) != block;
-          }))
+          })) {
+        entryOf_[i] = static_cast<std::uint32_t>(entries_.size());
         entries_.push_back(n);
+      }
     }
     old = entries_;
     dist_.assign(nodes_.size(), 0.0);
@@ -102,7 +106,7 @@ class LevelTwoBuilder {
 
   // Dijkstra from level-2 node `u` over the block's level-1 edges `agent` may use; a candidate
   // for every level-2 node after it in entries_ (the edge's reverse serves the other way: level-1
-  // edges are undirected, so the cost is the same both ways).
+  // edges are undirected, so the cost is the same both ways). It stops once those are settled.
   void searchFrom(std::uint32_t u, Agent agent, std::uint32_t entryIndex) {
     const auto usable = g_.edgesOf(u);
     if (std::none_of(usable.begin(), usable.end(),
@@ -118,11 +122,13 @@ class LevelTwoBuilder {
     dist_[source] = 0.0;
     parent_[source] = kNone;
     heap.push({0.0, source});
+    std::size_t targetsLeft = entries_.size() - entryIndex - 1;
     while (!heap.empty()) {
       const auto [d, x] = heap.top();
       heap.pop();
       if (stamp_[x] == closed) continue;
       stamp_[x] = closed;
+      if (entryOf_[x] != kNone && entryOf_[x] > entryIndex && --targetsLeft == 0) break;
       const auto edges = g_.edgesOf(nodes_[x]);
       for (std::uint32_t k = 0; k < edges.size(); ++k) {
         const AbstractEdge& e = edges[k];
@@ -207,6 +213,7 @@ class LevelTwoBuilder {
   ClusterAbstraction& g_;
   std::vector<std::uint32_t> nodes_;    // the block's level-1 nodes
   std::vector<std::uint32_t> entries_;  // its level-2 nodes
+  std::vector<std::uint32_t> entryOf_;  // local index -> index in entries_, kNone if none
   std::vector<std::uint32_t> localOf_;  // graph node -> index in nodes_, kNone outside
   std::vector<double> dist_;
   std::vector<std::uint32_t> parent_;
