@@ -137,6 +137,21 @@ TEST_P(MovingAiMap, HaaFindsAPathExactlyWhenAStarDoes) {
       }
     }
   }
+  // Level 2 (4x4 blocks of clusters of 16, HQ and LQ): complete too.
+  for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
+    const ClusterAbstraction abstraction = ClusterAbstraction::build(
+        grid, AbstractionSpec{.clusterSize = 16,
+                              .maxAgentSize = 3,
+                              .capabilities = testing::completenessCapabilities(),
+                              .quality = quality,
+                              .levels = 2,
+                              .levelTwoSize = 4});
+    HierarchicalAStar haa(abstraction);
+    testing::checkCompleteness(grid, cases, haa,
+                               c.map.filename().string() + " level 2 " +
+                                   std::string(kAbstractionQualityNames.name(quality)),
+                               tally);
+  }
   EXPECT_EQ(tally.failures, 0) << "of " << cases.size() << " queries";
   // Every map has ground a size-1 unit can cross, so reachable pairs exist.
   EXPECT_GT(tally.found, 100);
