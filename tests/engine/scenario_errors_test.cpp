@@ -251,6 +251,13 @@ void expectRefusedAt(const std::string& extra, const std::string& needle,
   EXPECT_EQ(errorOf(text).describe(), placeOf(text, needle, text.find(extra)) + message) << extra;
 }
 
+// YAML forbids a key twice in one mapping; yaml-cpp would keep the first and drop the rest.
+TEST(Limits, ADuplicateKeyIsRefusedWhereItRepeats) {
+  expectRefusedAt("duration: 5\n", "duration: 5", "duplicate key 'duration' (first at line 11)");
+  expectRefusedAt("pathing: {budget: 10, levels: 2, budget: 20}\n", "budget: 20",
+                  "duplicate key 'budget' (first at line 13)");
+}
+
 TEST(Limits, WorldSettingsAreReportedAtTheirKey) {
   expectRefusedAt("tick_rate: 0\n", "0\n", "tick_rate must be between 1 and 1000");
   expectRefusedAt("tick_rate: .nan\n", ".nan", "tick_rate must be between 1 and 1000");
@@ -258,7 +265,8 @@ TEST(Limits, WorldSettingsAreReportedAtTheirKey) {
   expectRefusedAt("pathing: {cluster_size: 4097}\n", "4097",
                   "cluster_size must be between 2 and 4096");
   expectRefusedAt("pathing: {levels: 3}\n", "3}", "levels must be between 1 and 2");
-  expectRefusedAt("pathing: {level_two_size: 1}\n", "1}", "level_two_size must be between 2 and 256");
+  expectRefusedAt("pathing: {level_two_size: 1}\n", "1}",
+                  "level_two_size must be between 2 and 256");
   expectRefusedAt("pathing: {budget: 0}\n", "0}", "budget must be between 1 and 1000000000");
   expectRefusedAt("pathing: {cache: -1}\n", "-1", "cache must be between 0 and 100000000");
   expectRefusedAt("stuck: {seconds: 0}\n", "0}", "stuck seconds must be between 0.01 and 1e+06");
@@ -328,7 +336,8 @@ TEST(Limits, SettingsAtTheEdgesOfTheirRangesAreUsable) {
         "stuck: {seconds: 0.01, min_progress: 0, flag_after: 1}\n"
         "combat: {wreck_seconds: 0, scan_every: 1, sight_through_trees: -1}\n",
         "tick_rate: 1000\npathing: {algo: haa-lq, cluster_size: 4096, levels: 2, "
-        "level_two_size: 256, budget: 1000000000, cache: 100000000}\nstuck: {seconds: 1000000, min_progress: 1000000, flag_after: "
+        "level_two_size: 256, budget: 1000000000, cache: 100000000}\nstuck: {seconds: 1000000, "
+        "min_progress: 1000000, flag_after: "
         "1000000}\ncombat: {wreck_seconds: 1000000, scan_every: 1000000}\n"}) {
     const Result<Scenario> r = parseScenario(scenario(extra, kGroup), kFile);
     ASSERT_TRUE(r.ok()) << r.error().describe();

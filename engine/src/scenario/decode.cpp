@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <initializer_list>
 #include <type_traits>
+#include <unordered_map>
 
 namespace warpath::engine::decode {
 namespace {
@@ -150,6 +151,16 @@ void checkExpansion(const Reader& r, const YAML::Node& node, const std::string& 
     for (const auto& item : node)
       checkExpansion(r, item, key, depth + 1, nodes);
     return;
+  }
+  // YAML forbids a key twice in one mapping; yaml-cpp keeps the first and drops the rest
+  // unread, so a setting added at the end of a file would silently not apply.
+  std::unordered_map<std::string, int> lineOf;
+  for (const auto& entry : node) {
+    if (!entry.first.IsScalar()) continue;
+    const auto [at, added] = lineOf.try_emplace(entry.first.Scalar(), entry.first.Mark().line + 1);
+    if (!added)
+      r.fail(entry.first, "duplicate key '" + at->first + "' (first at line " +
+                              std::to_string(at->second) + ")");
   }
   for (const auto& entry : node) {
     checkExpansion(r, entry.first, key, depth + 1, nodes);
