@@ -130,8 +130,23 @@ const std::uint64_t* JumpPointSearch::Query::column(int x) const {
          static_cast<std::size_t>(x) * static_cast<std::size_t>(bits->columnWords);
 }
 
-JumpPointSearch::JumpPointSearch(const AnnotatedGrid& grid, JumpDistances distances)
-    : grid_(grid), distances_(distances) {}
+JumpPointSearch::JumpPointSearch(const AnnotatedGrid& grid, JumpDistances distances,
+                                 std::size_t tableBudget)
+    : grid_(grid), distances_(distances), tableBudget_(tableBudget) {}
+
+bool JumpPointSearch::tableFits(Agent agent) const {
+  std::size_t taken = 0;
+  for (const JumpTable& t : tables_) {
+    if (t.agent == agent) return true;
+    taken += t.distances.size() * sizeof(std::int16_t) + t.standing.size();
+  }
+  const GridMap& map = grid_.map();
+  // 8 entries a cell, and the standing bytes of the map framed by one cell.
+  const std::size_t needed =
+      map.cellCount() * 8 * sizeof(std::int16_t) +
+      static_cast<std::size_t>(map.width() + 2) * static_cast<std::size_t>(map.height() + 2);
+  return taken + needed <= tableBudget_;
+}
 
 std::size_t JumpPointSearch::bitmapBytes() const {
   std::size_t bytes = 0;
@@ -505,8 +520,12 @@ PathStatus JumpPointSearch::beginPath(Agent agent, Cell start, Cell goal,
     result_.status = *answer;
   } else {
     const GridMap& map = grid_.map();
-    const bool tabled = distances_ == JumpDistances::Precomputed && !limits.region &&
-                        std::max(map.width(), map.height()) <= kLargestTabledSide;
+    bool tabled = distances_ == JumpDistances::Precomputed && !limits.region &&
+                  std::max(map.width(), map.height()) <= kLargestTabledSide;
+    if (tabled && !tableFits(agent)) {
+      tabled = false;
+      ++tableCounts_.overBudget;
+    }
     query_.table = tabled ? tableFor(agent).distances.data() : nullptr;
     query_.bits = &bitmapFor(agent);
     query_.width = map.width();

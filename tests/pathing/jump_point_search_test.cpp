@@ -278,6 +278,44 @@ TEST(JumpPointSearch, PrecomputedJumpsKeepToARegionAndReportTheirMemoryPerLayer)
             bitmaps + 48u * 42u * 8u * sizeof(std::int16_t) + (48u + 2u) * (42u + 2u));
 }
 
+// The tables' budget: a layer whose table would pass it is scanned (its answers are the
+// scanning search's, bit for bit); the layer already tabled keeps its table (its answers are
+// an unbounded JPS+'s).
+TEST(JumpPointSearch, LayersPastTheTableBudgetAreScanned) {
+  const AnnotatedGrid grid(randomTerrainMap(31, 60, 50, 3, 12));
+  const std::size_t oneTable = 60u * 50u * 8u * sizeof(std::int16_t) + 62u * 52u;
+  JumpPointSearch budgeted(grid, JumpDistances::Precomputed, oneTable);
+  JumpPointSearch unbounded(grid, JumpDistances::Precomputed);
+  JumpPointSearch scanning(grid);
+  const Agent first{1, kInfantry};
+  const Agent second{2, kInfantry};
+  SplitMix64 rng(8);
+  std::vector<Cell> a;
+  std::vector<Cell> b;
+  int found = 0;
+  for (int i = 0; i < 80; ++i) {
+    const Agent agent = i % 2 == 0 ? first : second;
+    const QuerySampler sampler(grid, agent);
+    const Query q = sampler.reachablePair(rng);
+    const PathResult ra = budgeted.findPath(agent, q.start, q.goal, &a);
+    JumpPointSearch& same = agent == first ? unbounded : scanning;
+    const PathResult rb = same.findPath(agent, q.start, q.goal, &b);
+    EXPECT_EQ(ra.status, rb.status);
+    EXPECT_EQ(ra.cost, rb.cost);
+    EXPECT_EQ(ra.metrics.expanded, rb.metrics.expanded);
+    EXPECT_EQ(a, b);
+    found += ra.found() ? 1 : 0;
+  }
+  EXPECT_GT(found, 60);
+  EXPECT_EQ(budgeted.tableCounts().builds, 1u);
+  EXPECT_EQ(budgeted.tableCounts().overBudget, 40u);
+  // The first layer's table, the second's bit maps only.
+  std::size_t bytes = 0;
+  for (const LayerBytes& layer : budgeted.layerBytes())
+    bytes += layer.bytes;
+  EXPECT_EQ(bytes, budgeted.bitmapBytes() + oneTable);
+}
+
 // After terrain changes a table is repaired around the cells where the agent's standing changed
 // (or built whole when they spread far): entry for entry the table built from scratch on the
 // changed map, and the search answers as one with such tables (also after more changes than

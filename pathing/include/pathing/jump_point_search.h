@@ -11,8 +11,10 @@
 // of the agent's layer and each of the 8 directions, how far the next jump point or wall is,
 // from a table built at the layer's first query (and repaired around the cells where the agent's
 // standing changed after the grid's terrain changes).
-// A jump is then one lookup plus a test for the goal, and the search expands exactly the jump
-// points the scanning search expands, in the same order: the same answers, bit for bit.
+// A jump is then one lookup plus a test for the goal, and, as in JPS2 (Harabor & Grastien 2014),
+// a diagonal jump point is never pushed (its straight jumps are taken from the node that
+// expands the run), so it expands 3-4x fewer jump points than the scanning search: paths as
+// short, not always through the same cells.
 //
 // A query object owns its scratch memory and reuses it; the AnnotatedGrid may be shared.
 
@@ -30,6 +32,10 @@ namespace warpath::pathing {
 // it up in a table of jump distances precomputed per layer (JPS+: 16 bytes a cell and layer).
 enum class JumpDistances : std::uint8_t { Scanned, Precomputed };
 
+// [Unit: bytes] what JPS+ tables may take in all, by default: 512 MiB, a 512x512 layer taking
+// 4.3 MB, 2048x2048 69 MB and 4096x4096 285 MB. A layer whose table would pass it is scanned.
+inline constexpr std::size_t kDefaultJumpTableBudget = std::size_t{512} << 20;
+
 // [Unit: bytes] the memory kept for one agent kind (a layer).
 struct LayerBytes {
   Agent agent;
@@ -38,8 +44,13 @@ struct LayerBytes {
 
 class JumpPointSearch {
  public:
+  // `tableBudget` [Unit: bytes]: with JumpDistances::Precomputed, the tables of the layers in
+  // use may take this much in all; a layer first asked about when the next table would pass
+  // it has its queries scanned instead (as short, slower, as JumpDistances::Scanned answers
+  // them).
   explicit JumpPointSearch(const AnnotatedGrid& grid,
-                           JumpDistances distances = JumpDistances::Scanned);
+                           JumpDistances distances = JumpDistances::Scanned,
+                           std::size_t tableBudget = kDefaultJumpTableBudget);
 
   // Finds a shortest path for `agent` from `start` to `goal` (anchor cells), uniform costs
   // (a diagonal step costs √2). When found and `path` is not null, it receives every cell from
@@ -65,6 +76,7 @@ class JumpPointSearch {
   struct TableCounts {
     std::uint64_t builds = 0;
     std::uint64_t repairs = 0;
+    std::uint64_t overBudget = 0;  // queries scanned because their layer's table would not fit
   };
   TableCounts tableCounts() const { return tableCounts_; }
   // JPS+: the table of `agent`'s layer on the grid as it is now (built or repaired first): for
@@ -102,6 +114,8 @@ class JumpPointSearch {
     std::vector<std::uint8_t> standing;  // the layer it was built for, framed (a byte a cell)
   };
   const JumpTable& tableFor(Agent agent);
+  // Whether `agent`'s layer has a table, or room for one within the budget.
+  bool tableFits(Agent agent) const;
 
   // What the jumps of one query read: where the agent can stand (its bit maps), inside the
   // map (or the query's region), and the goal.
@@ -128,6 +142,7 @@ class JumpPointSearch {
 
   const AnnotatedGrid& grid_;
   JumpDistances distances_;
+  std::size_t tableBudget_;
   // The query under way (its result's status Pending until done).
   Query query_;
   Cell start_;
