@@ -13,6 +13,7 @@
 #include "engine/scenario_run.h"
 #include "pathing/cluster_abstraction.h"
 #include "pathing/map_io.h"
+#include "support/one_unit_scenario.h"
 #include "support/run_out.h"
 
 namespace warpath::engine {
@@ -22,19 +23,11 @@ using pathing::Cell;
 using pathing::Terrain;
 
 TEST(Levels, TheScenarioKeysParse) {
-  const std::string file = std::string(WARPATH_SOURCE_DIR) + "/scenarios/test_input.yaml";
-  const auto text = [](const std::string& pathing) {
-    return "map:\n  rows: ['........', '........']\ncatalogue: ../assets/units.yaml\n"
-           "duration: 1\nteams: [blue]\n" +
-           pathing +
-           "groups:\n  - {team: blue, type: infantry, count: 1, spawn: {x: 0, y: 0, w: 1, h: 1},"
-           " goal: {x: 6, y: 0, w: 1, h: 1}}\n";
-  };
-  Result<Scenario> plain = parseScenario(text(""), file);
+  Result<Scenario> plain = testing::parseOneUnitScenario("");
   ASSERT_TRUE(plain.ok()) << plain.error().describe();
   EXPECT_EQ(plain.value().settings.pathing.levels, 1);
   EXPECT_EQ(plain.value().settings.pathing.levelTwoSize, 4);
-  Result<Scenario> two = parseScenario(text("pathing: {levels: 2, level_two_size: 3}\n"), file);
+  Result<Scenario> two = testing::parseOneUnitScenario("pathing: {levels: 2, level_two_size: 3}\n");
   ASSERT_TRUE(two.ok()) << two.error().describe();
   EXPECT_EQ(two.value().settings.pathing.levels, 2);
   EXPECT_EQ(two.value().settings.pathing.levelTwoSize, 3);

@@ -15,6 +15,7 @@
 #include "pathing/annotated_grid.h"
 #include "pathing/map_generator.h"
 #include "pathing/random.h"
+#include "support/one_unit_scenario.h"
 
 namespace warpath::engine {
 namespace {
@@ -245,21 +246,13 @@ TEST(SlicedPathService, WindowSearchesPauseAtTheBudgetAtChokepoints) {
 
 // The scenario key: `pathing: {sliced: true}`, default false.
 TEST(SlicedPathService, TheScenarioKeyParses) {
-  const std::string file = std::string(WARPATH_SOURCE_DIR) + "/scenarios/test_input.yaml";
-  const auto text = [](const std::string& pathing) {
-    return "map:\n  rows: ['........', '........']\ncatalogue: ../assets/units.yaml\n"
-           "duration: 1\nteams: [blue]\n" +
-           pathing +
-           "groups:\n  - {team: blue, type: infantry, count: 1, spawn: {x: 0, y: 0, w: 1, h: 1},"
-           " goal: {x: 6, y: 0, w: 1, h: 1}}\n";
-  };
-  Result<Scenario> off = parseScenario(text(""), file);
+  Result<Scenario> off = testing::parseOneUnitScenario("");
   ASSERT_TRUE(off.ok()) << off.error().describe();
   EXPECT_FALSE(off.value().settings.pathing.sliced);
-  Result<Scenario> on = parseScenario(text("pathing: {sliced: true}\n"), file);
+  Result<Scenario> on = testing::parseOneUnitScenario("pathing: {sliced: true}\n");
   ASSERT_TRUE(on.ok()) << on.error().describe();
   EXPECT_TRUE(on.value().settings.pathing.sliced);
-  EXPECT_FALSE(parseScenario(text("pathing: {sliced: 3}\n"), file).ok());
+  EXPECT_FALSE(testing::parseOneUnitScenario("pathing: {sliced: 3}\n").ok());
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "pathing/cluster_abstraction.h"
 #include "pathing/haa_star.h"
 #include "pathing/random.h"
+#include "random_changes.h"
 #include "random_grid.h"
 #include "support/completeness.h"
 
@@ -112,9 +113,6 @@ TEST(LevelTwo, FindsWhatLevelOneFindsAtTheSameCostOnRandomMaps) {
       << levels.levelTwoExpanded << " against " << levels.levelOneExpanded;
 }
 
-constexpr Terrain kTerrains[] = {Terrain::Ground, Terrain::Swamp, Terrain::Trees, Terrain::Water,
-                                 Terrain::Blocked};
-
 TEST(LevelTwo, RepairedGraphsStayExactAfterTerrainChanges) {
   CompletenessTally tally;
   LevelTally levels;
@@ -125,24 +123,9 @@ TEST(LevelTwo, RepairedGraphsStayExactAfterTerrainChanges) {
       ClusterAbstraction one = ClusterAbstraction::build(grid, spec(6, quality, 1, 2));
       ClusterAbstraction two = ClusterAbstraction::build(grid, spec(6, quality, 2, 3));
       HierarchicalAStar haa(two);
-      SplitMix64 rng(seed * 977);
-      std::vector<CellRect> obstacles;
+      RandomChanges changes{SplitMix64(seed * 977), 12, {}};
       for (int step = 0; step < 10; ++step) {
-        const int kind = rng.between(0, 5);
-        TerrainChange change;
-        if (kind == 0 && !obstacles.empty()) {
-          change = grid.clearObstacle(obstacles.back());
-          obstacles.pop_back();
-        } else {
-          const CellRect area{rng.between(-2, 89), rng.between(-2, 76), rng.between(1, 12),
-                              rng.between(1, 12)};
-          if (kind == 1) {
-            obstacles.push_back(area);
-            change = grid.placeObstacle(area);
-          } else {
-            change = grid.setTerrain(area, kTerrains[rng.between(0, 4)]);
-          }
-        }
+        const TerrainChange change = changes.apply(grid);
         one.repair(change);
         two.repair(change);
         repairs += change.changed ? 1 : 0;
