@@ -117,6 +117,7 @@ HierarchicalAStar::HierarchicalAStar(const ClusterAbstraction& abstraction, HaaO
     : abstraction_(abstraction),
       options_(options),
       gridSearch_(abstraction.grid()),
+      jumpSearch_(abstraction.grid()),
       scratch_(std::make_unique<Scratch>()) {}
 
 HierarchicalAStar::~HierarchicalAStar() = default;
@@ -137,16 +138,25 @@ std::uint64_t HierarchicalAStar::nextStepExpansions() const {
 }
 
 PathStatus HierarchicalAStar::beginGridSearch(Agent agent, Cell start, Cell goal,
-                                              const SearchLimits& limits) {
-  if (const CostField* costs = abstraction_.costs())
-    return gridSearch_.beginPath(agent, start, goal, *costs, limits);
+                                              const SearchLimits& limits, bool uniform) {
+  const CostField* costs = uniform ? nullptr : abstraction_.costs();
+  gridJumping_ = options_.gridSearch == GridSearch::JumpPoints && !costs;
+  if (gridJumping_) return jumpSearch_.beginPath(agent, start, goal, limits);
+  if (costs) return gridSearch_.beginPath(agent, start, goal, *costs, limits);
   return gridSearch_.beginPath(agent, start, goal, limits);
 }
 
 std::uint64_t HierarchicalAStar::stepGridSearch(std::uint64_t budget, bool& done) {
-  const std::uint64_t before = gridSearch_.expandedSoFar();
-  done = gridSearch_.updatePath(budget) != PathStatus::Pending;
-  return gridSearch_.expandedSoFar() - before;
+  const auto advance = [&](auto& search) {
+    const std::uint64_t before = search.expandedSoFar();
+    done = search.updatePath(budget) != PathStatus::Pending;
+    return search.expandedSoFar() - before;
+  };
+  return gridJumping_ ? advance(jumpSearch_) : advance(gridSearch_);
+}
+
+PathResult HierarchicalAStar::finalizeGridSearch(std::vector<Cell>* path) {
+  return gridJumping_ ? jumpSearch_.finalizePath(path) : gridSearch_.finalizePath(path);
 }
 
 namespace {
@@ -349,7 +359,7 @@ PathStatus HierarchicalAStar::beginPath(Agent agent, Cell start, Cell goal,
   } else if (!abstraction_.supports(agent)) {
     // A weighted graph's costs are its one agent's: any other is planned in the uniform model.
     s.phase = Phase::GridOnly;
-    gridSearch_.beginPath(agent, start, goal);
+    beginGridSearch(agent, start, goal, {}, true);
   } else if (start == goal) {
     s.refined.push_back(start);
     s.result.status = PathStatus::Found;
@@ -407,7 +417,7 @@ std::uint64_t HierarchicalAStar::step(std::uint64_t budget) {
       const std::uint64_t spent = stepGridSearch(budget, done);
       if (done) {
         const double microseconds = metrics.microseconds;
-        const PathResult r = gridSearch_.finalizePath(&s.refined);
+        const PathResult r = finalizeGridSearch(&s.refined);
         s.result = r;
         metrics.microseconds = microseconds;
         metrics.gridExpanded = r.metrics.expanded;
@@ -418,7 +428,7 @@ std::uint64_t HierarchicalAStar::step(std::uint64_t budget) {
     case Phase::SameCluster: {
       const std::uint64_t spent = stepGridSearch(budget, done);
       if (done) {
-        const PathResult local = gridSearch_.finalizePath(&s.refined);
+        const PathResult local = finalizeGridSearch(&s.refined);
         metrics.insertionExpanded += local.metrics.expanded;
         metrics.generated += local.metrics.generated;
         if (local.found()) {
@@ -673,7 +683,7 @@ std::uint64_t HierarchicalAStar::refine(std::uint64_t budget) {
       if (!done) return spent;
       s.refineSearching = false;
       std::vector<Cell>& piece = s.smoothed;
-      const PathResult r = gridSearch_.finalizePath(&piece);
+      const PathResult r = finalizeGridSearch(&piece);
       metrics.refinementExpanded += r.metrics.expanded;
       metrics.generated += r.metrics.generated;
       WARPATH_INVARIANT(r.found(), "an abstract edge the agent may use must refine in its cluster");

@@ -118,6 +118,35 @@ TEST(HaaStarTest, CompleteLegalAndNeverBelowTheOptimumOnRandomMaps) {
   EXPECT_GT(tally.notFound, 20000);
 }
 
+// With the grid searches by JPS (HaaOptions::gridSearch): the same-cluster attempt, intra-edges
+// refined without cached paths, and agents the graph does not serve (size 4 here).
+TEST(HaaStarTest, JumpPointGridSearchesKeepItComplete) {
+  CompletenessTally tally;
+  std::uint64_t gridQueries = 0;
+  for (int i = 0; i < kRandomMapCount; i += 3) {
+    const RandomMapCase m = randomMapCase(i);
+    const AnnotatedGrid grid(randomMap(m));
+    const std::vector<CompletenessCase> cases =
+        drawCompletenessCases(grid, testing::completenessAgents(4), m.seed + 5, 4, 10, 1);
+    for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
+      for (bool cachePaths : {true, false}) {
+        const AbstractionSpec spec = catalogueSpec(10, quality, cachePaths);
+        const ClusterAbstraction abstraction = ClusterAbstraction::build(grid, spec);
+        HierarchicalAStar haa(abstraction, HaaOptions{.gridSearch = GridSearch::JumpPoints});
+        checkCompleteness(grid, cases, haa, label(m, spec, "grid searches by JPS"), tally);
+        std::vector<Cell> path;
+        for (const CompletenessCase& c : cases) {
+          const PathResult r = haa.findPath(c.agent, c.query.start, c.query.goal, &path);
+          gridQueries += r.metrics.usedGridSearch ? 1 : 0;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(tally.failures, 0);
+  EXPECT_GT(tally.found, 5000);
+  EXPECT_GT(gridQueries, 100u);
+}
+
 // The completeness check itself must catch each kind of wrong answer.
 TEST(HaaStarTest, TheCheckCatchesWrongAnswers) {
   const AnnotatedGrid grid(GridMap(6, 4, Terrain::Ground));

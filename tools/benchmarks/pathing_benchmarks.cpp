@@ -201,6 +201,43 @@ void BM_HierarchicalAStar(benchmark::State& state) {
 }
 BENCHMARK(BM_HierarchicalAStar)->Arg(1)->Arg(3)->Unit(benchmark::kMicrosecond);
 
+// The same queries without cached paths (each intra-edge refined by a search inside its
+// cluster) and short ones (endpoints 4-16 cells apart, many inside one cluster), with the grid
+// searches by AA* (0) or JPS (1): HaaOptions::gridSearch.
+void BM_HaaGridSearch(benchmark::State& state) {
+  const bool uncached = state.range(0) == 0;
+  const auto gridSearch = static_cast<GridSearch>(state.range(1));
+  const AnnotatedGrid grid(benchmarkMap(512));
+  AbstractionSpec spec = catalogueSpec(16, AbstractionQuality::High);
+  spec.cachePaths = !uncached;
+  const ClusterAbstraction graph = ClusterAbstraction::build(grid, spec);
+  const Agent agent{1, kInfantry};
+  std::vector<std::pair<Cell, Cell>> queries;
+  if (uncached) {
+    queries = standableQueries(grid, agent, 256);
+  } else {
+    const std::span<const std::uint32_t> component = grid.layer(agent).components();
+    SplitMix64 rng(11);
+    while (queries.size() < 64) {
+      const Cell s{rng.between(0, 511), rng.between(0, 511)};
+      const Cell g{s.x + rng.between(-12, 12), s.y + rng.between(-12, 12)};
+      if (grid.map().contains(g) && grid.canStand(agent, s) && grid.canStand(agent, g) &&
+          component[grid.map().indexOf(s)] == component[grid.map().indexOf(g)])
+        queries.push_back({s, g});
+    }
+  }
+  HierarchicalAStar search(graph, HaaOptions{.gridSearch = gridSearch});
+  timeQueries(state, queries, [&](Cell s, Cell g, std::vector<Cell>* path) {
+    return search.findPath(agent, s, g, path);
+  });
+}
+BENCHMARK(BM_HaaGridSearch)
+    ->Args({0, 0})
+    ->Args({0, 1})
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Unit(benchmark::kMicrosecond);
+
 // Sliced searches (issue 15): the same queries as above (infantry, size 1) run in slices of
 // `batch` expansions (beginPath, updatePath until done, finalizePath), against one findPath
 // each for batch 0: the cost of stopping and resuming.

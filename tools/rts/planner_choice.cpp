@@ -80,6 +80,11 @@ void addPlannerOptions(CLI::App& cmd, PlannerChoice& choice) {
                  "sqrt(tau)/2 apart) or jps+ (JPS+ counting jump points, every query; uniform "
                  "costs)")
       ->capture_default_str();
+  cmd.add_option("--grid-search", choice.gridSearch,
+                 "hierarchical algorithms: how they search the grid inside a cluster (same-cluster "
+                 "queries, refinement without cached paths) and for agents the graph does not "
+                 "serve: aa (AA*) or jps (jump points, uniform costs; as short, other cells)")
+      ->capture_default_str();
   cmd.add_flag("--no-smooth", choice.noSmooth,
                "hierarchical algorithms: keep the refined path as it is, unsmoothed");
 }
@@ -119,6 +124,12 @@ PreparedPlanner prepare(Algorithm algorithm, const PlannerChoice& choice, Build&
   if (const std::string problem = problemWith(prepared.hybrid); !problem.empty())
     throw BadInput{"--tau: " + problem};
   prepared.haa.smooth = !choice.noSmooth;
+  if (const auto search = kGridSearchNames.parse(choice.gridSearch)) {
+    prepared.haa.gridSearch = *search;
+  } else {
+    throw BadInput{"--grid-search: unknown '" + choice.gridSearch + "' (choose " +
+                   kGridSearchNames.list() + ")"};
+  }
   const auto began = std::chrono::steady_clock::now();
   build(prepared);
   prepared.preprocessMs =

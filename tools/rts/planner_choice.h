@@ -42,10 +42,11 @@ struct PlannerChoice {
   std::uint64_t tau = pathing::HybridOptions{}.tau;
   std::string attempt{pathing::kHybridAttemptNames.name(pathing::HybridOptions{}.attempt)};
   bool noSmooth = false;
+  std::string gridSearch{pathing::kGridSearchNames.name(pathing::HaaOptions{}.gridSearch)};
 };
 
-// Adds --algo, --cluster-size, --levels, --level-two-size, --tau, --attempt and --no-smooth to
-// `cmd`, bound to `choice` (which must outlive the parse).
+// Adds --algo, --cluster-size, --levels, --level-two-size, --grid-search, --tau, --attempt and
+// --no-smooth to `cmd`, bound to `choice` (which must outlive the parse).
 void addPlannerOptions(CLI::App& cmd, PlannerChoice& choice);
 
 // The algorithm named by `name` ("aa", "haa-hq", "haa-lq", "hybrid"); throws BadInput.

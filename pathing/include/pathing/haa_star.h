@@ -39,9 +39,25 @@ class EdgeSurcharge {
   }
 };
 
+// How HAA* searches the grid where it does (ClusterSearch below).
+enum class GridSearch : std::uint8_t {
+  AStar,       // "aa": AA*
+  JumpPoints,  // "jps": JPS on the agent's layer (jump_point_search.h), uniform costs only
+};
+inline constexpr EnumNames<GridSearch, 2> kGridSearchNames{{{
+    {GridSearch::AStar, "aa"},
+    {GridSearch::JumpPoints, "jps"},
+}}};
+
 struct HaaOptions {
   // Shorten the refined path with straight, capability- and clearance-legal segments.
   bool smooth = true;
+  // The searches on the grid: the same-cluster attempt, intra-edges refined without cached
+  // paths, and agents the graph does not serve. JumpPoints finds paths as short as AA*'s
+  // (other cells at times, so other answers) expanding fewer nodes; under a weighted graph's
+  // costs those searches stay AA*'s, except for agents the graph does not serve, which are
+  // planned in the uniform model anyway.
+  GridSearch gridSearch = GridSearch::AStar;
 };
 
 // A query: (1) start and goal in the same cluster: AA* inside the cluster, done if found;
@@ -115,13 +131,17 @@ class HierarchicalAStar {
   // Smoothing, cost and the total of the phases: the query is Found.
   void complete();
   void smooth(const AgentLayer& layer);
-  // Starts AA* on the grid for an agent the graph serves: under the graph's costs when it has
-  // them.
-  PathStatus beginGridSearch(Agent agent, Cell start, Cell goal, const SearchLimits& limits);
+  // Starts the grid search (options_.gridSearch) for an agent the graph serves: AA* under the
+  // graph's costs when it has them; `uniform`: in the uniform model whatever the graph.
+  PathStatus beginGridSearch(Agent agent, Cell start, Cell goal, const SearchLimits& limits,
+                             bool uniform = false);
+  PathResult finalizeGridSearch(std::vector<Cell>* path);
 
   const ClusterAbstraction& abstraction_;
   HaaOptions options_;
   AnnotatedAStar gridSearch_;
+  JumpPointSearch jumpSearch_;  // options_.gridSearch == JumpPoints (its scratch at first use)
+  bool gridJumping_ = false;    // the grid search under way is jumpSearch_'s
   std::unique_ptr<Scratch> scratch_;  // defined in the source so the header stays small
 };
 
