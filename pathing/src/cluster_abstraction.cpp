@@ -935,7 +935,7 @@ RepairStats ClusterAbstraction::repair(const TerrainChange& change) {
         const int cy = (k / clustersX_) / spec_.levelTwoSize;
         blocks[static_cast<std::size_t>(cy * levelTwoX_ + cx)] = true;
       }
-      buildLevelTwo(&blocks);
+      stats.expanded += buildLevelTwo(&blocks);
     }
   }
   stats.milliseconds =

@@ -25,6 +25,8 @@ class LevelTwoBuilder {
  public:
   explicit LevelTwoBuilder(ClusterAbstraction& g) : g_(g) {}
 
+  std::uint64_t settled() const { return settled_; }
+
   // Builds the level-2 edges of level-2 cluster `block` again from the level-1 graph.
   void rebuild(int block) {
     ClusterAbstraction::LevelTwoPaths& paths = g_.levelTwoPaths_[static_cast<std::size_t>(block)];
@@ -128,6 +130,7 @@ class LevelTwoBuilder {
       heap.pop();
       if (stamp_[x] == closed) continue;
       stamp_[x] = closed;
+      ++settled_;
       if (entryOf_[x] != kNone && entryOf_[x] > entryIndex && --targetsLeft == 0) break;
       const auto edges = g_.edgesOf(nodes_[x]);
       for (std::uint32_t k = 0; k < edges.size(); ++k) {
@@ -220,12 +223,13 @@ class LevelTwoBuilder {
   std::vector<std::uint32_t> parentEdge_;  // index in the parent's edges
   std::vector<std::uint32_t> stamp_;       // generation * 2 + {0 open, 1 closed}
   std::uint32_t generation_ = 0;
+  std::uint64_t settled_ = 0;
   std::vector<Candidate> candidates_;
   std::vector<std::uint32_t> steps_;  // candidates' paths (level-1 nodes after the source)
 };
 
-void ClusterAbstraction::buildLevelTwo(const std::vector<bool>* levelTwoClusters) {
-  if (spec_.levels != 2) return;
+std::uint64_t ClusterAbstraction::buildLevelTwo(const std::vector<bool>* levelTwoClusters) {
+  if (spec_.levels != 2) return 0;
   const auto began = std::chrono::steady_clock::now();
   const int side = spec_.levelTwoSize;
   levelTwoX_ = (clustersX_ + side - 1) / side;
@@ -257,6 +261,7 @@ void ClusterAbstraction::buildLevelTwo(const std::vector<bool>* levelTwoClusters
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
   if (!levelTwoClusters) stats_.levelTwoMilliseconds = ms;
+  return builder.settled();
 }
 
 CellRect ClusterAbstraction::levelTwoClusterBounds(int levelTwoCluster) const {

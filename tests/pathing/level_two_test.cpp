@@ -117,6 +117,9 @@ TEST(LevelTwo, RepairedGraphsStayExactAfterTerrainChanges) {
   CompletenessTally tally;
   LevelTally levels;
   int repairs = 0;
+  // A repair's effort counts its level-2 searches too (the path service budgets repairs by it).
+  std::uint64_t levelOneEffort = 0;
+  std::uint64_t levelTwoEffort = 0;
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     for (const AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
       AnnotatedGrid grid(randomTerrainMap(seed * 31, 90, 77, 4, 12));
@@ -126,8 +129,8 @@ TEST(LevelTwo, RepairedGraphsStayExactAfterTerrainChanges) {
       RandomChanges changes{SplitMix64(seed * 977), 12, {}};
       for (int step = 0; step < 10; ++step) {
         const TerrainChange change = changes.apply(grid);
-        one.repair(change);
-        two.repair(change);
+        levelOneEffort += one.repair(change).expanded;
+        levelTwoEffort += two.repair(change).expanded;
         repairs += change.changed ? 1 : 0;
         const AnnotatedGrid fresh(grid.map());
         const auto cases = drawCompletenessCases(
@@ -146,6 +149,7 @@ TEST(LevelTwo, RepairedGraphsStayExactAfterTerrainChanges) {
   EXPECT_EQ(tally.failures, 0);
   EXPECT_EQ(levels.mismatches, 0);
   EXPECT_GT(repairs, 40);
+  EXPECT_GT(levelTwoEffort, levelOneEffort);
   EXPECT_GT(tally.found, 600);
 }
 

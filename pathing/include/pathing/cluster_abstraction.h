@@ -116,11 +116,13 @@ struct AbstractionStats {
 
 // What one repair did (ClusterAbstraction::repair).
 struct RepairStats {
-  int clusters = 0;            // clusters whose intra-edges were found again
-  int borders = 0;             // borders whose entrances were found again
-  bool rebuilt = false;        // the whole graph was built again (a terrain new to a capability)
-  std::uint64_t expanded = 0;  // cells the intra-edge searches expanded (the repair's effort)
-  double milliseconds = 0;     // wall time: measurement only
+  int clusters = 0;      // clusters whose intra-edges were found again
+  int borders = 0;       // borders whose entrances were found again
+  bool rebuilt = false;  // the whole graph was built again (a terrain new to a capability)
+  // cells the intra-edge searches expanded, and level-1 nodes the level-2 searches settled (the
+  // repair's effort)
+  std::uint64_t expanded = 0;
+  double milliseconds = 0;  // wall time: measurement only
 };
 
 class ClusterAbstraction {
@@ -194,8 +196,9 @@ class ClusterAbstraction {
   friend class AbstractionBuilder;
   friend class LevelTwoBuilder;
   ClusterAbstraction() = default;
-  // Level 2 of the level-2 clusters marked (all when null), after a build or repair of level 1.
-  void buildLevelTwo(const std::vector<bool>* levelTwoClusters);
+  // Level 2 of the level-2 clusters marked (all when null), after a build or repair of level 1;
+  // returns the level-1 nodes its searches settled (their effort).
+  std::uint64_t buildLevelTwo(const std::vector<bool>* levelTwoClusters);
 
   // The cached grid paths of one cluster's intra-edges: path p's moves (moves.h), source to
   // target, are steps[begin[p]] up to steps[begin[p + 1]]. Per cluster, so that a repair
