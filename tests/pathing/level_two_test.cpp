@@ -12,6 +12,7 @@
 #include "pathing/cluster_abstraction.h"
 #include "pathing/haa_star.h"
 #include "pathing/random.h"
+#include "pathing/terrain_costs.h"
 #include "random_changes.h"
 #include "random_grid.h"
 #include "support/completeness.h"
@@ -151,6 +152,34 @@ TEST(LevelTwo, RepairedGraphsStayExactAfterTerrainChanges) {
   EXPECT_GT(repairs, 40);
   EXPECT_GT(levelTwoEffort, levelOneEffort);
   EXPECT_GT(tally.found, 600);
+}
+
+// A weighted graph (one agent, moving by terrain costs) gets level 2 the same way: exact over
+// its level 1 under the costs.
+TEST(LevelTwo, WeightedGraphsGetExactLevelTwoEdges) {
+  TerrainCosts costs;
+  costs.perCell[static_cast<std::size_t>(Terrain::Ground)] = 1.0 / 1.5;
+  costs.perCell[static_cast<std::size_t>(Terrain::Swamp)] = 1.0 / 0.8;
+  costs.perCell[static_cast<std::size_t>(Terrain::Trees)] = 1.0;
+  const Capability infantry = Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Trees});
+  LevelTally levels;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const AnnotatedGrid grid(randomTerrainMap(seed * 17, 96, 84, 4, 12));
+    for (const int size : {1, 2}) {
+      const Agent agent{size, infantry};
+      AbstractionSpec s = weightedAbstractionSpec(agent, costs, 6, AbstractionQuality::High);
+      const ClusterAbstraction one = ClusterAbstraction::build(grid, s);
+      s.levels = 2;
+      s.levelTwoSize = 3;
+      const ClusterAbstraction two = ClusterAbstraction::build(grid, s);
+      EXPECT_GT(two.stats().levelTwoEdges, 0u);
+      const auto cases = drawCompletenessCases(grid, {agent}, seed, 0, 20, 0);
+      compareLevels(one, two, cases, "weighted seed " + std::to_string(seed), levels);
+    }
+  }
+  EXPECT_EQ(levels.mismatches, 0);
+  EXPECT_GT(levels.compared, 100);
+  EXPECT_LT(levels.levelTwoExpanded, levels.levelOneExpanded);
 }
 
 TEST(LevelTwo, SlicedReturnsExactlyWhatOneShotReturns) {
