@@ -371,7 +371,7 @@ void CooperativeSearch::add(std::uint32_t cell, Tick tick, std::int32_t parent, 
   const CooperativeRequest& r = request_;
   const auto key =
       static_cast<std::uint64_t>(cell) << 32 | static_cast<std::uint32_t>(tick - r.startTick);
-  if (!seen_.try_emplace(key, static_cast<std::uint32_t>(nodes_.size())).second) return;
+  if (!seen_.insert(key)) return;
   const bool moved = parent >= 0 && nodes_[static_cast<std::size_t>(parent)].cell != cell;
   const std::uint32_t moveCount =
       (parent >= 0 ? nodes_[static_cast<std::size_t>(parent)].moves : 0) + (moved ? 1 : 0);
@@ -383,6 +383,43 @@ void CooperativeSearch::add(std::uint32_t cell, Tick tick, std::int32_t parent, 
     return openOrder(x.f, x.g, x.node, y.f, y.g, y.node);
   });
   ++plan_.metrics.generated;
+}
+
+void CooperativeSearch::SeenStates::clear() {
+  count_ = 0;
+  if (++generation_ == 0) {  // wrapped: no slot may look live
+    std::fill(slots_.begin(), slots_.end(), Slot{});
+    generation_ = 1;
+  }
+}
+
+std::size_t CooperativeSearch::SeenStates::home(std::uint64_t key) const {
+  // Fibonacci hashing: the top bits of key * 2^64 / phi, as many as the table has slots.
+  return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 40) & (slots_.size() - 1);
+}
+
+bool CooperativeSearch::SeenStates::insert(std::uint64_t key) {
+  if ((count_ + 1) * 2 > slots_.size()) grow();
+  for (std::size_t i = home(key);; i = (i + 1) & (slots_.size() - 1)) {
+    Slot& slot = slots_[i];
+    if (slot.generation != generation_) {
+      slot = {key, generation_};
+      ++count_;
+      return true;
+    }
+    if (slot.key == key) return false;
+  }
+}
+
+void CooperativeSearch::SeenStates::grow() {
+  std::vector<Slot> old(std::max<std::size_t>(slots_.size() * 2, 4096));
+  old.swap(slots_);
+  const std::uint32_t live = generation_;
+  count_ = 0;
+  generation_ = 1;
+  for (const Slot& slot : old) {
+    if (slot.generation == live) insert(slot.key);
+  }
 }
 
 bool CooperativeSearch::startChain(std::int32_t at) const {

@@ -330,7 +330,26 @@ class CooperativeSearch {
   // Scratch, kept between queries.
   std::vector<Node> nodes_;
   std::vector<Open> open_;
-  std::unordered_map<std::uint64_t, std::uint32_t> seen_;  // (cell, tick) -> node
+  // The (cell, tick) states reached by the plan under way: open addressing, emptied in O(1) by a
+  // new generation (a plan reaches thousands of states, and an std::unordered_map spent an
+  // allocation on each).
+  class SeenStates {
+   public:
+    void clear();
+    bool insert(std::uint64_t key);  // true when the key is new
+
+   private:
+    struct Slot {
+      std::uint64_t key = 0;
+      std::uint32_t generation = 0;  // live when the set's
+    };
+    std::size_t home(std::uint64_t key) const;
+    void grow();
+    std::vector<Slot> slots_;
+    std::uint32_t generation_ = 1;
+    std::size_t count_ = 0;
+  };
+  SeenStates seen_;
 };
 
 }  // namespace warpath::pathing
