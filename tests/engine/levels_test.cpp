@@ -92,12 +92,14 @@ TEST(Levels, CongestionFreesTheLevelTwoClustersWithoutAQueue) {
   }
 }
 
-// Bundled scenarios keep their expectations with level 2, and runs stay deterministic; their
-// long searches cross level-2 clusters by level-2 edges (congestion surcharges allowing).
+// Bundled scenarios keep their expectations with level 2 (bridge_demolition repairs it as the
+// bridge goes), and runs stay deterministic; their long searches cross level-2 clusters by
+// level-2 edges (congestion surcharges allowing).
 TEST(Levels, BundledScenariosPassWithLevelTwo) {
   std::uint64_t levelOne = 0;
   std::uint64_t levelTwo = 0;
-  for (const char* file : {"demo.yaml", "river_crossing.yaml", "swamp_detour.yaml"}) {
+  for (const char* file :
+       {"demo.yaml", "river_crossing.yaml", "swamp_detour.yaml", "bridge_demolition.yaml"}) {
     Result<Scenario> loaded = loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/" + file);
     ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
     Scenario s = std::move(loaded).value();
