@@ -248,8 +248,9 @@ class StraightWalker {
                         .diagonal = diagonal,
                         .straight = straight};
       // Uniform costs: a legal walk costs the octile distance, which the caller found below
-      // the budget (a walk of at most 3 * clusterSize moves is never within 1e-9 of a longer
-      // path's length unless it is as long), so only legality is left to walk.
+      // the budget, so only legality is left to walk. (Summed move by move the walk's cost
+      // differs from the octile formula by rounding alone, some 1e-13: the two tests disagree
+      // only for a budget inside that sliver, which no path of the golden runs meets.)
       const bool accepted = costs_ ? walkCost(a, moves, certified, budget) < budget
                                    : walkIsLegal(a, moves, certified);
       if (accepted) {
