@@ -75,6 +75,7 @@ EOF
 
 scenario "unit_types: {infantry: {radius: 0.6}}" >"$tmp/radius.yaml"
 scenario "pathing: {cluster_size: 1}" >"$tmp/cluster.yaml"
+scenario "duration: 5" >"$tmp/duplicate_key.yaml"
 
 for depth in 100 5000; do
   {
@@ -126,6 +127,7 @@ cases=(
   "nesting 5000 levels|run $tmp/nested_5000.yaml --quiet"
   "a unit type past its limits (radius)|run $tmp/radius.yaml --quiet"
   "a setting past its limits (cluster_size)|run $tmp/cluster.yaml --quiet"
+  "a key given twice (duration)|run $tmp/duplicate_key.yaml --quiet"
   "--until -1|run $tmp/ok.yaml --quiet --until -1"
   "--until 99999999999999999999|run $tmp/ok.yaml --quiet --until 99999999999999999999"
   "--replay-every 0|run $tmp/ok.yaml --quiet --replay $tmp/out.replay --replay-every 0"
