@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <queue>
 
@@ -26,6 +27,41 @@ class LevelTwoBuilder {
   explicit LevelTwoBuilder(ClusterAbstraction& g) : g_(g) {}
 
   std::uint64_t settled() const { return settled_; }
+
+  // Debug and sanitizer builds: what queries rely on. Every level-2 edge of the block joins two
+  // of its level-2 nodes, has its reverse, and refines, for the least agent it admits, into
+  // level-1 steps inside the block, each usable, that add up to its cost.
+  void check(int block) const {
+    std::vector<std::pair<std::uint32_t, const AbstractEdge*>> steps;
+    for (const std::uint32_t n : g_.levelTwoNodes_[static_cast<std::size_t>(block)]) {
+      for (const AbstractEdge& e : g_.levelTwoEdgesOf(n)) {
+        WARPATH_INVARIANT(e.intra && e.target != n && g_.levelTwoClusterOfNode(e.target) == block,
+                          "level 2: an edge must join two nodes of its block");
+        const auto back = g_.levelTwoEdgesOf(e.target);
+        WARPATH_INVARIANT(std::any_of(back.begin(), back.end(),
+                                      [&](const AbstractEdge& r) {
+                                        return r.target == n && r.cost == e.cost &&
+                                               r.capability == e.capability &&
+                                               r.clearance == e.clearance;
+                                      }),
+                          "level 2: an edge without its reverse");
+        const Agent least{e.clearance, e.capability};
+        steps.clear();
+        g_.appendLevelOneSteps(n, e, least, &steps);
+        double cost = 0.0;
+        std::uint32_t at = n;
+        for (const auto& [from, step] : steps) {
+          WARPATH_INVARIANT(from == at && step->usableBy(least) &&
+                                g_.levelTwoClusterOfNode(step->target) == block,
+                            "level 2: a step must go on inside the block, usable");
+          cost += step->cost;
+          at = step->target;
+        }
+        WARPATH_INVARIANT(at == e.target && std::abs(cost - e.cost) < 1e-6,
+                          "level 2: the steps must reach the target at the edge's cost");
+      }
+    }
+  }
 
   // Builds the level-2 edges of level-2 cluster `block` again from the level-1 graph.
   void rebuild(int block) {
@@ -245,6 +281,11 @@ std::uint64_t ClusterAbstraction::buildLevelTwo(const std::vector<bool>* levelTw
   for (std::size_t b = 0; b < blocks; ++b) {
     if (!levelTwoClusters || (*levelTwoClusters)[b]) builder.rebuild(static_cast<int>(b));
   }
+#if WARPATH_INVARIANTS_ON
+  for (std::size_t b = 0; b < blocks; ++b) {
+    if (!levelTwoClusters || (*levelTwoClusters)[b]) builder.check(static_cast<int>(b));
+  }
+#endif
   // Statistics of the whole level (a sweep over the blocks' node lists, not over the grid).
   stats_.levelTwoNodes = 0;
   stats_.levelTwoEdges = 0;
