@@ -52,8 +52,7 @@ AbstractionSpec weightedAbstractionSpec(Agent agent, const TerrainCosts& costs, 
 }
 
 bool ClusterAbstraction::supports(Agent agent) const {
-  const int smallest = costs_ ? spec_.maxAgentSize : 1;
-  return agent.size >= smallest && agent.size <= spec_.maxAgentSize &&
+  return agent.size >= smallestAgentSize(spec_) && agent.size <= spec_.maxAgentSize &&
          std::find(spec_.capabilities.begin(), spec_.capabilities.end(), agent.capability) !=
              spec_.capabilities.end();
 }
@@ -101,7 +100,7 @@ class AbstractionBuilder {
       : grid_(grid),
         map_(grid.map()),
         maxSize_(spec.maxAgentSize),
-        minSize_(spec.costs ? spec.maxAgentSize : 1),
+        minSize_(smallestAgentSize(spec)),
         g_(out_) {
     g_.grid_ = &grid;
     g_.spec_ = std::move(spec);
@@ -126,7 +125,7 @@ class AbstractionBuilder {
       : grid_(existing.grid()),
         map_(existing.grid().map()),
         maxSize_(existing.spec_.maxAgentSize),
-        minSize_(existing.spec_.costs ? existing.spec_.maxAgentSize : 1),
+        minSize_(smallestAgentSize(existing.spec_)),
         g_(existing),
         repairing_(true) {
     useEffectiveCapabilities();
@@ -295,10 +294,8 @@ class AbstractionBuilder {
     std::vector<AbstractEdge>& edges = g_.edges_[n];
     for (const AbstractEdge& e : edges) {
       if (!match(e)) continue;
-      std::erase_if(g_.edges_[e.target], [&](const AbstractEdge& back) {
-        return back.target == n && back.intra == e.intra && back.cost == e.cost &&
-               back.capability == e.capability && back.clearance == e.clearance;
-      });
+      std::erase_if(g_.edges_[e.target],
+                    [&](const AbstractEdge& back) { return back.isReverseOf(e, n); });
     }
     std::erase_if(edges, match);
   }
@@ -842,11 +839,7 @@ class AbstractionBuilder {
                           "abstraction: edge serves no agent");
         const auto back = g.edgesOf(e.target);
         WARPATH_INVARIANT(std::any_of(back.begin(), back.end(),
-                                      [&](const AbstractEdge& r) {
-                                        return r.target == n && r.intra == e.intra &&
-                                               r.cost == e.cost && r.clearance == e.clearance &&
-                                               r.capability == e.capability;
-                                      }),
+                                      [&](const AbstractEdge& r) { return r.isReverseOf(e, n); }),
                           "abstraction: edge without its reverse");
         const Cell to = g.nodeCell(e.target);
         if (!e.intra) {

@@ -67,7 +67,6 @@ struct HierarchicalAStar::Scratch {
   // Level 2 (the graph has it): the level-2 clusters of the start and goal are searched at
   // level 1, and so are those a surcharge may charge within (asked once a query: `blockFree`
   // holds generation * 2 + {0 charged, 1 free}); every other is crossed by level-2 edges.
-  bool levelTwo = false;
   int startBlock = -1;
   int goalBlock = -1;
   std::vector<std::uint32_t> blockFree;
@@ -515,8 +514,7 @@ void HierarchicalAStar::beginAbstract() {
   s.open.push(
       OpenList::makeKey(scale * octileDistance(s.goal.x - s.start.x, s.goal.y - s.start.y), 0.0),
       startNode);
-  s.levelTwo = abstraction_.hasLevelTwo();
-  if (s.levelTwo) {
+  if (abstraction_.hasLevelTwo()) {
     s.startBlock = abstraction_.levelTwoClusterOf(s.start);
     s.goalBlock = abstraction_.levelTwoClusterOf(s.goal);
     const auto blocks = static_cast<std::size_t>(abstraction_.levelTwoClusterCount());
@@ -571,7 +569,7 @@ std::uint64_t HierarchicalAStar::searchAbstract(std::uint64_t budget) {
         relax(u, n, cost, nullptr, abstraction_.nodeCell(n));
       continue;
     }
-    if (s.levelTwo) {
+    if (abstraction_.hasLevelTwo()) {
       // Inside a level-2 cluster of neither end (entered at a level-2 node): its level-2
       // edges, and the level-1 edges that leave it.
       const int block = abstraction_.levelTwoClusterOfNode(u);

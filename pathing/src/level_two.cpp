@@ -39,11 +39,7 @@ class LevelTwoBuilder {
                           "level 2: an edge must join two nodes of its block");
         const auto back = g_.levelTwoEdgesOf(e.target);
         WARPATH_INVARIANT(std::any_of(back.begin(), back.end(),
-                                      [&](const AbstractEdge& r) {
-                                        return r.target == n && r.cost == e.cost &&
-                                               r.capability == e.capability &&
-                                               r.clearance == e.clearance;
-                                      }),
+                                      [&](const AbstractEdge& r) { return r.isReverseOf(e, n); }),
                           "level 2: an edge without its reverse");
         const Agent least{e.clearance, e.capability};
         steps.clear();
@@ -69,11 +65,11 @@ class LevelTwoBuilder {
     paths = {};
     collectNodes(block);
     // The last level-2 node has no later one to search for: its edges are the others' reverses.
+    const int smallest = smallestAgentSize(g_.spec_);
     for (std::uint32_t i = 0; i + 1 < entries_.size(); ++i) {
       candidates_.clear();
       const std::uint32_t u = entries_[i];
       for (const Capability& capability : g_.spec_.capabilities) {
-        const int smallest = g_.costs_ ? g_.spec_.maxAgentSize : 1;
         for (int size = smallest; size <= g_.spec_.maxAgentSize; ++size)
           searchFrom(u, Agent{size, capability}, i);
       }
@@ -207,14 +203,17 @@ class LevelTwoBuilder {
   // subset, clearance at least; of equals the first), stored at both ends.
   void keepUndominated(std::uint32_t u, ClusterAbstraction::LevelTwoPaths& paths) {
     constexpr double kSame = 1e-9;
+    // x serves every agent y serves, at no greater cost.
+    const auto dominates = [](const Candidate& x, const Candidate& y) {
+      return !x.removed && x.cost <= y.cost + kSame && x.capability.isSubsetOf(y.capability) &&
+             x.clearance >= y.clearance;
+    };
     std::stable_sort(candidates_.begin(), candidates_.end(),
                      [](const Candidate& l, const Candidate& r) { return l.target < r.target; });
     for (std::size_t i = 0; i < candidates_.size(); ++i) {
       Candidate& a = candidates_[i];
       for (std::size_t j = i; j-- > 0 && candidates_[j].target == a.target;) {
-        const Candidate& b = candidates_[j];
-        if (!b.removed && b.cost <= a.cost + kSame && b.capability.isSubsetOf(a.capability) &&
-            b.clearance >= a.clearance) {
+        if (dominates(candidates_[j], a)) {
           a.removed = true;
           break;
         }
@@ -222,10 +221,7 @@ class LevelTwoBuilder {
       if (a.removed) continue;
       // A later candidate may dominate earlier ones it is strictly better than.
       for (std::size_t j = i; j-- > 0 && candidates_[j].target == a.target;) {
-        Candidate& b = candidates_[j];
-        if (!b.removed && a.cost <= b.cost + kSame && a.capability.isSubsetOf(b.capability) &&
-            a.clearance >= b.clearance)
-          b.removed = true;
+        if (dominates(a, candidates_[j])) candidates_[j].removed = true;
       }
     }
     for (const Candidate& c : candidates_) {
@@ -276,29 +272,38 @@ std::uint64_t ClusterAbstraction::buildLevelTwo(const std::vector<bool>* levelTw
     nodeLevelTwo_.assign(nodeCells_.size(), -1);
     levelTwoPaths_.assign(blocks, {});
     levelTwoNodes_.assign(blocks, {});
+    stats_.levelTwoNodes = 0;
+    stats_.levelTwoEdges = 0;
+    levelTwoPathBytes_ = 0;
   }
+  // The statistics follow what the blocks rebuilt held before and hold after (a repair touches
+  // a few blocks; sweeping them all would cost it as much as the repair on large maps).
+  const auto count = [&](std::size_t b, std::ptrdiff_t sign) {
+    const auto add = [sign](std::size_t& total, std::size_t part) {
+      total = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(total) +
+                                       sign * static_cast<std::ptrdiff_t>(part));
+    };
+    add(stats_.levelTwoNodes, levelTwoNodes_[b].size());
+    for (const std::uint32_t n : levelTwoNodes_[b])
+      add(stats_.levelTwoEdges, levelTwoEdges_[n].size());
+    add(levelTwoPathBytes_, levelTwoNodes_[b].size() * sizeof(std::uint32_t) +
+                                (levelTwoPaths_[b].begin.size() + levelTwoPaths_[b].nodes.size()) *
+                                    sizeof(std::uint32_t));
+  };
   LevelTwoBuilder builder(*this);
   for (std::size_t b = 0; b < blocks; ++b) {
-    if (!levelTwoClusters || (*levelTwoClusters)[b]) builder.rebuild(static_cast<int>(b));
+    if (levelTwoClusters && !(*levelTwoClusters)[b]) continue;
+    count(b, -1);
+    builder.rebuild(static_cast<int>(b));
+    count(b, +1);
   }
 #if WARPATH_INVARIANTS_ON
   for (std::size_t b = 0; b < blocks; ++b) {
     if (!levelTwoClusters || (*levelTwoClusters)[b]) builder.check(static_cast<int>(b));
   }
 #endif
-  // Statistics of the whole level (a sweep over the blocks' node lists, not over the grid).
-  stats_.levelTwoNodes = 0;
-  stats_.levelTwoEdges = 0;
-  stats_.levelTwoBytes = nodeLevelTwo_.size() * (sizeof(int) + sizeof(std::vector<AbstractEdge>));
-  for (std::size_t b = 0; b < blocks; ++b) {
-    stats_.levelTwoNodes += levelTwoNodes_[b].size();
-    for (std::uint32_t n : levelTwoNodes_[b])
-      stats_.levelTwoEdges += levelTwoEdges_[n].size();
-    stats_.levelTwoBytes += levelTwoNodes_[b].size() * sizeof(std::uint32_t) +
-                            levelTwoPaths_[b].begin.size() * sizeof(std::uint32_t) +
-                            levelTwoPaths_[b].nodes.size() * sizeof(std::uint32_t);
-  }
-  stats_.levelTwoBytes += stats_.levelTwoEdges * sizeof(AbstractEdge);
+  stats_.levelTwoBytes = nodeLevelTwo_.size() * (sizeof(int) + sizeof(std::vector<AbstractEdge>)) +
+                         stats_.levelTwoEdges * sizeof(AbstractEdge) + levelTwoPathBytes_;
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
   if (!levelTwoClusters) stats_.levelTwoMilliseconds = ms;

@@ -144,6 +144,11 @@ TEST(LevelTwo, RepairedGraphsStayExactAfterTerrainChanges) {
         // A whole build on the changed map has the same level-2 nodes.
         const ClusterAbstraction built = ClusterAbstraction::build(grid, spec(6, quality, 2, 3));
         EXPECT_EQ(two.stats().levelTwoNodes, built.stats().levelTwoNodes) << what.str();
+        // The repaired statistics count the level-2 edges the graph holds.
+        std::size_t edges = 0;
+        for (std::uint32_t n = 0; n < two.nodeCount(); ++n)
+          edges += two.levelTwoEdgesOf(n).size();
+        EXPECT_EQ(two.stats().levelTwoEdges, edges) << what.str();
       }
     }
   }

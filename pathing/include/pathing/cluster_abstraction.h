@@ -70,6 +70,12 @@ struct AbstractionSpec {
   int levelTwoSize = 4;  // [Unit: clusters] [Limit: 2..256] side of a level-2 cluster
 };
 
+// The smallest agent size a graph built from `spec` serves: 1, or maxAgentSize for a weighted
+// graph (its one agent's).
+inline int smallestAgentSize(const AbstractionSpec& spec) {
+  return spec.costs ? spec.maxAgentSize : 1;
+}
+
 // The spec of a weighted graph (AbstractionSpec::costs): it serves `agent` alone (its size and
 // capability, every terrain of which `costs` must price), moving by `costs`.
 AbstractionSpec weightedAbstractionSpec(Agent agent, const TerrainCosts& costs, int clusterSize,
@@ -93,6 +99,12 @@ struct AbstractEdge {
 
   bool usableBy(Agent agent) const {
     return capability.isSubsetOf(agent.capability) && clearance >= agent.size;
+  }
+  // True when this edge, stored at node `to`'s end, is the other direction of `edge` taken from
+  // node `from` (every edge is stored once per end, with the same annotation).
+  bool isReverseOf(const AbstractEdge& edge, std::uint32_t from) const {
+    return target == from && intra == edge.intra && cost == edge.cost &&
+           capability == edge.capability && clearance == edge.clearance;
   }
 };
 
@@ -237,6 +249,7 @@ class ClusterAbstraction {
   std::vector<std::vector<AbstractEdge>> levelTwoEdges_;   // per node
   std::vector<LevelTwoPaths> levelTwoPaths_;               // per level-2 cluster
   std::vector<std::vector<std::uint32_t>> levelTwoNodes_;  // per level-2 cluster
+  std::size_t levelTwoPathBytes_ = 0;  // level-2 node lists and paths (stats().levelTwoBytes)
 };
 
 }  // namespace warpath::pathing
