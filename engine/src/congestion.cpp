@@ -114,7 +114,7 @@ Congestion::Layer& Congestion::layerFor(pathing::Capability capability) {
       layer.places.push_back(std::move(place));
       std::vector<int> clusters;
       for (const Cell& c : cells)
-        clusters.push_back((c.y / clusterSize_) * clustersX_ + c.x / clusterSize_);
+        clusters.push_back(clusterOf(c));
       std::sort(clusters.begin(), clusters.end());
       clusters.erase(std::unique(clusters.begin(), clusters.end()), clusters.end());
       for (int cluster : clusters)
@@ -239,11 +239,8 @@ double Congestion::Surcharge::on(const pathing::ClusterAbstraction& graph, std::
   if (layer.places.empty()) return 0.0;
   const Cell a = graph.nodeCell(from);
   const Cell b = graph.nodeCell(edge.target);
-  const auto clusterOf = [&](Cell cell) {
-    return (cell.y / c.clusterSize_) * c.clustersX_ + cell.x / c.clusterSize_;
-  };
-  if (!c.anyQueueNear(layer, clusterOf(a), now_) &&
-      (clusterOf(b) == clusterOf(a) || !c.anyQueueNear(layer, clusterOf(b), now_)))
+  if (!c.anyQueueNear(layer, c.clusterOf(a), now_) &&
+      (c.clusterOf(b) == c.clusterOf(a) || !c.anyQueueNear(layer, c.clusterOf(b), now_)))
     return 0.0;
   c.edgeCells_.assign(1, a);
   if (edge.intra && edge.path == pathing::AbstractEdge::kNoPath)
@@ -266,8 +263,7 @@ bool Congestion::Surcharge::freeWithin(const pathing::ClusterAbstraction& graph,
   const pathing::CellRect r = graph.levelTwoClusterBounds(levelTwoCluster);
   for (int y = r.y; y < r.y + r.height; y += c.clusterSize_) {
     for (int x = r.x; x < r.x + r.width; x += c.clusterSize_) {
-      if (c.anyQueueNear(layer, (y / c.clusterSize_) * c.clustersX_ + x / c.clusterSize_, now_))
-        return false;
+      if (c.anyQueueNear(layer, c.clusterOf({x, y}), now_)) return false;
     }
   }
   return true;

@@ -102,6 +102,9 @@ class Congestion {
   double walk(Layer& layer, double speed, double now, std::span<const pathing::Cell> cells,
               double startSeconds, Visit&& visit);
   bool anyQueueNear(Layer& layer, int cluster, double now);
+  int clusterOf(pathing::Cell c) const {
+    return (c.y / clusterSize_) * clustersX_ + c.x / clusterSize_;
+  }
 
   const pathing::AnnotatedGrid& grid_;
   int clusterSize_;
