@@ -418,13 +418,17 @@ std::size_t AnnotatedGrid::cacheBytes() const {
 
 std::optional<PathStatus> screenEndpoints(const AnnotatedGrid& grid, Agent agent, Cell start,
                                           Cell goal) {
-  if (!grid.canStand(agent, start)) return PathStatus::InvalidStart;
-  if (!grid.canStand(agent, goal)) return PathStatus::InvalidGoal;
-  const AgentLayer& layer = grid.layer(agent);
+  // One look-up of the layer (the grid's caches take a lock): its component is 0 exactly
+  // where the agent cannot stand.
   const GridMap& map = grid.map();
-  if (layer.components()[map.indexOf(start)] != layer.components()[map.indexOf(goal)]) {
-    return PathStatus::Unreachable;
-  }
+  if (agent.size < 1 || !map.contains(start)) return PathStatus::InvalidStart;
+  const AgentLayer& layer = grid.layer(agent);
+  const std::uint32_t from = layer.components()[map.indexOf(start)];
+  if (from == 0) return PathStatus::InvalidStart;
+  if (!map.contains(goal)) return PathStatus::InvalidGoal;
+  const std::uint32_t to = layer.components()[map.indexOf(goal)];
+  if (to == 0) return PathStatus::InvalidGoal;
+  if (from != to) return PathStatus::Unreachable;
   return std::nullopt;
 }
 
