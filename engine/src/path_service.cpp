@@ -91,7 +91,8 @@ PathService::PathService(const AnnotatedGrid& grid, const PathServiceSettings& s
   // Requests without a profile plan in the uniform model (by AA* when the algorithm needs a
   // graph and none was built).
   planner_.emplace(grid, abstraction_ || !quality ? settings.algorithm : Algorithm::AStar,
-                   abstraction_.get());
+                   abstraction_.get(), pathing::HybridOptions{}, pathing::HaaOptions{}, nullptr,
+                   settings.jumpSuccessors);
   if (settings.cooperative && settings.congestion && quality)
     congestion_.emplace(grid, settings.clusterSize);
   present_ = grid.map().terrainsPresent();

@@ -381,11 +381,14 @@ Result<Scenario> replayScenario(const Replay& replay) {
   };
   // A scenario that does not say `pathing: cooperative` plays back as it was recorded: with
   // cooperation off before it became the default, without congestion-aware routes before they
-  // came (no older scenario can name them), and with window searches unsliced before they were.
+  // came (no older scenario can name them), with window searches unsliced before they were, and
+  // with jump point searches taking every side turn before they took only forced ones.
   WorldSettings defaults;
   if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
   if (replay.version < kFirstCongestionReplayVersion) defaults.pathing.congestion = false;
   if (replay.version < kFirstSlicedWindowsReplayVersion) defaults.pathing.slicedWindows = false;
+  if (replay.version < kFirstForcedJumpsReplayVersion)
+    defaults.pathing.jumpSuccessors = pathing::JumpSuccessors::EverySide;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

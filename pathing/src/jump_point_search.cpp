@@ -131,8 +131,8 @@ const std::uint64_t* JumpPointSearch::Query::column(int x) const {
 }
 
 JumpPointSearch::JumpPointSearch(const AnnotatedGrid& grid, JumpDistances distances,
-                                 std::size_t tableBudget)
-    : grid_(grid), distances_(distances), tableBudget_(tableBudget) {}
+                                 std::size_t tableBudget, JumpSuccessors successors)
+    : grid_(grid), distances_(distances), tableBudget_(tableBudget), successors_(successors) {}
 
 bool JumpPointSearch::tableFits(Agent agent) const {
   std::size_t taken = 0;
@@ -433,14 +433,13 @@ const JumpPointSearch::JumpTable& JumpPointSearch::tableFor(Agent agent) {
 
 void JumpPointSearch::resetScratch() {
   const std::size_t cells = grid_.map().cellCount();
-  if (stamps_.size() != cells) {
-    stamps_.assign(cells, 0);
-    g_.assign(cells, 0.0);
-    parent_.assign(cells, kNone);
+  if (nodes_.size() != cells) {
+    nodes_.assign(cells, Node{0, kNone, 0.0});
     generation_ = 0;
   }
   if (++generation_ == (1u << 31)) {  // wrapped: forget every stamp
-    std::fill(stamps_.begin(), stamps_.end(), 0);
+    for (Node& n : nodes_)
+      n.stamp = 0;
     generation_ = 1;
   }
   open_.clear();
@@ -502,16 +501,67 @@ Cell JumpPointSearch::jumpByTable(const Query& q, int x, int y, int dx, int dy) 
   return v > 0 ? Cell{x + v * dx, y + v * dy} : kNoCell;
 }
 
+bool JumpPointSearch::runReaches(const Query& q, Cell from, int dx, int dy, int steps) const {
+  const int entry = tableEntry(dx, dy);
+  for (int run = 0; run < steps;) {
+    const int v = q.entries(from.x, from.y)[entry];
+    if (v <= 0) return run - v >= steps;  // -v more steps before the wall
+    run += v;                             // on from one jump point to the next
+    from = {from.x + v * dx, from.y + v * dy};
+  }
+  return true;
+}
+
+bool JumpPointSearch::goalInSight(const Query& q, Cell from) const {
+  const Cell goal = q.goal;
+  const int dx = (goal.x > from.x) - (goal.x < from.x);
+  const int dy = (goal.y > from.y) - (goal.y < from.y);
+  const int ax = std::abs(goal.x - from.x);
+  const int ay = std::abs(goal.y - from.y);
+  const int diagonal = std::min(ax, ay);
+  if (diagonal > 0 && !runReaches(q, from, dx, dy, diagonal)) return false;
+  if (ax == ay) return true;
+  const Cell turn{from.x + diagonal * dx, from.y + diagonal * dy};
+  return ax > ay ? runReaches(q, turn, dx, 0, ax - diagonal)
+                 : runReaches(q, turn, 0, dy, ay - diagonal);
+}
+
 PathResult JumpPointSearch::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                                      const SearchLimits& limits) {
-  beginPath(agent, start, goal, limits);
-  updatePath(kUnboundedExpansions);
-  return finalizePath(path);
+  // One clock for the whole query: on small maps a query takes a fraction of a microsecond,
+  // and a clock read per phase would be a good part of it.
+  const QueryClock clock;
+  begin(agent, start, goal, limits);
+  search(kUnboundedExpansions);
+  finish(path);
+  result_.metrics.microseconds = clock.elapsedMicroseconds();
+  return result_;
 }
 
 PathStatus JumpPointSearch::beginPath(Agent agent, Cell start, Cell goal,
                                       const SearchLimits& limits) {
   const QueryClock clock;
+  begin(agent, start, goal, limits);
+  result_.metrics.microseconds += clock.elapsedMicroseconds();
+  return result_.status;
+}
+
+PathStatus JumpPointSearch::updatePath(std::uint64_t maxExpansions) {
+  if (result_.status != PathStatus::Pending || maxExpansions == 0) return result_.status;
+  const QueryClock clock;
+  search(maxExpansions);
+  result_.metrics.microseconds += clock.elapsedMicroseconds();
+  return result_.status;
+}
+
+PathResult JumpPointSearch::finalizePath(std::vector<Cell>* path) {
+  const QueryClock clock;
+  finish(path);
+  result_.metrics.microseconds += clock.elapsedMicroseconds();
+  return result_;
+}
+
+void JumpPointSearch::begin(Agent agent, Cell start, Cell goal, const SearchLimits& limits) {
   result_ = PathResult{};
   result_.status = PathStatus::Pending;
   start_ = start;
@@ -533,20 +583,15 @@ PathStatus JumpPointSearch::beginPath(Agent agent, Cell start, Cell goal,
     query_.goal = goal;
     resetScratch();
     const std::uint32_t startIndex = map.indexOf(start);
-    stamps_[startIndex] = generation_ << 1;
-    g_[startIndex] = 0.0;
-    parent_[startIndex] = kNone;
+    nodes_[startIndex] = {generation_ << 1, kNone, 0.0};
     open_.push(OpenList::makeKey(octileDistance(goal.x - start.x, goal.y - start.y), 0.0),
                startIndex);
     ++result_.metrics.generated;
   }
-  result_.metrics.microseconds += clock.elapsedMicroseconds();
-  return result_.status;
 }
 
-PathStatus JumpPointSearch::updatePath(std::uint64_t maxExpansions) {
-  if (result_.status != PathStatus::Pending || maxExpansions == 0) return result_.status;
-  const QueryClock clock;
+void JumpPointSearch::search(std::uint64_t maxExpansions) {
+  if (result_.status != PathStatus::Pending || maxExpansions == 0) return;
   const GridMap& map = grid_.map();
   const Query& q = query_;
   const Cell goal = q.goal;
@@ -564,11 +609,12 @@ PathStatus JumpPointSearch::updatePath(std::uint64_t maxExpansions) {
       break;
     }
     const std::uint32_t current = open_.pop();
-    if (stamps_[current] == closedStamp) continue;  // a dearer duplicate
-    stamps_[current] = closedStamp;
+    Node& node = nodes_[current];
+    if (node.stamp == closedStamp) continue;  // a dearer duplicate
+    node.stamp = closedStamp;
     ++result.metrics.expanded;
     if (current == goalIndex) {
-      result.cost = g_[current];
+      result.cost = node.g;
       status = PathStatus::Found;
       break;
     }
@@ -577,9 +623,9 @@ PathStatus JumpPointSearch::updatePath(std::uint64_t maxExpansions) {
       break;
     }
     const Cell here = map.cellAt(current);
-    const double g = g_[current];
+    const double g = node.g;
     // The directions worth jumping in: all from the start; else the way the parent came, the
-    // cardinal parts of a diagonal, and the sides of a straight move (pruned by the jumps).
+    // cardinal parts of a diagonal, and after a straight move the turns successors_ allows.
     int dirs[kDirectionCount][2];
     int count = 0;
     const auto add = [&](int dx, int dy) {
@@ -587,27 +633,36 @@ PathStatus JumpPointSearch::updatePath(std::uint64_t maxExpansions) {
       dirs[count][1] = dy;
       ++count;
     };
-    if (parent_[current] == kNone) {
+    if (node.parent == kNone) {
       for (const Direction& dir : kDirections)
         add(dir.dx, dir.dy);
     } else {
-      const auto [dx, dy] = lastStep(map.cellAt(parent_[current]), here);
+      const auto [dx, dy] = lastStep(map.cellAt(node.parent), here);
       if (dx != 0 && dy != 0) {
         add(dx, dy);
         add(dx, 0);
         add(0, dy);
-      } else if (dx != 0) {
-        add(dx, 0);
-        add(dx, -1);
-        add(dx, 1);
-        add(0, -1);
-        add(0, 1);
       } else {
-        add(0, dy);
-        add(-1, dy);
-        add(1, dy);
-        add(-1, 0);
-        add(1, 0);
+        // Straight: on, and turning only to a side that opens here after a blocked cell behind
+        // (a forced neighbour; any other side cell is reached as well without passing here).
+        add(dx, dy);
+        const int acrossX = dx == 0 ? 1 : 0;  // the sides: -across and +across
+        const int acrossY = dy == 0 ? 1 : 0;
+        bool turns[2];
+        for (int i = 0; i < 2; ++i) {
+          const int sx = (2 * i - 1) * acrossX;
+          const int sy = (2 * i - 1) * acrossY;
+          turns[i] = successors_ == JumpSuccessors::EverySide ||
+                     (!q.walkable(here.x + sx - dx, here.y + sy - dy) &&
+                      q.walkable(here.x + sx, here.y + sy));
+        }
+        // Diagonal turns before straight ones, as queries always took them.
+        for (int i = 0; i < 2; ++i) {
+          if (turns[i]) add(dx + (2 * i - 1) * acrossX, dy + (2 * i - 1) * acrossY);
+        }
+        for (int i = 0; i < 2; ++i) {
+          if (turns[i]) add((2 * i - 1) * acrossX, (2 * i - 1) * acrossY);
+        }
       }
     }
     // A jump point reached from `current` by a diagonal run and then a straight one (either
@@ -615,14 +670,24 @@ PathStatus JumpPointSearch::updatePath(std::uint64_t maxExpansions) {
     const auto reach = [&](Cell there) {
       const std::uint32_t next = q.indexOf(there.x, there.y);
       const double ng = g + octileDistance(there.x - here.x, there.y - here.y);
-      const std::uint32_t seen = stamps_[next];
-      if (seen == closedStamp || (seen == openStamp && ng >= g_[next])) return;
-      stamps_[next] = openStamp;
-      g_[next] = ng;
-      parent_[next] = current;
+      Node& reached = nodes_[next];
+      if (reached.stamp == closedStamp || (reached.stamp == openStamp && ng >= reached.g)) return;
+      reached = {openStamp, current, ng};
       open_.push(OpenList::makeKey(ng + heuristic(there.x, there.y), ng), next);
       ++result.metrics.generated;
     };
+    // The goal in sight (a diagonal run toward it, then a straight one) is the only successor
+    // worth pushing: it is reached at the octile distance, and no path through here reaches
+    // it more cheaply. Looked for only when its way is one of the successors' (a look costs
+    // a diagonal run).
+    const int towardX = (goal.x > here.x) - (goal.x < here.x);
+    const int towardY = (goal.y > here.y) - (goal.y < here.y);
+    const bool goalsWay = std::any_of(
+        dirs, dirs + count, [&](const int* d) { return d[0] == towardX && d[1] == towardY; });
+    if (successors_ == JumpSuccessors::ForcedOnly && q.table && goalsWay && goalInSight(q, here)) {
+      reach(goal);
+      continue;
+    }
     for (int k = 0; k < count; ++k) {
       const int dx = dirs[k][0];
       const int dy = dirs[k][1];
@@ -651,20 +716,17 @@ PathStatus JumpPointSearch::updatePath(std::uint64_t maxExpansions) {
     }
   }
   result.status = status;
-  result.metrics.microseconds += clock.elapsedMicroseconds();
-  return status;
 }
 
-PathResult JumpPointSearch::finalizePath(std::vector<Cell>* path) {
-  const QueryClock clock;
+void JumpPointSearch::finish(std::vector<Cell>* path) {
   if (path) path->clear();
   if (result_.status == PathStatus::Found && path) {
     const GridMap& map = grid_.map();
     const std::uint32_t startIndex = map.indexOf(start_);
     // Jump points are joined by a diagonal run and then a straight one (JPS: either alone):
     // fill in their cells, backwards.
-    for (std::uint32_t at = map.indexOf(query_.goal); at != startIndex; at = parent_[at]) {
-      const Cell from = map.cellAt(parent_[at]);
+    for (std::uint32_t at = map.indexOf(query_.goal); at != startIndex; at = nodes_[at].parent) {
+      const Cell from = map.cellAt(nodes_[at].parent);
       Cell c = map.cellAt(at);
       for (;;) {
         path->push_back(c);
@@ -677,8 +739,6 @@ PathResult JumpPointSearch::finalizePath(std::vector<Cell>* path) {
     path->push_back(start_);
     std::reverse(path->begin(), path->end());
   }
-  result_.metrics.microseconds += clock.elapsedMicroseconds();
-  return result_;
 }
 
 }  // namespace warpath::pathing

@@ -389,6 +389,28 @@ TEST_F(Replays, AFormat8ReplayPlaysBackWithoutSlicedWindows) {
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format8.rpl", 8, 300);
 }
 
+// Format 9 was recorded when jump point searches took every side turn of a straight jump point:
+// a run with `algo: jps+` plays back so, and such a file verifies; read as format 10 (forced
+// turns only, and the goal alone once in sight) the same records do not. In the narrow pass the
+// two rules pick other cells of equal length within the first seconds.
+TEST_F(Replays, AFormat9ReplayPlaysBackWithJumpPointsTakingEverySideTurn) {
+  const std::string root = WARPATH_SOURCE_DIR;
+  std::string text = slurp(fs::path(root) / "scenarios/narrow_pass.yaml");
+  for (const std::string key : {"map: ", "catalogue: "})
+    text.replace(text.find(key + ".."), key.size() + 2, key + root);
+  text += "pathing: {algo: jps+}\n";
+  const fs::path file = dir_ / "pass_jps.yaml";
+  spit(file, text);
+  ReplaySource source;
+  Result<Scenario> loaded = loadRecordedScenario(file, source);
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_EQ(s.settings.pathing.jumpSuccessors, warpath::pathing::JumpSuccessors::ForcedOnly);
+  s.settings.pathing.jumpSuccessors = warpath::pathing::JumpSuccessors::EverySide;  // format 9's
+  source.seed = s.settings.seed;
+  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format9.rpl", 9, 300);
+}
+
 TEST_F(Replays, AnotherVersionIsRefused) {
   const fs::path file = record(1);
   std::string bytes = slurp(file);
@@ -397,21 +419,21 @@ TEST_F(Replays, AnotherVersionIsRefused) {
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
                                  ": replay format version 1 is not supported (this build reads "
-                                 "versions 2 to 9); it was written before battles were recorded: "
+                                 "versions 2 to 10); it was written before battles were recorded: "
                                  "record it again with rts run --replay");
   RtsResult r = rts("replay verify " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(file.string() + ": replay format version 1 is not supported"),
             std::string::npos)
       << r.out;
-  bytes[8] = 10;
+  bytes[8] = 11;
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
-                                 ": replay format version 10 is not supported (this build reads "
-                                 "versions 2 to 9)");
+                                 ": replay format version 11 is not supported (this build reads "
+                                 "versions 2 to 10)");
   r = rts("replay info " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_NE(r.out.find("version 10 is not supported"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("version 11 is not supported"), std::string::npos) << r.out;
   EXPECT_EQ(rts("replay verify " + (dir_ / "none.rpl").string()).status, 2);
 }
 
@@ -520,7 +542,7 @@ TEST_F(Replays, ABattleRecordsAndVerifies) {
 
   const RtsResult info = rts("replay info " + file.string());
   EXPECT_EQ(info.status, 0) << info.out;
-  EXPECT_NE(info.out.find("format version: 9\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("format version: 10\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("orders: 4 (2 attack_move, 1 attack, 1 reinforce)\n"), std::string::npos)
       << info.out;
   const RtsResult verify = rts("replay verify " + file.string());

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "pathing/aa_star.h"
@@ -249,6 +250,63 @@ TEST(JumpPointSearch, PrecomputedJumpsFindPathsAsShortAsTheScanningSearchWithFew
   EXPECT_GT(found, 2500);
   EXPECT_GT(unreachable, 100);
   EXPECT_LT(tabledExpansions * 10, scannedExpansions * 8);
+}
+
+// Both successor rules are optimal, with and without tables; taking only the forced turns of a
+// straight jump point (and, with tables, the goal alone once in sight) expands fewer.
+TEST(JumpPointSearch, TakingOnlyForcedTurnsFindsPathsAsShortExpandingFewer) {
+  std::uint64_t everySide = 0;
+  std::uint64_t forcedOnly = 0;
+  int found = 0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const int side = 40 + static_cast<int>(seed % 3) * 30;
+    const AnnotatedGrid grid(randomTerrainMap(seed * 104729, side, side + 7,
+                                              2 + static_cast<int>(seed % 3) * 4,
+                                              5 + static_cast<int>(seed % 4) * 6));
+    const GridMap& map = grid.map();
+    for (const JumpDistances distances : {JumpDistances::Scanned, JumpDistances::Precomputed}) {
+      JumpPointSearch all(grid, distances, kDefaultJumpTableBudget, JumpSuccessors::EverySide);
+      JumpPointSearch forced(grid, distances);
+      SplitMix64 rng(seed);
+      for (int q = 0; q < 150; ++q) {
+        const Agent agent{1 + q % 3, q % 2 == 0 ? kInfantry : kAmphibious};
+        const Cell start{rng.between(0, map.width() - 1), rng.between(0, map.height() - 1)};
+        const Cell goal{rng.between(0, map.width() - 1), rng.between(0, map.height() - 1)};
+        if (!grid.canStand(agent, start) || !grid.canStand(agent, goal)) continue;
+        const bool reached = expectSameAsAStar(grid, forced, agent, start, goal);
+        expectSameAsAStar(grid, all, agent, start, goal);
+        if (!reached) continue;
+        ++found;
+        forcedOnly += forced.findPath(agent, start, goal, nullptr).metrics.expanded;
+        everySide += all.findPath(agent, start, goal, nullptr).metrics.expanded;
+      }
+    }
+  }
+  EXPECT_GT(found, 800);
+  EXPECT_LT(forcedOnly * 10, everySide * 9);
+}
+
+// JPS+ pushes the goal alone from a jump point that has it in sight, however many jump points
+// lie on the diagonal run toward it: here the start, whose diagonal passes a jump point at
+// (12, 12) (a straight jump east from it stops beside a gap), and the goal.
+TEST(JumpPointSearch, PrecomputedJumpsGoStraightToAGoalInSight) {
+  GridMap map(48, 40);
+  map.set({16, 11}, Terrain::Blocked);  // row 12 opens north of (17, 12) after it
+  const AnnotatedGrid grid(map);
+  const Agent agent{1, kGround};
+  JumpPointSearch forced(grid, JumpDistances::Precomputed);
+  JumpPointSearch all(grid, JumpDistances::Precomputed, kDefaultJumpTableBudget,
+                      JumpSuccessors::EverySide);
+  std::vector<Cell> path;
+  const PathResult direct = forced.findPath(agent, {10, 10}, {40, 30}, &path);
+  ASSERT_TRUE(direct.found());
+  EXPECT_NEAR(direct.cost, 20 * std::sqrt(2.0) + 10, 1e-9);
+  EXPECT_EQ(findIllegalStep(grid, agent, path), "");
+  EXPECT_EQ(direct.metrics.expanded, 2u);
+  EXPECT_EQ(direct.metrics.generated, 2u);
+  const PathResult searched = all.findPath(agent, {10, 10}, {40, 30}, nullptr);
+  EXPECT_NEAR(searched.cost, direct.cost, 1e-9);
+  EXPECT_GT(searched.metrics.generated, direct.metrics.generated);
 }
 
 // A region query scans (the tables are of the whole map), with the same answers as AA*; the

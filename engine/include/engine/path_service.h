@@ -78,6 +78,9 @@ struct PathServiceSettings {
   // Not a scenario key: false plays back replays of format 8, whose sliced runs sliced only the
   // spatial searches (kFirstSlicedWindowsReplayVersion).
   bool slicedWindows = true;
+  // Not a scenario key: EverySide plays back replays before format 10 with `jps` and `jps+` as
+  // they searched then (kFirstForcedJumpsReplayVersion).
+  pathing::JumpSuccessors jumpSuccessors = pathing::JumpSuccessors::ForcedOnly;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
 // [Unit: expansions] what sliced window searches may spend in a tick the spatial searches left

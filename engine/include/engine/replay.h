@@ -36,9 +36,12 @@ namespace warpath::engine {
 // queues at narrow places (congestion-aware routes, engine/congestion.h; older files play back
 // without them), and the hashes cover each queued request's speed. 9: the same records and
 // hashes; with `pathing: sliced` the cooperative window searches are sliced too (older files
-// play back with only the spatial searches sliced). Version-1 files (move orders only) are
-// refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 9;
+// play back with only the spatial searches sliced). 10: the same records and hashes; `jps` and
+// `jps+` expand only the forced turns of a straight jump point, and JPS+ pushes the goal alone
+// from a jump point that has it in sight (older files play back with every side turn taken:
+// pathing::JumpSuccessors::EverySide). Version-1 files (move orders only) are refused with a
+// message saying so.
+inline constexpr std::uint32_t kReplayVersion = 10;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -51,6 +54,9 @@ inline constexpr std::uint32_t kFirstCongestionReplayVersion = 8;
 // Formats before this one were recorded when `sliced` sliced the spatial searches only: they play
 // back with window searches run to their end (PathServiceSettings::slicedWindows off).
 inline constexpr std::uint32_t kFirstSlicedWindowsReplayVersion = 9;
+// Formats before this one were recorded when jump point searches took every side turn of a
+// straight jump point: they play back so (PathServiceSettings::jumpSuccessors EverySide).
+inline constexpr std::uint32_t kFirstForcedJumpsReplayVersion = 10;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

@@ -4,7 +4,8 @@
 // symmetry pruning of JPS applies to every size and capability. Moves follow the annotated
 // grid's rules (moves.h): a diagonal step needs both cells beside it, so no corner is cut, and
 // the pruning is the one for that rule (a straight jump stops where a cell beside it opens
-// after a blocked one behind; a diagonal jump stops where a straight jump from it would).
+// after a blocked one behind, and turns there only toward such a side, its forced neighbour; a
+// diagonal jump stops where a straight jump from it would).
 // Optimal: its paths are as long as AA*'s (they may take other, equally short, cells).
 //
 // JPS+ (Harabor & Grastien 2012): with JumpDistances::Precomputed the jumps read, for each cell
@@ -14,7 +15,9 @@
 // A jump is then one lookup plus a test for the goal, and, as in JPS2 (Harabor & Grastien 2014),
 // a diagonal jump point is never pushed (its straight jumps are taken from the node that
 // expands the run), so it expands 3-4x fewer jump points than the scanning search: paths as
-// short, not always through the same cells.
+// short, not always through the same cells. A jump point from which the goal is in sight (a
+// diagonal run toward it, then a straight one, read from the table hop by hop) pushes the goal
+// alone, as warthog's JPS2+ does.
 //
 // A query object owns its scratch memory and reuses it; the AnnotatedGrid may be shared.
 
@@ -31,6 +34,15 @@ namespace warpath::pathing {
 // How a jump finds its end: by scanning the layer's bit maps (64 cells a word), or by looking
 // it up in a table of jump distances precomputed per layer (JPS+: 16 bytes a cell and layer).
 enum class JumpDistances : std::uint8_t { Scanned, Precomputed };
+
+// Which successors an expanded jump point reached by a straight move gets. ForcedOnly (the
+// default): straight on, and a turn only to a side that opens there after a blocked cell
+// behind (its forced neighbours), as JPS prunes; with JPS+, a jump point from which the goal is
+// in sight (a diagonal run toward it, then a straight one) gets the goal alone.
+// EverySide: straight on and every turn to either side, which the jumps then follow; what
+// queries did before replay format 10 (more jump points expanded, the same path lengths, at
+// times other cells), kept so that older replays play back as recorded.
+enum class JumpSuccessors : std::uint8_t { ForcedOnly, EverySide };
 
 // [Unit: bytes] what JPS+ tables may take in all, by default: 512 MiB, a 512x512 layer taking
 // 4.3 MB, 2048x2048 69 MB and 4096x4096 285 MB. A layer whose table would pass it is scanned.
@@ -50,7 +62,8 @@ class JumpPointSearch {
   // them).
   explicit JumpPointSearch(const AnnotatedGrid& grid,
                            JumpDistances distances = JumpDistances::Scanned,
-                           std::size_t tableBudget = kDefaultJumpTableBudget);
+                           std::size_t tableBudget = kDefaultJumpTableBudget,
+                           JumpSuccessors successors = JumpSuccessors::ForcedOnly);
 
   // Finds a shortest path for `agent` from `start` to `goal` (anchor cells), uniform costs
   // (a diagonal step costs √2). When found and `path` is not null, it receives every cell from
@@ -133,16 +146,28 @@ class JumpPointSearch {
     const std::int16_t* entries(int x, int y) const;  // JPS+: (x, y)'s 8 table entries
   };
 
+  // The three phases of a query, untimed (findPath times them together, the sliced calls
+  // each).
+  void begin(Agent agent, Cell start, Cell goal, const SearchLimits& limits);
+  void search(std::uint64_t maxExpansions);
+  void finish(std::vector<Cell>* path);
   void resetScratch();
   std::uint32_t jump(const Query& q, int x, int y, int dx, int dy) const;
   std::uint32_t jumpStraight(const Query& q, int x, int y, int dx, int dy) const;
   // JPS+: the end of a jump (kNoCell at a wall), read from the table.
   static constexpr Cell kNoCell{-1, -1};
   Cell jumpByTable(const Query& q, int x, int y, int dx, int dy) const;
+  // JPS+: whether the agent can take `steps` moves along (dx, dy) from `from`, hopping from
+  // jump point to jump point by the table.
+  bool runReaches(const Query& q, Cell from, int dx, int dy, int steps) const;
+  // JPS+: whether q.goal is reached from `from` by a diagonal run toward it and then a
+  // straight one (the octile distance).
+  bool goalInSight(const Query& q, Cell from) const;
 
   const AnnotatedGrid& grid_;
   JumpDistances distances_;
   std::size_t tableBudget_;
+  JumpSuccessors successors_;
   // The query under way (its result's status Pending until done).
   Query query_;
   Cell start_;
@@ -151,9 +176,13 @@ class JumpPointSearch {
   std::vector<Bitmap> bitmaps_;
   std::vector<JumpTable> tables_;
   TableCounts tableCounts_;
-  std::vector<std::uint32_t> stamps_;  // generation << 1 | closed
-  std::vector<double> g_;
-  std::vector<std::uint32_t> parent_;  // the jump point a cell was reached from
+  // A cell's search state, together so that reaching a cell touches one cache line.
+  struct Node {
+    std::uint32_t stamp;   // generation << 1 | closed
+    std::uint32_t parent;  // the jump point the cell was reached from
+    double g;
+  };
+  std::vector<Node> nodes_;
   OpenList open_;
   std::uint32_t generation_ = 0;
 };

@@ -55,8 +55,10 @@ class Planner {
   // about, and it must outlive the planner); the hierarchical algorithms plan under their
   // abstraction's (AbstractionSpec::costs) and ignore it. JPS and JPS+ plan on uniform costs
   // only [Limit: no `costs` with them, else std::invalid_argument].
+  // `jumpSuccessors`: JPS and JPS+'s successor rule (jump_point_search.h).
   Planner(const AnnotatedGrid& grid, Algorithm algorithm, const ClusterAbstraction* abstraction,
-          HybridOptions hybrid = {}, HaaOptions haa = {}, const CostField* costs = nullptr);
+          HybridOptions hybrid = {}, HaaOptions haa = {}, const CostField* costs = nullptr,
+          JumpSuccessors jumpSuccessors = JumpSuccessors::ForcedOnly);
 
   Algorithm algorithm() const { return algorithm_; }
   // `surcharge` (may be null) is taken by the hierarchical algorithms' abstract search
