@@ -815,6 +815,12 @@ PathResult HybridPlanner::findPath(Agent agent, Cell start, Cell goal, std::vect
   return finalizePath(path);
 }
 
+void HybridPlanner::prepare(Agent agent) {
+  if (options_.attempt == HybridAttempt::JumpPoints &&
+      hierarchical_.abstraction_.costs() == nullptr)
+    jumps_.prepare(agent);
+}
+
 PathStatus HybridPlanner::beginPath(Agent agent, Cell start, Cell goal,
                                     const EdgeSurcharge* surcharge) {
   surcharge_ = surcharge;

@@ -134,6 +134,15 @@ JumpPointSearch::JumpPointSearch(const AnnotatedGrid& grid, JumpDistances distan
                                  std::size_t tableBudget, JumpSuccessors successors)
     : grid_(grid), distances_(distances), tableBudget_(tableBudget), successors_(successors) {}
 
+void JumpPointSearch::prepare(Agent agent) {
+  if (agent.size < 1) return;
+  bitmapFor(agent);
+  const GridMap& map = grid_.map();
+  if (distances_ == JumpDistances::Precomputed &&
+      std::max(map.width(), map.height()) <= kLargestTabledSide && tableFits(agent))
+    tableFor(agent);
+}
+
 bool JumpPointSearch::tableFits(Agent agent) const {
   std::size_t taken = 0;
   for (const JumpTable& t : tables_) {

@@ -112,6 +112,11 @@ std::uint64_t Planner::nextStepExpansions() const {
   return std::visit([](const auto& planner) { return planner.nextStepExpansions(); }, impl_);
 }
 
+void Planner::prepare(Agent agent) {
+  if (auto* jps = std::get_if<JumpPointSearch>(&impl_)) jps->prepare(agent);
+  if (auto* hybrid = std::get_if<HybridPlanner>(&impl_)) hybrid->prepare(agent);
+}
+
 std::vector<LayerBytes> Planner::layerBytes() const {
   const auto* jps = std::get_if<JumpPointSearch>(&impl_);
   return jps ? jps->layerBytes() : std::vector<LayerBytes>{};

@@ -336,6 +336,34 @@ TEST(JumpPointSearch, PrecomputedJumpsKeepToARegionAndReportTheirMemoryPerLayer)
             bitmaps + 48u * 42u * 8u * sizeof(std::int16_t) + (48u + 2u) * (42u + 2u));
 }
 
+// prepare() builds a layer's table before any query (the benchmarks time queries without it):
+// the first query then builds nothing, and the planner offers the same for jps+ and the hybrid
+// with the JPS+ attempt.
+TEST(JumpPointSearch, PrepareBuildsALayersTableBeforeItsFirstQuery) {
+  const AnnotatedGrid grid(randomTerrainMap(19, 40, 36, 3, 10));
+  const Agent agent{2, kAmphibious};
+  JumpPointSearch jps(grid, JumpDistances::Precomputed);
+  jps.prepare(agent);
+  EXPECT_EQ(jps.tableCounts().builds, 1u);
+  ASSERT_EQ(jps.layerBytes().size(), 1u);
+  EXPECT_GT(jps.layerBytes()[0].bytes, jps.bitmapBytes());
+  SplitMix64 rng(3);
+  Cell start;
+  Cell goal;
+  do {
+    start = {rng.between(0, 39), rng.between(0, 35)};
+    goal = {rng.between(0, 39), rng.between(0, 35)};
+  } while (!grid.canStand(agent, start) || !grid.canStand(agent, goal));
+  expectSameAsAStar(grid, jps, agent, start, goal);
+  EXPECT_EQ(jps.tableCounts().builds, 1u);
+
+  Planner planner(grid, Algorithm::JpsPlus, nullptr);
+  EXPECT_TRUE(planner.layerBytes().empty());
+  planner.prepare(agent);
+  ASSERT_EQ(planner.layerBytes().size(), 1u);
+  EXPECT_EQ(planner.layerBytes()[0].bytes, jps.layerBytes()[0].bytes);
+}
+
 // The tables' budget: a layer whose table would pass it is scanned (its answers are the
 // scanning search's, bit for bit); the layer already tabled keeps its table (its answers are
 // an unbounded JPS+'s).

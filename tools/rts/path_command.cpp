@@ -115,8 +115,8 @@ int runPath(const PathOptions& options) {
             : preparePlanner(
                   grid, algorithm, options.planner, annotate,
                   {.capabilities = {agent.capability}, .maxAgentSize = std::max(3, agent.size)});
-  const double annotateMs = prepared.preprocessMs;
   Planner planner = prepared.makePlanner(grid);
+  const double annotateMs = prepared.preprocessMs + prepareAgents(planner, annotate);
   std::vector<Cell> path;
   const PathResult result = planner.findPath(agent, from, to, &path);
   const SearchMetrics& m = result.metrics;

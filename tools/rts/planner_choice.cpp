@@ -177,6 +177,14 @@ PreparedPlanner prepareCostPlanner(const AnnotatedGrid& grid, Algorithm algorith
   });
 }
 
+double prepareAgents(Planner& planner, std::span<const Agent> agents) {
+  const auto began = std::chrono::steady_clock::now();
+  for (const Agent& agent : agents)
+    planner.prepare(agent);
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began)
+      .count();
+}
+
 void writeAbstractionKeys(const ClusterAbstraction* abstraction, nlohmann::json& out) {
   writeAbstractionKeys(abstraction ? abstraction->stats() : AbstractionStats{}, out);
 }

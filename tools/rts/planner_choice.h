@@ -86,6 +86,11 @@ struct PreparedPlanner {
   }
 };
 
+// planner.prepare(agent) for each of `agents` (JPS+ builds their jump tables, which it would
+// otherwise build inside their first timed query); returns what that took [Unit: ms], part of
+// preprocessing.
+double prepareAgents(pathing::Planner& planner, std::span<const pathing::Agent> agents);
+
 // What a hierarchical abstraction must serve.
 struct AbstractionNeeds {
   std::vector<pathing::Capability> capabilities;  // duplicates are dropped

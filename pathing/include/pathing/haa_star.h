@@ -179,6 +179,8 @@ class HybridPlanner {
   // Short queries answered by AA* carry no surcharge (HierarchicalAStar::findPath).
   PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                       const EdgeSurcharge* surcharge = nullptr);
+  // With the JPS+ attempt: builds `agent`'s jump table now (JumpPointSearch::prepare).
+  void prepare(Agent agent);
   // The same query sliced (search.h): the short-query attempt, then HAA* when it runs out.
   PathStatus beginPath(Agent agent, Cell start, Cell goal,
                        const EdgeSurcharge* surcharge = nullptr);

@@ -76,6 +76,10 @@ class JumpPointSearch {
   PathStatus updatePath(std::uint64_t maxExpansions);
   PathResult finalizePath(std::vector<Cell>* path);
   std::uint64_t expandedSoFar() const { return result_.metrics.expanded; }
+  // Builds now what `agent`'s first query would (its layer's bit maps and, with
+  // JumpDistances::Precomputed, its jump table if the budget has room), so that no query
+  // carries the cost.
+  void prepare(Agent agent);
   std::uint64_t nextStepExpansions() const { return 1; }
 
   // [Unit: bytes] the bit maps kept for the agent kinds asked about so far: where each can
