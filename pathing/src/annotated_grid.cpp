@@ -417,24 +417,25 @@ std::size_t AnnotatedGrid::cacheBytes() const {
 }
 
 std::optional<PathStatus> screenEndpoints(const AnnotatedGrid& grid, Agent agent, Cell start,
-                                          Cell goal) {
+                                          Cell goal, const AgentLayer* layer) {
   // One look-up of the layer (the grid's caches take a lock): its component is 0 exactly
   // where the agent cannot stand.
   const GridMap& map = grid.map();
   if (agent.size < 1 || !map.contains(start)) return PathStatus::InvalidStart;
-  const AgentLayer& layer = grid.layer(agent);
-  const std::uint32_t from = layer.components()[map.indexOf(start)];
+  const std::span<const std::uint32_t> components =
+      (layer ? *layer : grid.layer(agent)).components();
+  const std::uint32_t from = components[map.indexOf(start)];
   if (from == 0) return PathStatus::InvalidStart;
   if (!map.contains(goal)) return PathStatus::InvalidGoal;
-  const std::uint32_t to = layer.components()[map.indexOf(goal)];
+  const std::uint32_t to = components[map.indexOf(goal)];
   if (to == 0) return PathStatus::InvalidGoal;
   if (from != to) return PathStatus::Unreachable;
   return std::nullopt;
 }
 
 std::optional<PathStatus> screenQuery(const AnnotatedGrid& grid, Agent agent, Cell start, Cell goal,
-                                      const SearchLimits& limits) {
-  if (const auto answer = screenEndpoints(grid, agent, start, goal)) return answer;
+                                      const SearchLimits& limits, const AgentLayer* layer) {
+  if (const auto answer = screenEndpoints(grid, agent, start, goal, layer)) return answer;
   if (limits.region && (!limits.region->contains(start) || !limits.region->contains(goal)))
     return PathStatus::Unreachable;
   if (limits.maxExpanded == 0) return PathStatus::BudgetExhausted;

@@ -575,7 +575,12 @@ void JumpPointSearch::begin(Agent agent, Cell start, Cell goal, const SearchLimi
   result_.status = PathStatus::Pending;
   start_ = start;
   limits_ = limits;
-  if (const auto answer = screenQuery(grid_, agent, start, goal, limits)) {
+  if (agent.size >= 1 && (layer_ == nullptr || !(layerAgent_ == agent))) {
+    layer_ = &grid_.layer(agent);
+    layerAgent_ = agent;
+  }
+  if (const auto answer =
+          screenQuery(grid_, agent, start, goal, limits, agent.size >= 1 ? layer_ : nullptr)) {
     result_.status = *answer;
   } else {
     const GridMap& map = grid_.map();
@@ -676,15 +681,10 @@ void JumpPointSearch::search(std::uint64_t maxExpansions) {
     }
     // A jump point reached from `current` by a diagonal run and then a straight one (either
     // may be none): an octile path.
-    const auto reach = [&](Cell there) {
-      const std::uint32_t next = q.indexOf(there.x, there.y);
-      const double ng = g + octileDistance(there.x - here.x, there.y - here.y);
-      Node& reached = nodes_[next];
-      if (reached.stamp == closedStamp || (reached.stamp == openStamp && ng >= reached.g)) return;
-      reached = {openStamp, current, ng};
-      open_.push(OpenList::makeKey(ng + heuristic(there.x, there.y), ng), next);
-      ++result.metrics.generated;
-    };
+    // Collected first, then pushed in one loop below (one place to inline).
+    std::vector<Cell>& found = successorScratch_;
+    found.clear();
+    const auto reach = [&](Cell there) { found.push_back(there); };
     // The goal in sight (a diagonal run toward it, then a straight one) is the only successor
     // worth pushing: it is reached at the octile distance, and no path through here reaches
     // it more cheaply. Looked for only when its way is one of the successors' (a look costs
@@ -695,7 +695,7 @@ void JumpPointSearch::search(std::uint64_t maxExpansions) {
         dirs, dirs + count, [&](const int* d) { return d[0] == towardX && d[1] == towardY; });
     if (successors_ == JumpSuccessors::ForcedOnly && q.table && goalsWay && goalInSight(q, here)) {
       reach(goal);
-      continue;
+      count = 0;
     }
     for (int k = 0; k < count; ++k) {
       const int dx = dirs[k][0];
@@ -722,6 +722,15 @@ void JumpPointSearch::search(std::uint64_t maxExpansions) {
         if (const Cell next = jumpByTable(q, at.x, at.y, dx, 0); next != kNoCell) reach(next);
         if (const Cell next = jumpByTable(q, at.x, at.y, 0, dy); next != kNoCell) reach(next);
       }
+    }
+    for (const Cell there : found) {
+      const std::uint32_t next = q.indexOf(there.x, there.y);
+      const double ng = g + octileDistance(there.x - here.x, there.y - here.y);
+      Node& reached = nodes_[next];
+      if (reached.stamp == closedStamp || (reached.stamp == openStamp && ng >= reached.g)) continue;
+      reached = {openStamp, current, ng};
+      open_.push(OpenList::makeKey(ng + heuristic(there.x, there.y), ng), next);
+      ++result.metrics.generated;
     }
   }
   result.status = status;

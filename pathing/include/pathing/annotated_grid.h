@@ -124,13 +124,15 @@ class AnnotatedGrid {
 
 // What a query can be answered without searching: InvalidStart / InvalidGoal when the agent
 // cannot stand at an end, Unreachable when the ends lie in different connected components for
-// the agent; nullopt when a search is needed.
+// the agent; nullopt when a search is needed. `layer`: grid.layer(agent), when the caller keeps
+// it (the grid's look-up takes a lock).
 std::optional<PathStatus> screenEndpoints(const AnnotatedGrid& grid, Agent agent, Cell start,
-                                          Cell goal);
+                                          Cell goal, const AgentLayer* layer = nullptr);
 // screenEndpoints, then the limits: Unreachable when a region leaves out an end,
 // BudgetExhausted for a zero budget. What every grid search answers before it searches.
 std::optional<PathStatus> screenQuery(const AnnotatedGrid& grid, Agent agent, Cell start, Cell goal,
-                                      const SearchLimits& limits);
+                                      const SearchLimits& limits,
+                                      const AgentLayer* layer = nullptr);
 
 // Checks that `path` is a sequence of legal single moves for the agent (start and goal
 // included). Returns an empty string when legal, else what is wrong and at which step.

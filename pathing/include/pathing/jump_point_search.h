@@ -177,6 +177,10 @@ class JumpPointSearch {
   Cell start_;
   SearchLimits limits_;
   PathResult result_;
+  // The last agent kind queried and its layer in the grid (which keeps it where it is), so
+  // that a run of queries for one kind skips the grid's locked look-up.
+  Agent layerAgent_{0, {}};
+  const AgentLayer* layer_ = nullptr;
   std::vector<Bitmap> bitmaps_;
   std::vector<JumpTable> tables_;
   TableCounts tableCounts_;
@@ -187,6 +191,7 @@ class JumpPointSearch {
     double g;
   };
   std::vector<Node> nodes_;
+  std::vector<Cell> successorScratch_;  // an expansion's jump points, before they are pushed
   OpenList open_;
   std::uint32_t generation_ = 0;
 };
