@@ -312,6 +312,27 @@ TEST_F(Replays, AFormat2ReplayOfThePreviousReleaseVerifies) {
 // Records `s` as replay format `format` (hashes laid out as that format's) until `lastTick` or
 // its end, then checks that the file verifies as that format and does not read as the next
 // (which plays the scenario back under a later default).
+// A bundled scenario (under scenarios/) copied into `dir` with its map and catalogue paths made
+// absolute and `pathing` set to `settings`, loaded for recording.
+Result<Scenario> copyWithPathing(const fs::path& dir, const std::string& scenario,
+                                 const std::string& settings, ReplaySource& source) {
+  const fs::path root = WARPATH_SOURCE_DIR;
+  const fs::path original = root / "scenarios" / scenario;
+  std::string text = slurp(original);
+  // Paths in the file are relative to its folder.
+  for (const std::string key : {"map: ", "catalogue: "}) {
+    const std::size_t at = text.find(key) + key.size();
+    const std::size_t end = text.find('\n', at);
+    const fs::path resolved =
+        (original.parent_path() / text.substr(at, end - at)).lexically_normal();
+    text.replace(at, end - at, resolved.string());
+  }
+  text += "pathing: " + settings + "\n";
+  const fs::path file = dir / ("copy_" + original.filename().string());
+  spit(file, text);
+  return loadRecordedScenario(file, source);
+}
+
 void expectVerifiesOnlyAsItsFormat(const Scenario& s, const ReplaySource& source,
                                    const fs::path& file, std::uint32_t format,
                                    std::int64_t lastTick) {
@@ -372,15 +393,9 @@ TEST_F(Replays, AFormat7ReplayPlaysBackWithoutCongestionAwareRoutes) {
 // to their end, so such a file verifies; read as format 9 (window searches sliced too) the same
 // records do not. At the door with a small budget windows pause within the first seconds.
 TEST_F(Replays, AFormat8ReplayPlaysBackWithoutSlicedWindows) {
-  const std::string root = WARPATH_SOURCE_DIR;
-  std::string text = slurp(fs::path(root) / "scenarios/chokepoints/door_30v30.yaml");
-  for (const std::string key : {"map: ", "catalogue: "})
-    text.replace(text.find(key + "../.."), key.size() + 5, key + root);
-  text += "pathing: {sliced: true, budget: 400}\n";
-  const fs::path file = dir_ / "door_sliced.yaml";
-  spit(file, text);
   ReplaySource source;
-  Result<Scenario> loaded = loadRecordedScenario(file, source);
+  Result<Scenario> loaded =
+      copyWithPathing(dir_, "chokepoints/door_30v30.yaml", "{sliced: true, budget: 400}", source);
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.sliced && s.settings.pathing.slicedWindows);
@@ -394,15 +409,8 @@ TEST_F(Replays, AFormat8ReplayPlaysBackWithoutSlicedWindows) {
 // turns only, and the goal alone once in sight) the same records do not. In the narrow pass the
 // two rules pick other cells of equal length within the first seconds.
 TEST_F(Replays, AFormat9ReplayPlaysBackWithJumpPointsTakingEverySideTurn) {
-  const std::string root = WARPATH_SOURCE_DIR;
-  std::string text = slurp(fs::path(root) / "scenarios/narrow_pass.yaml");
-  for (const std::string key : {"map: ", "catalogue: "})
-    text.replace(text.find(key + ".."), key.size() + 2, key + root);
-  text += "pathing: {algo: jps+}\n";
-  const fs::path file = dir_ / "pass_jps.yaml";
-  spit(file, text);
   ReplaySource source;
-  Result<Scenario> loaded = loadRecordedScenario(file, source);
+  Result<Scenario> loaded = copyWithPathing(dir_, "narrow_pass.yaml", "{algo: jps+}", source);
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_EQ(s.settings.pathing.jumpSuccessors, warpath::pathing::JumpSuccessors::ForcedOnly);

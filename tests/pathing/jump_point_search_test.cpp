@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "pathing/aa_star.h"
 #include "pathing/planner.h"
@@ -45,6 +46,16 @@ bool expectSameAsAStar(const AnnotatedGrid& grid, JumpPointSearch& jps, Agent ag
       EXPECT_TRUE(limits.region->contains(c));
   }
   return true;
+}
+
+// A random start and goal where `agent` can stand. [Limit: the grid has such cells]
+std::pair<Cell, Cell> standingEnds(const AnnotatedGrid& grid, Agent agent, SplitMix64& rng) {
+  const GridMap& map = grid.map();
+  for (;;) {
+    const Cell start{rng.between(0, map.width() - 1), rng.between(0, map.height() - 1)};
+    const Cell goal{rng.between(0, map.width() - 1), rng.between(0, map.height() - 1)};
+    if (grid.canStand(agent, start) && grid.canStand(agent, goal)) return {start, goal};
+  }
 }
 
 // Random queries inside `region` (agents from agentFor(query number)), each checked against
@@ -322,12 +333,7 @@ TEST(JumpPointSearch, PrecomputedJumpsKeepToARegionAndReportTheirMemoryPerLayer)
   ASSERT_EQ(jps.layerBytes().size(), 1u);
   const std::size_t bitmaps = jps.layerBytes()[0].bytes;
   EXPECT_EQ(bitmaps, jps.bitmapBytes());
-  Cell start;
-  Cell goal;
-  do {
-    start = {rng.between(0, 47), rng.between(0, 41)};
-    goal = {rng.between(0, 47), rng.between(0, 41)};
-  } while (!grid.canStand(agent, start) || !grid.canStand(agent, goal));
+  const auto [start, goal] = standingEnds(grid, agent, rng);
   expectSameAsAStar(grid, jps, agent, start, goal);
   ASSERT_EQ(jps.layerBytes().size(), 1u);
   EXPECT_EQ(jps.layerBytes()[0].agent, agent);
@@ -348,12 +354,7 @@ TEST(JumpPointSearch, PrepareBuildsALayersTableBeforeItsFirstQuery) {
   ASSERT_EQ(jps.layerBytes().size(), 1u);
   EXPECT_GT(jps.layerBytes()[0].bytes, jps.bitmapBytes());
   SplitMix64 rng(3);
-  Cell start;
-  Cell goal;
-  do {
-    start = {rng.between(0, 39), rng.between(0, 35)};
-    goal = {rng.between(0, 39), rng.between(0, 35)};
-  } while (!grid.canStand(agent, start) || !grid.canStand(agent, goal));
+  const auto [start, goal] = standingEnds(grid, agent, rng);
   expectSameAsAStar(grid, jps, agent, start, goal);
   EXPECT_EQ(jps.tableCounts().builds, 1u);
 
