@@ -55,8 +55,8 @@ void addPlannerOptions(CLI::App& cmd, PlannerChoice& choice) {
                  "planner: aa (Annotated A*, optimal), haa-hq / haa-lq (hierarchical, high- or "
                  "low-quality graph), hybrid (AA* within a node budget for short queries, else "
                  "haa-hq), jps (jump point search, optimal, uniform costs only), jps+ (jps with "
-                 "jump distances precomputed per agent layer at its first query: the same "
-                 "paths, faster, 16 bytes a cell and layer)")
+                 "jump distances precomputed per agent layer, before the queries are timed "
+                 "(counted in preprocess_ms): optimal, faster, 16 bytes a cell and layer)")
       ->capture_default_str();
   cmd.add_option("--cluster-size", choice.clusterSize,
                  "side of the clusters of the hierarchical algorithms, in cells")
