@@ -815,10 +815,13 @@ PathResult HybridPlanner::findPath(Agent agent, Cell start, Cell goal, std::vect
   return finalizePath(path);
 }
 
+bool HybridPlanner::attemptsJumpPoints() const {
+  return options_.attempt == HybridAttempt::JumpPoints &&
+         hierarchical_.abstraction_.costs() == nullptr;
+}
+
 void HybridPlanner::prepare(Agent agent) {
-  if (options_.attempt == HybridAttempt::JumpPoints &&
-      hierarchical_.abstraction_.costs() == nullptr)
-    jumps_.prepare(agent);
+  if (attemptsJumpPoints()) jumps_.prepare(agent);
 }
 
 PathStatus HybridPlanner::beginPath(Agent agent, Cell start, Cell goal,
@@ -829,8 +832,7 @@ PathStatus HybridPlanner::beginPath(Agent agent, Cell start, Cell goal,
   goal_ = goal;
   attempt_ = PathResult{};
   attempt_.status = PathStatus::Pending;
-  jumping_ = options_.attempt == HybridAttempt::JumpPoints &&
-             hierarchical_.abstraction_.costs() == nullptr;
+  jumping_ = attemptsJumpPoints();
   const double dx = goal.x - start.x;
   const double dy = goal.y - start.y;
   if (!jumping_ && std::sqrt(dx * dx + dy * dy) > shortQueryDistance_) {

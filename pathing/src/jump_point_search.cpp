@@ -137,10 +137,13 @@ JumpPointSearch::JumpPointSearch(const AnnotatedGrid& grid, JumpDistances distan
 void JumpPointSearch::prepare(Agent agent) {
   if (agent.size < 1) return;
   bitmapFor(agent);
+  if (tablesKept() && tableFits(agent)) tableFor(agent);
+}
+
+bool JumpPointSearch::tablesKept() const {
   const GridMap& map = grid_.map();
-  if (distances_ == JumpDistances::Precomputed &&
-      std::max(map.width(), map.height()) <= kLargestTabledSide && tableFits(agent))
-    tableFor(agent);
+  return distances_ == JumpDistances::Precomputed &&
+         std::max(map.width(), map.height()) <= kLargestTabledSide;
 }
 
 bool JumpPointSearch::tableFits(Agent agent) const {
@@ -584,8 +587,7 @@ void JumpPointSearch::begin(Agent agent, Cell start, Cell goal, const SearchLimi
     result_.status = *answer;
   } else {
     const GridMap& map = grid_.map();
-    bool tabled = distances_ == JumpDistances::Precomputed && !limits.region &&
-                  std::max(map.width(), map.height()) <= kLargestTabledSide;
+    bool tabled = tablesKept() && !limits.region;
     if (tabled && !tableFits(agent)) {
       tabled = false;
       ++tableCounts_.overBudget;

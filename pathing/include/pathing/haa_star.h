@@ -199,6 +199,8 @@ class HybridPlanner {
   // of budget. Returns the query's status.
   PathStatus afterAttempt(PathStatus status);
   // f(search) on the attempt's search object (AA* or JPS+).
+  // Whether the attempt is JPS+ (HybridAttempt::JumpPoints, on a uniform-cost graph).
+  bool attemptsJumpPoints() const;
   template <typename F>
   decltype(auto) withAttempt(F&& f);
   template <typename F>

@@ -131,6 +131,9 @@ class JumpPointSearch {
     std::vector<std::uint8_t> standing;  // the layer it was built for, framed (a byte a cell)
   };
   const JumpTable& tableFor(Agent agent);
+  // Whether queries read tables at all: JumpDistances::Precomputed, on a map whose distances
+  // fit 16 bits.
+  bool tablesKept() const;
   // Whether `agent`'s layer has a table, or room for one within the budget.
   bool tableFits(Agent agent) const;
 
