@@ -381,14 +381,17 @@ Result<Scenario> replayScenario(const Replay& replay) {
   };
   // A scenario that does not say `pathing: cooperative` plays back as it was recorded: with
   // cooperation off before it became the default, without congestion-aware routes before they
-  // came (no older scenario can name them), with window searches unsliced before they were, and
-  // with jump point searches taking every side turn before they took only forced ones.
+  // came (no older scenario can name them), with window searches unsliced before they were,
+  // with jump point searches taking every side turn before they took only forced ones, and
+  // with units kept out of a passage leaving it by its highest level before they stepped out.
   WorldSettings defaults;
   if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
   if (replay.version < kFirstCongestionReplayVersion) defaults.pathing.congestion = false;
   if (replay.version < kFirstSlicedWindowsReplayVersion) defaults.pathing.slicedWindows = false;
   if (replay.version < kFirstForcedJumpsReplayVersion)
     defaults.pathing.jumpSuccessors = pathing::JumpSuccessors::EverySide;
+  if (replay.version < kFirstStepwiseKeepOutReplayVersion)
+    defaults.pathing.keepOutExit = pathing::KeepOutExit::HighestLevel;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

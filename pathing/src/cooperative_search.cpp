@@ -442,16 +442,25 @@ bool CooperativeSearch::freeAtStart(const std::vector<std::uint32_t>& startShari
 }
 
 int CooperativeSearch::keptOut(Cell anchor) const {
-  int level = 0;
-  if (request_.keepOut == nullptr) return level;
+  if (request_.keepOut == nullptr) return 0;
   const GridMap& map = grid_.map();
-  for (int dy = 0; dy < request_.agent.size; ++dy) {
-    for (int dx = 0; dx < request_.agent.size; ++dx) {
+  const int size = request_.agent.size;
+  int level = 0;
+  int atLevel = 0;  // cells of the footprint at `level`
+  for (int dy = 0; dy < size; ++dy) {
+    for (int dx = 0; dx < size; ++dx) {
       const Cell c{anchor.x + dx, anchor.y + dy};
-      if (map.contains(c)) level = std::max<int>(level, (*request_.keepOut)[map.indexOf(c)]);
+      if (!map.contains(c)) continue;
+      const int here = (*request_.keepOut)[map.indexOf(c)];
+      if (here > level) {
+        level = here;
+        atLevel = 0;
+      }
+      if (here == level) ++atLevel;
     }
   }
-  return level;
+  if (level == 0 || request_.keepOutExit == KeepOutExit::HighestLevel) return level;
+  return level * (size * size + 1) + atLevel;  // by level, then by cells at it (<= size^2)
 }
 
 CooperativeStatus CooperativeSearch::updatePlan(std::uint64_t maxExpansions) {
@@ -521,9 +530,9 @@ CooperativeStatus CooperativeSearch::updatePlan(std::uint64_t maxExpansions) {
     }
     // Within a wait of the window's end counts as there, so waiting is never outdone by a
     // shuffle that lands on the end tick exactly.
-    const int level = keptOut(here);
+    const int rank = keptOut(here);
     if (node.tick + r.waitTicks > windowEnd_ && free(here, node.tick, node.tick + r.holdTicks) &&
-        (((r.passing == nullptr || (*r.passing)[node.cell] != 0) && level == 0) ||
+        (((r.passing == nullptr || (*r.passing)[node.cell] != 0) && rank == 0) ||
          node.tick >= hardEnd_)) {
       finish(CooperativeStatus::Windowed, index);
       break;
@@ -538,13 +547,13 @@ CooperativeStatus CooperativeSearch::updatePlan(std::uint64_t maxExpansions) {
     --allowance;
     ++plan_.metrics.expanded;
     current_ = -1;
-    if (!deadEnd) expand(index, here, h, level, std::span(moves).first(count));
+    if (!deadEnd) expand(index, here, h, rank, std::span(moves).first(count));
   }
   plan_.metrics.microseconds += clock.elapsedMicroseconds();
   return plan_.status;
 }
 
-void CooperativeSearch::expand(std::int32_t index, Cell here, double h, int level,
+void CooperativeSearch::expand(std::int32_t index, Cell here, double h, int rank,
                                std::span<const Move> moves) {
   const CooperativeRequest& r = request_;
   const GridMap& map = grid_.map();
@@ -575,15 +584,16 @@ void CooperativeSearch::expand(std::int32_t index, Cell here, double h, int leve
     const Tick duration = move.ticks + (atRest ? r.startTicks : 0);
     const double nextH = field_->settled(next);
     if (!std::isfinite(nextH)) continue;
-    if (const int nextLevel = keptOut(next); nextLevel > 0 && nextLevel >= level) continue;
+    if (const int nextRank = keptOut(next); nextRank > 0 && nextRank >= rank) continue;
     const MoveSpan span = moveSpan(node.tick, duration);
     if (!mayLeaveBy(span.leaveBy) || !free(next, span.enterAt, node.tick + duration)) continue;
     add(map.indexOf(next), node.tick + duration, index, nextH);
   }
-  // Nobody waits where others cannot pass or where kept out (but one already standing there
-  // may stay at first).
-  const bool roomToWait = (r.passing == nullptr || (*r.passing)[node.cell] != 0) && level == 0;
-  if (atStart ? freeAtStart(startSharing_, node.tick, node.tick + r.waitTicks)
+  // Nobody waits where others cannot pass or where kept out (but one already standing where
+  // others cannot pass may stay at first, and one kept out as keepOutExit says).
+  const bool roomToWait = (r.passing == nullptr || (*r.passing)[node.cell] != 0) && rank == 0;
+  const bool mayStayAtStart = rank == 0 || r.keepOutExit == KeepOutExit::HighestLevel;
+  if (atStart ? mayStayAtStart && freeAtStart(startSharing_, node.tick, node.tick + r.waitTicks)
               : roomToWait && free(here, node.tick, node.tick + r.waitTicks))
     add(node.cell, node.tick + r.waitTicks, index, h);
 }

@@ -327,6 +327,71 @@ TEST(CooperativeSearch, AGoalTakenForGoodIsNeverReached) {
   EXPECT_EQ(problemWith(r), "");
 }
 
+TEST(CooperativeSearch, ALargeAgentStepsOutOfAKeptOutBandARowAtATime) {
+  // A band of kept-out cells 3 rows deep (the stream out of a passage) under a size-3 agent
+  // whose goal lies below it. Stepping out takes 3 moves down, and the first two land on
+  // footprints as kept out by their highest level: stepwise, each lowers the cells at that
+  // level (9, 6, 3, 0), so the agent steps out at once, never waiting in the band.
+  const int side = 12;
+  std::string rows = "type octile\nheight 12\nwidth 12\nmap\n";
+  for (int y = 0; y < side; ++y)
+    rows += std::string(side, '.') + "\n";
+  const AnnotatedGrid grid(mapFromRows(rows));
+  const Agent agent{3, kGround};
+  std::vector<std::uint8_t> keepOut(side * side, 0);
+  for (int y = 3; y <= 5; ++y) {
+    for (int x = 0; x < side; ++x)
+      keepOut[static_cast<std::size_t>(y * side + x)] = 1;
+  }
+  const auto keptOutCells = [&](Cell anchor) {
+    int n = 0;
+    for (int dy = 0; dy < 3; ++dy) {
+      for (int dx = 0; dx < 3; ++dx)
+        n += keepOut[static_cast<std::size_t>((anchor.y + dy) * side + anchor.x + dx)];
+    }
+    return n;
+  };
+  CooperativeSearch search(grid);
+  ReservationTable table(side, side);
+  CooperativeRequest r = requestFor(agent, {4, 3}, {4, 8}, 100);
+  r.keepOut = &keepOut;
+  ReverseResumableSearch field(grid, agent, r.goal, r.start);
+  const CooperativePlan plan = search.plan(r, field, table);
+  ASSERT_EQ(plan.status, CooperativeStatus::ReachedGoal);
+  expectLegal(grid, r, plan.steps);
+  ASSERT_GE(plan.steps.size(), 4u);
+  for (std::size_t i = 1; i < plan.steps.size(); ++i) {
+    const int before = keptOutCells(plan.steps[i - 1].cell);
+    if (before > 0) {
+      EXPECT_LT(keptOutCells(plan.steps[i].cell), before) << "step " << i;
+    }
+  }
+  EXPECT_EQ(plan.steps.back().tick, 50);  // 5 moves down, none waited
+
+  // Below the band held by another until tick 40: waiting where it stands for the way down
+  // would be quickest, but a kept-out agent does not wait in the band, even at its start. It
+  // steps out upward (and, kept out of the band, waits there).
+  for (int x = 0; x + 3 <= side; ++x)
+    table.reserve({x, 6}, 3, 0, 40, 2);
+  const CooperativePlan aside = search.plan(r, field, table);
+  ASSERT_EQ(aside.status, CooperativeStatus::Windowed);
+  expectLegal(grid, r, aside.steps);
+  for (std::size_t i = 1; i < aside.steps.size(); ++i) {
+    if (keptOutCells(aside.steps[i - 1].cell) > 0) {
+      EXPECT_NE(aside.steps[i].cell, aside.steps[i - 1].cell) << "step " << i;
+    }
+  }
+  EXPECT_EQ(aside.steps.back().cell, (Cell{4, 0}));
+
+  // By the highest level alone no move out of the band is allowed, and the agent may wait
+  // where it starts: it waits there, blocked.
+  r.keepOutExit = KeepOutExit::HighestLevel;
+  const CooperativePlan stuck = search.plan(r, field, table);
+  EXPECT_EQ(stuck.status, CooperativeStatus::Blocked);
+  for (const TimedCell& step : stuck.steps)
+    EXPECT_EQ(step.cell, r.start);
+}
+
 TEST(CooperativeSearch, ContestedCellsAreThePassages) {
   const AnnotatedGrid grid(mapFromRows(
       "type octile\nheight 7\nwidth 7\nmap\n.......\n.......\n.......\n@@@.@@@\n.......\n"

@@ -21,6 +21,7 @@
 #include "pathing/aa_star.h"
 #include "pathing/annotated_grid.h"
 #include "pathing/cluster_abstraction.h"
+#include "pathing/cooperative_search.h"
 #include "pathing/planner.h"
 #include "pathing/terrain_costs.h"
 
@@ -81,6 +82,9 @@ struct PathServiceSettings {
   // Not a scenario key: EverySide plays back replays before format 10 with `jps` and `jps+` as
   // they searched then (kFirstForcedJumpsReplayVersion).
   pathing::JumpSuccessors jumpSuccessors = pathing::JumpSuccessors::ForcedOnly;
+  // Not a scenario key: HighestLevel plays back replays before format 11 with units kept out
+  // of a passage leaving it as they did then (kFirstStepwiseKeepOutReplayVersion).
+  pathing::KeepOutExit keepOutExit = pathing::KeepOutExit::Stepwise;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
 // [Unit: expansions] what sliced window searches may spend in a tick the spatial searches left

@@ -39,9 +39,11 @@ namespace warpath::engine {
 // play back with only the spatial searches sliced). 10: the same records and hashes; `jps` and
 // `jps+` expand only the forced turns of a straight jump point, and JPS+ pushes the goal alone
 // from a jump point that has it in sight (older files play back with every side turn taken:
-// pathing::JumpSuccessors::EverySide). Version-1 files (move orders only) are refused with a
-// message saying so.
-inline constexpr std::uint32_t kReplayVersion = 10;
+// pathing::JumpSuccessors::EverySide). 11: the same records and hashes; a unit kept out of a
+// passage steps out of the stream and mouth a row at a time and does not wait there (older
+// files play back with pathing::KeepOutExit::HighestLevel). Version-1 files (move orders only) are
+// refused with a message saying so.
+inline constexpr std::uint32_t kReplayVersion = 11;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -57,6 +59,10 @@ inline constexpr std::uint32_t kFirstSlicedWindowsReplayVersion = 9;
 // Formats before this one were recorded when jump point searches took every side turn of a
 // straight jump point: they play back so (PathServiceSettings::jumpSuccessors EverySide).
 inline constexpr std::uint32_t kFirstForcedJumpsReplayVersion = 10;
+// Formats before this one were recorded when a unit kept out of a passage left its stream and
+// mouth only by moves that lowered its footprint's highest level, and could wait where it
+// started: they play back so (PathServiceSettings::keepOutExit HighestLevel).
+inline constexpr std::uint32_t kFirstStepwiseKeepOutReplayVersion = 11;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

@@ -160,6 +160,7 @@ CooperativeRequest Traffic::requestFor(const Refs& w, const Unit& unit, Cell sta
   // little longer, so a re-plan that waits a tick for the budget still finds it free.
   r.holdTicks = r.window / 2 + r.waitTicks;
   r.passing = &passingRoom(w, r.agent);
+  r.keepOutExit = settings.keepOutExit;
   // A window searched whole within a tick is bounded by the tick's budget too; a sliced one
   // spreads over ticks instead.
   r.expansionLimit = sliced(w)

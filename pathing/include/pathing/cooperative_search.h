@@ -150,6 +150,20 @@ constexpr MoveSpan moveSpan(Tick t, Tick d) {
   return {t + (3 * d + 3) / 4, t + d / 4};
 }
 
+// How an agent kept out of a passage (CooperativeRequest::keepOut) steps out of it.
+enum class KeepOutExit : std::uint8_t {
+  // A footprint is kept out by its highest level, then by how many of its cells have that
+  // level, and each move must lower the pair: a footprint wider than a band of one level
+  // (a large unit standing across the stream out of a passage) leaves it a row at a time. An
+  // agent standing kept out does not wait there, even where it starts: it steps out, or its
+  // plan is Blocked and it holds its place (a wait there would be planned again each window,
+  // and it would never leave).
+  Stepwise,
+  // Before replay format 11: the highest level alone must fall, and the agent may wait at its
+  // start however kept out it stands.
+  HighestLevel,
+};
+
 struct CooperativeRequest {
   Agent agent;
   Cell start;
@@ -181,11 +195,12 @@ struct CooperativeRequest {
   // moving the same way, which queue behind one another on their own).
   const std::vector<std::uint8_t>* sharing = nullptr;
   // One byte per cell, or null: where the agent is kept out (a passage open to the other way
-  // now, and its mouth), the level rising toward the passage; a footprint's level is its
-  // cells' highest. The agent moves onto a footprint of level > 0 only from a higher one (out
-  // of the passage and its mouth), waits at one only where it stands at first, and a window
-  // does not end at one (before maxWindow).
+  // now, and its mouth), the level rising toward the passage. A footprint's keep-out is its
+  // cells' highest level (and, by `keepOutExit`, how many cells have it); the agent moves onto a
+  // kept-out footprint only from one kept out more (out of the passage and its mouth), waits
+  // on one only as keepOutExit says, and a window does not end at one (before maxWindow).
   const std::vector<std::uint8_t>* keepOut = nullptr;
+  KeepOutExit keepOutExit = KeepOutExit::Stepwise;
 };
 
 enum class CooperativeStatus : std::uint8_t {
@@ -299,7 +314,7 @@ class CooperativeSearch {
   bool settle(Cell c, std::uint64_t& allowance);
   void add(std::uint32_t cell, Tick tick, std::int32_t parent, double h);
   // Expands the node by `moves` (movesFrom(here), every distance they need settled) and a wait.
-  void expand(std::int32_t index, Cell here, double h, int level, std::span<const Move> moves);
+  void expand(std::int32_t index, Cell here, double h, int rank, std::span<const Move> moves);
   // Ends the search: the plan's steps from node `at` back to the start.
   void finish(CooperativeStatus status, std::int32_t at);
   bool startChain(std::int32_t at) const;
@@ -307,6 +322,8 @@ class CooperativeSearch {
   // `sharing` owners' ignored); at the start, of those not in `startSharing` either.
   bool free(Cell c, Tick from, Tick to) const;
   bool freeAtStart(const std::vector<std::uint32_t>& startSharing, Tick from, Tick to) const;
+  // 0 when the footprint at `anchor` is not kept out, else its rank by request_.keepOutExit:
+  // a move onto a kept-out footprint must lower it.
   int keptOut(Cell anchor) const;
   // The plan's steps and its last cell's hold are free in the table as it is now.
   bool stillFree(const CooperativePlan& plan) const;
