@@ -30,16 +30,20 @@ void AnnotatedAStar::resetScratch() {
 
 PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                                     const SearchLimits& limits) {
-  begin(agent, start, goal, nullptr, limits);
-  updatePath(kUnboundedExpansions);
-  return finalizePath(path);
+  return timing_.whole([&] {
+    begin(agent, start, goal, nullptr, limits);
+    updatePath(kUnboundedExpansions);
+    return finalizePath(path);
+  });
 }
 
 PathResult AnnotatedAStar::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                                     const CostField& costs, const SearchLimits& limits) {
-  begin(agent, start, goal, &costs, limits);
-  updatePath(kUnboundedExpansions);
-  return finalizePath(path);
+  return timing_.whole([&] {
+    begin(agent, start, goal, &costs, limits);
+    updatePath(kUnboundedExpansions);
+    return finalizePath(path);
+  });
 }
 
 PathStatus AnnotatedAStar::beginPath(Agent agent, Cell start, Cell goal,
@@ -54,7 +58,7 @@ PathStatus AnnotatedAStar::beginPath(Agent agent, Cell start, Cell goal, const C
 
 PathStatus AnnotatedAStar::begin(Agent agent, Cell start, Cell goal, const CostField* costs,
                                  const SearchLimits& limits) {
-  const QueryClock clock;
+  const QueryClock clock = timing_.phaseClock();
   result_ = PathResult{};
   result_.status = PathStatus::Pending;
   start_ = start;
@@ -79,7 +83,7 @@ PathStatus AnnotatedAStar::begin(Agent agent, Cell start, Cell goal, const CostF
 
 PathStatus AnnotatedAStar::updatePath(std::uint64_t maxExpansions) {
   if (result_.status != PathStatus::Pending || maxExpansions == 0) return result_.status;
-  const QueryClock clock;
+  const QueryClock clock = timing_.phaseClock();
   if (costs_) {
     result_.status =
         limits_.region ? search<true, true>(maxExpansions) : search<false, true>(maxExpansions);
@@ -92,7 +96,7 @@ PathStatus AnnotatedAStar::updatePath(std::uint64_t maxExpansions) {
 }
 
 PathResult AnnotatedAStar::finalizePath(std::vector<Cell>* path) {
-  const QueryClock clock;
+  const QueryClock clock = timing_.phaseClock();
   if (path) path->clear();
   if (result_.status == PathStatus::Found && path) {
     const GridMap& map = grid_.map();

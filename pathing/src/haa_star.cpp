@@ -117,7 +117,11 @@ HierarchicalAStar::HierarchicalAStar(const ClusterAbstraction& abstraction, HaaO
       options_(options),
       gridSearch_(abstraction.grid()),
       jumpSearch_(abstraction.grid()),
-      scratch_(std::make_unique<Scratch>()) {}
+      scratch_(std::make_unique<Scratch>()) {
+  // Their queries are parts of this one's, which times itself.
+  gridSearch_.stopTimingPhases();
+  jumpSearch_.stopTimingPhases();
+}
 
 HierarchicalAStar::~HierarchicalAStar() = default;
 
@@ -336,14 +340,16 @@ class StraightWalker {
 
 PathResult HierarchicalAStar::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                                        const EdgeSurcharge* surcharge) {
-  beginPath(agent, start, goal, surcharge);
-  updatePath(kUnboundedExpansions);
-  return finalizePath(path);
+  return timing_.whole([&] {
+    beginPath(agent, start, goal, surcharge);
+    updatePath(kUnboundedExpansions);
+    return finalizePath(path);
+  });
 }
 
 PathStatus HierarchicalAStar::beginPath(Agent agent, Cell start, Cell goal,
                                         const EdgeSurcharge* surcharge) {
-  const QueryClock clock;
+  const QueryClock clock = timing_.phaseClock();
   Scratch& s = *scratch_;
   s.result = PathResult{};
   s.result.status = PathStatus::Pending;
@@ -387,7 +393,7 @@ PathStatus HierarchicalAStar::updatePath(std::uint64_t maxExpansions) {
 PathStatus HierarchicalAStar::advance(std::uint64_t maxExpansions, bool mayOverrun) {
   Scratch& s = *scratch_;
   if (s.result.status != PathStatus::Pending || maxExpansions == 0) return s.result.status;
-  const QueryClock clock;
+  const QueryClock clock = timing_.phaseClock();
   for (std::uint64_t left = maxExpansions; s.result.status == PathStatus::Pending && left > 0;) {
     if (nextStepExpansions() > left && !(mayOverrun && left == maxExpansions)) break;
     const std::uint64_t spent = step(left);
@@ -399,7 +405,7 @@ PathStatus HierarchicalAStar::advance(std::uint64_t maxExpansions, bool mayOverr
 }
 
 PathResult HierarchicalAStar::finalizePath(std::vector<Cell>* path) {
-  const QueryClock clock;
+  const QueryClock clock = timing_.phaseClock();
   Scratch& s = *scratch_;
   if (path) path->clear();
   if (s.result.status == PathStatus::Found && path)
@@ -796,7 +802,11 @@ HybridPlanner::HybridPlanner(const ClusterAbstraction& abstraction, HybridOption
     : options_((limits::require(problemWith(hybrid)), hybrid)),
       shortQueryDistance_(std::sqrt(static_cast<double>(hybrid.tau)) / 2.0),
       hierarchical_(abstraction, haa),
-      jumps_(abstraction.grid(), JumpDistances::Precomputed) {}
+      jumps_(abstraction.grid(), JumpDistances::Precomputed) {
+  // Their queries are parts of this one's, which times itself.
+  hierarchical_.stopTimingPhases();
+  jumps_.stopTimingPhases();
+}
 
 template <typename F>
 decltype(auto) HybridPlanner::withAttempt(F&& f) {
@@ -810,9 +820,11 @@ decltype(auto) HybridPlanner::withAttempt(F&& f) const {
 
 PathResult HybridPlanner::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                                    const EdgeSurcharge* surcharge) {
-  beginPath(agent, start, goal, surcharge);
-  updatePath(kUnboundedExpansions);
-  return finalizePath(path);
+  return timing_.whole([&] {
+    beginPath(agent, start, goal, surcharge);
+    updatePath(kUnboundedExpansions);
+    return finalizePath(path);
+  });
 }
 
 bool HybridPlanner::attemptsJumpPoints() const {
@@ -826,6 +838,15 @@ void HybridPlanner::prepare(Agent agent) {
 
 PathStatus HybridPlanner::beginPath(Agent agent, Cell start, Cell goal,
                                     const EdgeSurcharge* surcharge) {
+  const QueryClock clock = timing_.phaseClock();
+  microseconds_ = 0.0;
+  const PathStatus status = begin(agent, start, goal, surcharge);
+  microseconds_ += clock.elapsedMicroseconds();
+  return status;
+}
+
+PathStatus HybridPlanner::begin(Agent agent, Cell start, Cell goal,
+                                const EdgeSurcharge* surcharge) {
   surcharge_ = surcharge;
   agent_ = agent;
   start_ = start;
@@ -861,6 +882,13 @@ PathStatus HybridPlanner::afterAttempt(PathStatus status) {
 }
 
 PathStatus HybridPlanner::updatePath(std::uint64_t maxExpansions) {
+  const QueryClock clock = timing_.phaseClock();
+  const PathStatus status = update(maxExpansions);
+  microseconds_ += clock.elapsedMicroseconds();
+  return status;
+}
+
+PathStatus HybridPlanner::update(std::uint64_t maxExpansions) {
   if (stage_ == Stage::Answered) return attemptStatus_;
   if (stage_ == Stage::Attempt) {
     std::uint64_t spent = 0;
@@ -889,18 +917,20 @@ std::uint64_t HybridPlanner::expandedSoFar() const {
 }
 
 PathResult HybridPlanner::finalizePath(std::vector<Cell>* path) {
+  const QueryClock clock = timing_.phaseClock();
+  PathResult result;
   if (stage_ != Stage::Hierarchical) {
-    PathResult quick = withAttempt([&](auto& search) { return search.finalizePath(path); });
-    quick.metrics.gridExpanded = quick.metrics.expanded;
-    quick.metrics.usedGridSearch = true;
-    return quick;
+    result = withAttempt([&](auto& search) { return search.finalizePath(path); });
+    result.metrics.gridExpanded = result.metrics.expanded;
+    result.metrics.usedGridSearch = true;
+  } else {
+    result = hierarchical_.finalizePath(path);
+    result.metrics.gridExpanded += attempt_.metrics.expanded;
+    result.metrics.expanded += attempt_.metrics.expanded;
+    result.metrics.generated += attempt_.metrics.generated;
   }
-  PathResult full = hierarchical_.finalizePath(path);
-  full.metrics.gridExpanded += attempt_.metrics.expanded;
-  full.metrics.expanded += attempt_.metrics.expanded;
-  full.metrics.generated += attempt_.metrics.generated;
-  full.metrics.microseconds += attempt_.metrics.microseconds;
-  return full;
+  result.metrics.microseconds = microseconds_ + clock.elapsedMicroseconds();
+  return result;
 }
 
 }  // namespace warpath::pathing

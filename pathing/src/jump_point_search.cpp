@@ -540,19 +540,17 @@ bool JumpPointSearch::goalInSight(const Query& q, Cell from) const {
 
 PathResult JumpPointSearch::findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                                      const SearchLimits& limits) {
-  // One clock for the whole query: on small maps a query takes a fraction of a microsecond,
-  // and a clock read per phase would be a good part of it.
-  const QueryClock clock;
-  begin(agent, start, goal, limits);
-  search(kUnboundedExpansions);
-  finish(path);
-  result_.metrics.microseconds = clock.elapsedMicroseconds();
-  return result_;
+  return timing_.whole([&] {
+    begin(agent, start, goal, limits);
+    search(kUnboundedExpansions);
+    finish(path);
+    return result_;
+  });
 }
 
 PathStatus JumpPointSearch::beginPath(Agent agent, Cell start, Cell goal,
                                       const SearchLimits& limits) {
-  const QueryClock clock;
+  const QueryClock clock = timing_.phaseClock();
   begin(agent, start, goal, limits);
   result_.metrics.microseconds += clock.elapsedMicroseconds();
   return result_.status;
@@ -560,14 +558,14 @@ PathStatus JumpPointSearch::beginPath(Agent agent, Cell start, Cell goal,
 
 PathStatus JumpPointSearch::updatePath(std::uint64_t maxExpansions) {
   if (result_.status != PathStatus::Pending || maxExpansions == 0) return result_.status;
-  const QueryClock clock;
+  const QueryClock clock = timing_.phaseClock();
   search(maxExpansions);
   result_.metrics.microseconds += clock.elapsedMicroseconds();
   return result_.status;
 }
 
 PathResult JumpPointSearch::finalizePath(std::vector<Cell>* path) {
-  const QueryClock clock;
+  const QueryClock clock = timing_.phaseClock();
   finish(path);
   result_.metrics.microseconds += clock.elapsedMicroseconds();
   return result_;

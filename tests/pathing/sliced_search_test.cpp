@@ -129,6 +129,12 @@ void expectSlicedEqualsWhole(const std::vector<Subject>& subjects,
         // An update overruns its batch only by an insertion taken whole as its first step.
         EXPECT_LE(sliced.mostInOneUpdate, std::max(batch, s.overrun)) << what;
         EXPECT_EQ(sliced.expandedSoFarAtEnd, whole.result.metrics.expanded) << what;
+        // Timed either way: a whole query once, a sliced one phase by phase (PhaseTiming), and
+        // a planner's inner searches as parts of its own.
+        if (whole.result.status == PathStatus::Found && whole.result.metrics.expanded > 0) {
+          EXPECT_GT(whole.result.metrics.microseconds, 0.0) << what;
+          EXPECT_GT(sliced.answer.result.metrics.microseconds, 0.0) << what;
+        }
         // Pending exactly while unfinished: a query that needs more expansions than one
         // batch gives is Pending after the first update.
         if (whole.result.metrics.expanded > batch + s.overrun) {

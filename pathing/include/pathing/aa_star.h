@@ -38,6 +38,8 @@ class AnnotatedAStar {
   PathResult finalizePath(std::vector<Cell>* path);
   std::uint64_t expandedSoFar() const { return result_.metrics.expanded; }
   std::uint64_t nextStepExpansions() const { return 1; }
+  // For a planner that runs this one's queries inside its own and times them (PhaseTiming).
+  void stopTimingPhases() { timing_.stopTimingPhases(); }
 
  private:
   // Per-cell search state, split so that the common checks touch 4 bytes a cell: the stamp
@@ -65,6 +67,7 @@ class AnnotatedAStar {
   std::vector<double> g_;
   OpenList open_;
   std::uint32_t generation_ = 0;
+  PhaseTiming timing_;
 };
 
 }  // namespace warpath::pathing

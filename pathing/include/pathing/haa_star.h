@@ -100,6 +100,8 @@ class HierarchicalAStar {
   PathResult finalizePath(std::vector<Cell>* path);
   std::uint64_t expandedSoFar() const;
   std::uint64_t nextStepExpansions() const;
+  // For a planner that runs this one's queries inside its own and times them (PhaseTiming).
+  void stopTimingPhases() { timing_.stopTimingPhases(); }
 
  private:
   friend class HybridPlanner;
@@ -143,6 +145,7 @@ class HierarchicalAStar {
   JumpPointSearch jumpSearch_;  // options_.gridSearch == JumpPoints (its scratch at first use)
   bool gridJumping_ = false;    // the grid search under way is jumpSearch_'s
   std::unique_ptr<Scratch> scratch_;  // defined in the source so the header stays small
+  PhaseTiming timing_;
 };
 
 // What a hybrid query tries before HAA*.
@@ -195,6 +198,9 @@ class HybridPlanner {
     Answered,  // it answered (anything but BudgetExhausted)
     Hierarchical,
   };
+  // beginPath and updatePath, untimed.
+  PathStatus begin(Agent agent, Cell start, Cell goal, const EdgeSurcharge* surcharge);
+  PathStatus update(std::uint64_t maxExpansions);
   // After the attempt's begin or update returned `status`: moves on to HAA* when it ran out
   // of budget. Returns the query's status.
   PathStatus afterAttempt(PathStatus status);
@@ -222,6 +228,8 @@ class HybridPlanner {
   Cell start_;
   Cell goal_;
   const EdgeSurcharge* surcharge_ = nullptr;
+  double microseconds_ = 0.0;  // its phases' times so far
+  PhaseTiming timing_;
 };
 
 }  // namespace warpath::pathing

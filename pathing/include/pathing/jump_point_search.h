@@ -76,6 +76,8 @@ class JumpPointSearch {
   PathStatus updatePath(std::uint64_t maxExpansions);
   PathResult finalizePath(std::vector<Cell>* path);
   std::uint64_t expandedSoFar() const { return result_.metrics.expanded; }
+  // For a planner that runs this one's queries inside its own and times them (PhaseTiming).
+  void stopTimingPhases() { timing_.stopTimingPhases(); }
   // Builds now what `agent`'s first query would (its layer's bit maps and, with
   // JumpDistances::Precomputed, its jump table if the budget has room), so that no query
   // carries the cost.
@@ -153,8 +155,7 @@ class JumpPointSearch {
     const std::int16_t* entries(int x, int y) const;  // JPS+: (x, y)'s 8 table entries
   };
 
-  // The three phases of a query, untimed (findPath times them together, the sliced calls
-  // each).
+  // The three phases of a query, untimed (the public calls time them: PhaseTiming).
   void begin(Agent agent, Cell start, Cell goal, const SearchLimits& limits);
   void search(std::uint64_t maxExpansions);
   void finish(std::vector<Cell>* path);
@@ -180,6 +181,7 @@ class JumpPointSearch {
   Cell start_;
   SearchLimits limits_;
   PathResult result_;
+  PhaseTiming timing_;
   // The last agent kind queried and its layer in the grid (which keeps it where it is), so
   // that a run of queries for one kind skips the grid's locked look-up.
   Agent layerAgent_{0, {}};
