@@ -351,7 +351,7 @@ bool CooperativeSearch::settle(Cell c, std::uint64_t& allowance) {
 std::size_t CooperativeSearch::movesFrom(Cell here, std::array<Move, kDirectionCount>& out) const {
   const GridMap& map = grid_.map();
   const int half = request_.agent.size / 2;
-  const std::uint8_t mask = grid_.layer(request_.agent).moveMasks()[map.indexOf(here)];
+  const std::uint8_t mask = moveMasks_[map.indexOf(here)];
   std::size_t count = 0;
   for (int d = 0; d < kDirectionCount; ++d) {
     if ((mask & (1u << d)) == 0) continue;
@@ -486,6 +486,7 @@ CooperativeStatus CooperativeSearch::updatePlan(std::uint64_t maxExpansions) {
       if (r.agent.capability.allows(static_cast<Terrain>(slot)) && t > 0.0 && std::isfinite(t))
         minTicks_ = std::min(minTicks_, t);
     }
+    moveMasks_ = grid_.layer(r.agent).moveMasks();  // looked up once: the grid is locked
     windowEnd_ = r.startTick + r.window;
     hardEnd_ = r.startTick + r.maxWindow;
     nodes_.clear();

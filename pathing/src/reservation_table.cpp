@@ -29,16 +29,27 @@ void ReservationTable::track(std::span<const std::uint8_t> cells) {
 }
 
 template <class F>
-void ReservationTable::forEachCell(Cell anchor, int size, F&& f) const {
+bool ReservationTable::anyCell(Cell anchor, int size, F&& f) const {
   const int x0 = std::max(anchor.x, 0);
   const int y0 = std::max(anchor.y, 0);
   const int x1 = std::min(anchor.x + size, width_);
   const int y1 = std::min(anchor.y + size, height_);
   for (int y = y0; y < y1; ++y) {
-    for (int x = x0; x < x1; ++x)
-      f(static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-        static_cast<std::size_t>(x));
+    for (int x = x0; x < x1; ++x) {
+      if (f(static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+            static_cast<std::size_t>(x)))
+        return true;
+    }
   }
+  return false;
+}
+
+template <class F>
+void ReservationTable::forEachCell(Cell anchor, int size, F&& f) const {
+  anyCell(anchor, size, [&](std::size_t cell) {
+    f(cell);
+    return false;
+  });
 }
 
 void ReservationTable::reserve(Cell anchor, int size, Tick from, Tick to, std::uint32_t owner) {
@@ -56,9 +67,7 @@ void ReservationTable::reserve(Cell anchor, int size, Tick from, Tick to, std::u
 
 bool ReservationTable::tracks(Cell anchor, int size) const {
   if (tracked_.empty()) return true;
-  bool any = false;
-  forEachCell(anchor, size, [&](std::size_t cell) { any = any || tracked_[cell] != 0; });
-  return any;
+  return anyCell(anchor, size, [&](std::size_t cell) { return tracked_[cell] != 0; });
 }
 
 void ReservationTable::release(std::uint32_t owner) {
@@ -87,13 +96,13 @@ std::optional<std::uint32_t> ReservationTable::blocker(Cell anchor, int size, Ti
 template <class Ignored>
 bool ReservationTable::freeBut(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
                                Ignored&& ignored) const {
-  bool free = true;
-  forEachCell(anchor, size, [&](std::size_t cell) {
+  // Stops at the first interval in the way: most asks in a crowd are answered no.
+  return !anyCell(anchor, size, [&](std::size_t cell) {
     for (const Interval& i : cells_[cell]) {
-      if (i.owner != self && i.from < to && from < i.to && !ignored(i.owner)) free = false;
+      if (i.owner != self && i.from < to && from < i.to && !ignored(i.owner)) return true;
     }
+    return false;
   });
-  return free;
 }
 
 bool ReservationTable::isFree(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,

@@ -55,15 +55,18 @@ std::pair<Vec2, bool> scheduledAt(std::span<const pathing::TimedCell> steps, dou
                                   int size) {
   if (tick <= static_cast<double>(steps.front().tick))
     return {anchorToCentre(steps.front().cell, size), steps.size() == 1};
-  for (std::size_t i = 0; i + 1 < steps.size(); ++i) {
-    const double t0 = static_cast<double>(steps[i].tick);
-    const double t1 = static_cast<double>(steps[i + 1].tick);
-    if (tick >= t1) continue;
-    const Vec2 a = anchorToCentre(steps[i].cell, size);
-    const Vec2 b = anchorToCentre(steps[i + 1].cell, size);
-    return {a + (b - a) * ((tick - t0) / (t1 - t0)), steps[i].cell == steps[i + 1].cell};
-  }
-  return {anchorToCentre(steps.back().cell, size), true};
+  // The first step the plan has not reached by `tick` (ticks strictly increase), found by
+  // bisection: every unit asks several times a tick.
+  const auto next = std::upper_bound(
+      steps.begin() + 1, steps.end(), tick,
+      [](double t, const pathing::TimedCell& step) { return t < static_cast<double>(step.tick); });
+  if (next == steps.end()) return {anchorToCentre(steps.back().cell, size), true};
+  const pathing::TimedCell& from = *(next - 1);
+  const double t0 = static_cast<double>(from.tick);
+  const double t1 = static_cast<double>(next->tick);
+  const Vec2 a = anchorToCentre(from.cell, size);
+  const Vec2 b = anchorToCentre(next->cell, size);
+  return {a + (b - a) * ((tick - t0) / (t1 - t0)), from.cell == next->cell};
 }
 
 }  // namespace

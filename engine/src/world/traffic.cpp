@@ -126,10 +126,12 @@ void expireWindow(Refs& w, Unit& unit) {
 bool waitingAt(const TimedPlan& plan, Tick tick) {
   const std::vector<TimedCell>& s = plan.steps;
   if (tick >= s.back().tick) return plan.status != CooperativeStatus::ReachedGoal;
-  for (std::size_t i = 0; i + 1 < s.size(); ++i) {
-    if (tick < s[i + 1].tick) return tick >= s[i].tick && s[i].cell == s[i + 1].cell;
-  }
-  return false;
+  // The first step after the first not reached by `tick` (ticks strictly increase).
+  const auto next = std::upper_bound(s.begin() + 1, s.end(), tick,
+                                     [](Tick t, const TimedCell& step) { return t < step.tick; });
+  if (next == s.end()) return false;  // a plan of one step, not begun
+  const TimedCell& from = *(next - 1);
+  return tick >= from.tick && from.cell == next->cell;
 }
 
 Traffic::Traffic() = default;

@@ -336,6 +336,7 @@ class CooperativeSearch {
   const ReservationTable* table_ = nullptr;
   CooperativePlan plan_;
   double minTicks_ = 0.0;  // the least ticksPerCell: h in ticks per unit of distance
+  std::span<const std::uint8_t> moveMasks_;  // the agent's layer's (AgentLayer::moveMasks)
   Tick windowEnd_ = 0;
   Tick hardEnd_ = 0;
   // Who shares the start with the agent at startTick (bodies are not cells: two can round to

@@ -89,6 +89,10 @@ class ReservationTable {
     std::uint32_t cell;
     bool operator>(const Expiry& o) const { return to != o.to ? to > o.to : cell > o.cell; }
   };
+  // f(cell index) for the footprint's cells on the map, row by row; anyCell stops at the
+  // first for which f returns true, and says whether one did.
+  template <class F>
+  bool anyCell(Cell anchor, int size, F&& f) const;
   template <class F>
   void forEachCell(Cell anchor, int size, F&& f) const;
   // Free for `self` when every other holder during part of [from, to) is ignored(owner).
