@@ -383,15 +383,18 @@ Result<Scenario> replayScenario(const Replay& replay) {
   // cooperation off before it became the default, without congestion-aware routes before they
   // came (no older scenario can name them), with window searches unsliced before they were,
   // with jump point searches taking every side turn before they took only forced ones, and
-  // with units kept out of a passage leaving it by its highest level before they stepped out.
+  // with units kept out of a passage leaving it by its highest level, and let through by the
+  // priority order of all, before they stepped out and were let through nearest first.
   WorldSettings defaults;
   if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
   if (replay.version < kFirstCongestionReplayVersion) defaults.pathing.congestion = false;
   if (replay.version < kFirstSlicedWindowsReplayVersion) defaults.pathing.slicedWindows = false;
   if (replay.version < kFirstForcedJumpsReplayVersion)
     defaults.pathing.jumpSuccessors = pathing::JumpSuccessors::EverySide;
-  if (replay.version < kFirstStepwiseKeepOutReplayVersion)
+  if (replay.version < kFirstStepwiseKeepOutReplayVersion) {
     defaults.pathing.keepOutExit = pathing::KeepOutExit::HighestLevel;
+    defaults.pathing.nearestKeptOutFirst = false;
+  }
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

@@ -368,6 +368,7 @@ TEST_F(Replays, AFormat6ReplayPlaysBackWithCooperationOff) {
   ASSERT_TRUE(s.settings.pathing.cooperative);  // the default now
   s.settings.pathing.cooperative = false;       // format 6's
   s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;
+  s.settings.pathing.nearestKeptOutFirst = false;
   source.seed = s.settings.seed;
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format6.rpl", 6, INT64_MAX);
 }
@@ -384,6 +385,7 @@ TEST_F(Replays, AFormat7ReplayPlaysBackWithoutCongestionAwareRoutes) {
   ASSERT_TRUE(s.settings.pathing.cooperative && s.settings.pathing.congestion);  // the defaults
   s.settings.pathing.congestion = false;                                         // format 7's
   s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;
+  s.settings.pathing.nearestKeptOutFirst = false;
   source.seed = s.settings.seed;
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format7.rpl", 7, 300);
   // Formats before 3 hash another way, and none after this build's can be written.
@@ -403,6 +405,7 @@ TEST_F(Replays, AFormat8ReplayPlaysBackWithoutSlicedWindows) {
   ASSERT_TRUE(s.settings.pathing.sliced && s.settings.pathing.slicedWindows);
   s.settings.pathing.slicedWindows = false;  // format 8's
   s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;
+  s.settings.pathing.nearestKeptOutFirst = false;
   source.seed = s.settings.seed;
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format8.rpl", 8, 300);
 }
@@ -419,26 +422,34 @@ TEST_F(Replays, AFormat9ReplayPlaysBackWithJumpPointsTakingEverySideTurn) {
   ASSERT_EQ(s.settings.pathing.jumpSuccessors, warpath::pathing::JumpSuccessors::ForcedOnly);
   s.settings.pathing.jumpSuccessors = warpath::pathing::JumpSuccessors::EverySide;  // format 9's
   s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;
+  s.settings.pathing.nearestKeptOutFirst = false;
   source.seed = s.settings.seed;
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format9.rpl", 9, 300);
 }
 
 // Format 10 was recorded when a unit kept out of a passage left its stream and mouth only by
-// moves that lowered its footprint's highest level, and could wait where it started: a run
-// plays back so, and such a file verifies; read as format 11 (stepping out a row at a time, no
-// wait there) the same records do not. At seed 5 of the 4-wide corridor the red tank, waiting
-// in the blue tank's stream out of the corridor, steps out of it (or not) at 11.4 s.
-TEST_F(Replays, AFormat10ReplayPlaysBackWithKeptOutUnitsLeavingByTheirHighestLevel) {
-  ReplaySource source;
-  Result<Scenario> loaded = loadRecordedScenario(
-      fs::path(WARPATH_SOURCE_DIR) / "scenarios/chokepoints/corridor_tanks_4.yaml", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_EQ(s.settings.pathing.keepOutExit, warpath::pathing::KeepOutExit::Stepwise);
-  s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;  // format 10's
-  s.settings.seed = 5;
-  source.seed = s.settings.seed;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format10.rpl", 10, 400);
+// moves that lowered its footprint's highest level, and could wait where it started, and when
+// units kept out were let through in the priority order of all: a run plays back so, and such
+// a file verifies; read as format 11 (stepping out a row at a time, no wait there, the nearest
+// let through first) the same records do not. At seed 5 of the 4-wide corridor the red tank,
+// waiting in the blue tank's stream out of the corridor, steps out of it (or not) at 11.4 s; at
+// the door the crowds wait their turns from the first seconds.
+TEST_F(Replays, AFormat10ReplayPlaysBackWithTheKeptOutRulesOfThen) {
+  for (const auto& [scenario, lastTick] :
+       {std::pair{"corridor_tanks_4.yaml", 400}, std::pair{"door_30v30.yaml", 600}}) {
+    ReplaySource source;
+    Result<Scenario> loaded = loadRecordedScenario(
+        fs::path(WARPATH_SOURCE_DIR) / "scenarios/chokepoints" / scenario, source);
+    ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+    Scenario s = std::move(loaded).value();
+    ASSERT_EQ(s.settings.pathing.keepOutExit, warpath::pathing::KeepOutExit::Stepwise);
+    ASSERT_TRUE(s.settings.pathing.nearestKeptOutFirst);
+    s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;  // format 10's
+    s.settings.pathing.nearestKeptOutFirst = false;
+    s.settings.seed = 5;
+    source.seed = s.settings.seed;
+    expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format10.rpl", 10, lastTick);
+  }
 }
 
 TEST_F(Replays, AnotherVersionIsRefused) {

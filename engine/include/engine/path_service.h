@@ -85,6 +85,10 @@ struct PathServiceSettings {
   // Not a scenario key: HighestLevel plays back replays before format 11 with units kept out
   // of a passage leaving it as they did then (kFirstStepwiseKeepOutReplayVersion).
   pathing::KeepOutExit keepOutExit = pathing::KeepOutExit::Stepwise;
+  // Not a scenario key: false plays back replays before format 11, when units kept out of a
+  // passage were let through in the priority order of all (longest wait first), not nearest to
+  // it first (kFirstStepwiseKeepOutReplayVersion).
+  bool nearestKeptOutFirst = true;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
 // [Unit: expansions] what sliced window searches may spend in a tick the spatial searches left

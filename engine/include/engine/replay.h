@@ -40,9 +40,10 @@ namespace warpath::engine {
 // `jps+` expand only the forced turns of a straight jump point, and JPS+ pushes the goal alone
 // from a jump point that has it in sight (older files play back with every side turn taken:
 // pathing::JumpSuccessors::EverySide). 11: the same records and hashes; a unit kept out of a
-// passage steps out of the stream and mouth a row at a time and does not wait there (older
-// files play back with pathing::KeepOutExit::HighestLevel). Version-1 files (move orders only) are
-// refused with a message saying so.
+// passage steps out of the stream and mouth a row at a time and does not wait there, and those
+// kept out nearest to the passage are let through first (older files play back with
+// pathing::KeepOutExit::HighestLevel, in the priority order of all). Version-1 files (move orders
+// only) are refused with a message saying so.
 inline constexpr std::uint32_t kReplayVersion = 11;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
@@ -61,7 +62,8 @@ inline constexpr std::uint32_t kFirstSlicedWindowsReplayVersion = 9;
 inline constexpr std::uint32_t kFirstForcedJumpsReplayVersion = 10;
 // Formats before this one were recorded when a unit kept out of a passage left its stream and
 // mouth only by moves that lowered its footprint's highest level, and could wait where it
-// started: they play back so (PathServiceSettings::keepOutExit HighestLevel).
+// started, and units kept out of a passage were let through in the priority order of all: they
+// play back so (PathServiceSettings::keepOutExit HighestLevel, nearestKeptOutFirst false).
 inline constexpr std::uint32_t kFirstStepwiseKeepOutReplayVersion = 11;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 

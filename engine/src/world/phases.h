@@ -160,6 +160,7 @@ class Traffic {
   struct Passage {
     // Its cells and those of its mouth, with their keep-out levels (CooperativeRequest::keepOut).
     std::vector<std::pair<std::uint32_t, std::uint8_t>> keepOut;
+    units::Vec2 centre;  // of its cells (the priority rule: those kept out nearer go first)
   };
   // A passage's gate this tick, as the units' plans say.
   struct Gate {
@@ -170,7 +171,8 @@ class Traffic {
     std::uint32_t keptOut = 0;   // waiting the other way
   };
 
-  static bool before(const Unit& a, const Unit& b);
+  // Whether `a` plans before `b` this tick (the priority rule).
+  bool before(const Refs& w, const Unit& a, const Unit& b) const;
   // The passages of the tracked cells, found again when the table tracks more.
   void findPassages(const Refs& w);
   // The passage of an anchor where an agent of this kind could not pass another; -1 for none.

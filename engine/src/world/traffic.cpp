@@ -496,10 +496,14 @@ void Traffic::findPassages(const Refs& w) {
         frontier.push_back(map.indexOf(next));
       }
     }
+    units::Vec2 sum{};
     for (const std::uint32_t cell : frontier) {
       passage.keepOut.emplace_back(cell, static_cast<std::uint8_t>(kMouth + 1));
       ring[cell] = id;
+      const Cell at = cellAt(map, cell);
+      sum = sum + units::Vec2{at.x + 0.5, at.y + 0.5};
     }
+    passage.centre = sum * (1.0 / static_cast<double>(frontier.size()));
     for (std::size_t from = 0, level = kMouth; level > 0; --level) {
       const std::size_t to = passage.keepOut.size();
       for (std::size_t i = from; i < to; ++i) {
@@ -691,7 +695,7 @@ void Traffic::breakDeadlocks(Refs& w, std::uint64_t& spent, std::uint64_t limit)
     // Every member drops what it holds; then they plan again in priority order, so the first
     // goes through and the others give way around its reservations.
     std::sort(cycle_.begin(), cycle_.end(),
-              [&](std::uint32_t a, std::uint32_t b) { return before(all[a], all[b]); });
+              [&](std::uint32_t a, std::uint32_t b) { return before(w, all[a], all[b]); });
     for (std::uint32_t m : cycle_)
       w.state.reservations->release(ownerOf(all[m]));
     for (std::uint32_t m : cycle_) {
@@ -713,9 +717,19 @@ void Traffic::breakDeadlocks(Refs& w, std::uint64_t& spent, std::uint64_t limit)
   }
 }
 
-bool Traffic::before(const Unit& a, const Unit& b) {
-  // The priority rule: the unit that has waited longer this order goes first (so nobody waits
-  // forever), then the lower id.
+bool Traffic::before(const Refs& w, const Unit& a, const Unit& b) const {
+  // The priority rule: of two kept out of the same passage, the one nearer to it goes first
+  // (let through when the gate opens, the crowd's front files in and nobody pushes through it
+  // from behind); otherwise the unit that has waited longer this order goes first (so nobody
+  // waits forever), then the lower id.
+  if (w.settings.pathing.nearestKeptOutFirst && a.plan && b.plan && a.plan->gate >= 0 &&
+      a.plan->gate == b.plan->gate && keptOut(*a.plan) && keptOut(*b.plan) &&
+      static_cast<std::size_t>(a.plan->gate) < passages_.size()) {
+    const units::Vec2 centre = passages_[static_cast<std::size_t>(a.plan->gate)].centre;
+    const units::Vec2 da = a.position - centre;
+    const units::Vec2 db = b.position - centre;
+    if (da.dot(da) != db.dot(db)) return da.dot(da) < db.dot(db);
+  }
   if (a.waitedTicks != b.waitedTicks) return a.waitedTicks > b.waitedTicks;
   return a.id.index < b.id.index;
 }
@@ -787,7 +801,7 @@ Traffic::TickWork Traffic::plan(Refs& w, std::uint64_t budget) {
   const auto second = static_cast<Tick>(std::max(1.0, std::round(w.settings.tickRate)));
   if (now % second == 0) breakDeadlocks(w, spent, limit);
   std::sort(candidates_.begin(), candidates_.end(),
-            [&](std::uint32_t a, std::uint32_t b) { return before(all[a], all[b]); });
+            [&](std::uint32_t a, std::uint32_t b) { return before(w, all[a], all[b]); });
   bool first = true;
   for (std::uint32_t index : candidates_) {
     if (planned_[index] != 0 || !following(all[index])) continue;
