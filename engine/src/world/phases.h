@@ -171,8 +171,8 @@ class Traffic {
     std::uint32_t keptOut = 0;   // waiting the other way
   };
 
-  // Whether `a` plans before `b` this tick (the priority rule).
-  bool before(const Refs& w, const Unit& a, const Unit& b) const;
+  // Sorts units (indices) into the order they plan in this tick: the priority rule.
+  void inPriorityOrder(const Refs& w, std::vector<std::uint32_t>& order);
   // The passages of the tracked cells, found again when the table tracks more.
   void findPassages(const Refs& w);
   // The passage of an anchor where an agent of this kind could not pass another; -1 for none.
@@ -270,6 +270,15 @@ class Traffic {
   std::vector<std::uint32_t> waitFor_;
   std::vector<std::uint32_t> walk_;
   std::vector<std::uint32_t> cycle_;
+  // inPriorityOrder's scratch: a unit kept out of a passage and its place in the order.
+  struct KeptOutPlace {
+    std::int32_t gate;
+    double distance;  // squared, to the passage's centre
+    std::uint32_t place;
+    std::uint32_t unit;
+  };
+  std::vector<KeptOutPlace> keptOutPlaces_;
+  std::vector<std::uint32_t> places_;
 };
 
 // --- Steering: desired velocities into physics (engine/src/world/steering.cpp) ---

@@ -694,8 +694,7 @@ void Traffic::breakDeadlocks(Refs& w, std::uint64_t& spent, std::uint64_t limit)
     } while (member != at);
     // Every member drops what it holds; then they plan again in priority order, so the first
     // goes through and the others give way around its reservations.
-    std::sort(cycle_.begin(), cycle_.end(),
-              [&](std::uint32_t a, std::uint32_t b) { return before(w, all[a], all[b]); });
+    inPriorityOrder(w, cycle_);
     for (std::uint32_t m : cycle_)
       w.state.reservations->release(ownerOf(all[m]));
     for (std::uint32_t m : cycle_) {
@@ -717,21 +716,45 @@ void Traffic::breakDeadlocks(Refs& w, std::uint64_t& spent, std::uint64_t limit)
   }
 }
 
-bool Traffic::before(const Refs& w, const Unit& a, const Unit& b) const {
-  // The priority rule: of two kept out of the same passage, the one nearer to it goes first
-  // (let through when the gate opens, the crowd's front files in and nobody pushes through it
-  // from behind); otherwise the unit that has waited longer this order goes first (so nobody
-  // waits forever), then the lower id.
-  if (w.settings.pathing.nearestKeptOutFirst && a.plan && b.plan && a.plan->gate >= 0 &&
-      a.plan->gate == b.plan->gate && keptOut(*a.plan) && keptOut(*b.plan) &&
-      static_cast<std::size_t>(a.plan->gate) < passages_.size()) {
-    const units::Vec2 centre = passages_[static_cast<std::size_t>(a.plan->gate)].centre;
-    const units::Vec2 da = a.position - centre;
-    const units::Vec2 db = b.position - centre;
-    if (da.dot(da) != db.dot(db)) return da.dot(da) < db.dot(db);
+void Traffic::inPriorityOrder(const Refs& w, std::vector<std::uint32_t>& order) {
+  // The priority rule: the unit that has waited longer this order goes first (so nobody waits
+  // forever), then the lower id.
+  const std::vector<Unit>& all = w.state.units;
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    if (all[a].waitedTicks != all[b].waitedTicks) return all[a].waitedTicks > all[b].waitedTicks;
+    return all[a].id.index < all[b].id.index;
+  });
+  if (!w.settings.pathing.nearestKeptOutFirst) return;
+  // Then the places those kept out of one passage were given go to them nearest to it first,
+  // so that when its gate lets them through the crowd's front files in and nobody pushes
+  // through it from behind. (A reordering of places, not a comparison mixed into the sort's:
+  // that one would not be a strict weak order.)
+  std::vector<KeptOutPlace>& kept = keptOutPlaces_;
+  kept.clear();
+  for (std::uint32_t i = 0; i < order.size(); ++i) {
+    const Unit& unit = all[order[i]];
+    if (!unit.plan || !keptOut(*unit.plan) ||
+        static_cast<std::size_t>(unit.plan->gate) >= passages_.size())
+      continue;
+    const units::Vec2 d =
+        unit.position - passages_[static_cast<std::size_t>(unit.plan->gate)].centre;
+    kept.push_back({unit.plan->gate, d.dot(d), i, order[i]});
   }
-  if (a.waitedTicks != b.waitedTicks) return a.waitedTicks > b.waitedTicks;
-  return a.id.index < b.id.index;
+  // By passage; within one, its places stay in ascending order.
+  std::stable_sort(kept.begin(), kept.end(),
+                   [](const KeptOutPlace& a, const KeptOutPlace& b) { return a.gate < b.gate; });
+  for (std::size_t from = 0, to = 0; from < kept.size(); from = to) {
+    places_.clear();
+    for (to = from; to < kept.size() && kept[to].gate == kept[from].gate; ++to)
+      places_.push_back(kept[to].place);
+    std::sort(kept.begin() + static_cast<std::ptrdiff_t>(from),
+              kept.begin() + static_cast<std::ptrdiff_t>(to),
+              [](const KeptOutPlace& a, const KeptOutPlace& b) {
+                return a.distance != b.distance ? a.distance < b.distance : a.place < b.place;
+              });
+    for (std::size_t k = from; k < to; ++k)
+      order[places_[k - from]] = kept[k].unit;
+  }
 }
 
 Traffic::TickWork Traffic::plan(Refs& w, std::uint64_t budget) {
@@ -800,8 +823,7 @@ Traffic::TickWork Traffic::plan(Refs& w, std::uint64_t budget) {
   // Once a second (staggered by nothing: all at once, so a cycle is seen whole).
   const auto second = static_cast<Tick>(std::max(1.0, std::round(w.settings.tickRate)));
   if (now % second == 0) breakDeadlocks(w, spent, limit);
-  std::sort(candidates_.begin(), candidates_.end(),
-            [&](std::uint32_t a, std::uint32_t b) { return before(w, all[a], all[b]); });
+  inPriorityOrder(w, candidates_);
   bool first = true;
   for (std::uint32_t index : candidates_) {
     if (planned_[index] != 0 || !following(all[index])) continue;
