@@ -391,7 +391,7 @@ Result<Scenario> replayScenario(const Replay& replay) {
   if (replay.version < kFirstSlicedWindowsReplayVersion) defaults.pathing.slicedWindows = false;
   if (replay.version < kFirstForcedJumpsReplayVersion)
     defaults.pathing.jumpSuccessors = pathing::JumpSuccessors::EverySide;
-  if (replay.version < kFirstStepwiseKeepOutReplayVersion) {
+  if (replay.version < kFirstKeptOutRulesReplayVersion) {
     defaults.pathing.keepOutExit = pathing::KeepOutExit::HighestLevel;
     defaults.pathing.nearestKeptOutFirst = false;
   }

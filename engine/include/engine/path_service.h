@@ -83,11 +83,11 @@ struct PathServiceSettings {
   // they searched then (kFirstForcedJumpsReplayVersion).
   pathing::JumpSuccessors jumpSuccessors = pathing::JumpSuccessors::ForcedOnly;
   // Not a scenario key: HighestLevel plays back replays before format 11 with units kept out
-  // of a passage leaving it as they did then (kFirstStepwiseKeepOutReplayVersion).
+  // of a passage leaving it as they did then (kFirstKeptOutRulesReplayVersion).
   pathing::KeepOutExit keepOutExit = pathing::KeepOutExit::Stepwise;
   // Not a scenario key: false plays back replays before format 11, when units kept out of a
   // passage were let through in the priority order of all (longest wait first), not nearest to
-  // it first (kFirstStepwiseKeepOutReplayVersion).
+  // it first (kFirstKeptOutRulesReplayVersion).
   bool nearestKeptOutFirst = true;
 };
 inline constexpr int kMaxCooperativeWindow = 256;

@@ -64,7 +64,7 @@ inline constexpr std::uint32_t kFirstForcedJumpsReplayVersion = 10;
 // mouth only by moves that lowered its footprint's highest level, and could wait where it
 // started, and units kept out of a passage were let through in the priority order of all: they
 // play back so (PathServiceSettings::keepOutExit HighestLevel, nearestKeptOutFirst false).
-inline constexpr std::uint32_t kFirstStepwiseKeepOutReplayVersion = 11;
+inline constexpr std::uint32_t kFirstKeptOutRulesReplayVersion = 11;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.
