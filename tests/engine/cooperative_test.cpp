@@ -24,6 +24,11 @@ Scenario parse(const std::string& text) {
 
 using testing::runToEnd;
 
+// A bundled chokepoint scenario (scenarios/chokepoints/FILE).
+Result<Scenario> loadChokepoint(const std::string& file) {
+  return loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/chokepoints/" + file);
+}
+
 // A 1-cell door in a wall, two infantry on each side swapping sides.
 const std::string kDoor =
     "map: {rows: ['..........', '..........', '..........', '..........', '@@@@.@@@@@',\n"
@@ -112,8 +117,7 @@ TEST(Cooperative, ReportsDelayAgainstThePlannedTime) {
 // meet inside and one shoves the other back, too late at every seed.
 TEST(Cooperative, TanksHeadOnInACorridorWhatCooperationChanges) {
   for (const char* file : {"corridor_tanks_4.yaml", "corridor_tanks_5.yaml"}) {
-    Result<Scenario> loaded =
-        loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/chokepoints/" + file);
+    Result<Scenario> loaded = loadChokepoint(file);
     ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
     Scenario s = std::move(loaded).value();
     for (const bool cooperative : {true, false}) {
@@ -136,8 +140,7 @@ TEST(Cooperative, TanksHeadOnInACorridorWhatCooperationChanges) {
 // and nobody is flagged stuck, at every seed. Without it both crowds push into the door at once
 // and some arrive too late. The run stops at the bound, where the expectations are decided.
 TEST(Cooperative, ThirtyAsideSwapThroughADoorTakingTurns) {
-  Result<Scenario> loaded =
-      loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/chokepoints/door_30v30.yaml");
+  Result<Scenario> loaded = loadChokepoint("door_30v30.yaml");
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   s.duration = 100.0;
@@ -153,10 +156,9 @@ TEST(Cooperative, ThirtyAsideSwapThroughADoorTakingTurns) {
 // When the door's gate turns, the side kept out is let through nearest first: its front files
 // in instead of some unit at the back pushing through the crowd (flagged stuck there at seeds
 // 6 and 8 when the longest wait went first), and the last ones arrive sooner. Seeds 5-8 keep
-// the test short (it runs 8 battles of 60 units; 90 s in the sanitizer build at seeds 1-8).
+// the test short (8 runs of 60 units; it took 90 s in the sanitizer build at seeds 1-8).
 TEST(Cooperative, ThoseKeptOutNearestTheDoorGoFirst) {
-  Result<Scenario> loaded =
-      loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/chokepoints/door_30v30.yaml");
+  Result<Scenario> loaded = loadChokepoint("door_30v30.yaml");
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.nearestKeptOutFirst);  // the default
@@ -277,8 +279,7 @@ TEST(Cooperative, TanksFromAWideFieldQueueThroughAPassTogether) {
 // 1-3 (u_trap's jeeps pass the infantry going their way round the U).
 TEST(Cooperative, TheUTrapAndTheGapPassAtEverySeed) {
   for (const char* file : {"u_trap.yaml", "gap_200.yaml"}) {
-    Result<Scenario> loaded =
-        loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/chokepoints/" + file);
+    Result<Scenario> loaded = loadChokepoint(file);
     ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
     ASSERT_TRUE(loaded.value().settings.pathing.cooperative);
     for (std::uint64_t seed = 1; seed <= 3; ++seed)
@@ -294,8 +295,7 @@ TEST(Cooperative, TheUTrapAndTheGapPassAtEverySeed) {
 TEST(Cooperative, InfantryGiveWayToVehiclesAtTheBridgeAndTheCrossroads) {
   for (const auto& [file, atLeast] :
        {std::pair{"bridge_two_way.yaml", 11}, std::pair{"crossroads.yaml", 8}}) {
-    Result<Scenario> loaded =
-        loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/chokepoints/" + file);
+    Result<Scenario> loaded = loadChokepoint(file);
     ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
     int passed = 0;
     for (std::uint64_t seed = 1; seed <= 20; ++seed)
@@ -310,8 +310,7 @@ TEST(Cooperative, InfantryGiveWayToVehiclesAtTheBridgeAndTheCrossroads) {
 // than the detour, go over the far bridge: 90 % arrive by 62 s. Everyone over the near bridge
 // (congestion off) arrives in 67-69 s for 90 %.
 TEST(Cooperative, CrowdsTakeAFreeBridgeWhenTheQueueCostsMoreThanTheDetour) {
-  Result<Scenario> loaded =
-      loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/chokepoints/two_bridges.yaml");
+  Result<Scenario> loaded = loadChokepoint("two_bridges.yaml");
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.congestion);  // the default
