@@ -725,7 +725,7 @@ void Traffic::inPriorityOrder(const Refs& w, std::vector<std::uint32_t>& order) 
     return all[a].id.index < all[b].id.index;
   });
   if (!w.settings.pathing.nearestKeptOutFirst) return;
-  // Then the places those kept out of one passage were given go to them nearest to it first,
+  // Then the places those kept out of one passage were given go to them nearest its centre first,
   // so that when its gate lets them through the crowd's front files in and nobody pushes
   // through it from behind. (A reordering of places, not a comparison mixed into the sort's:
   // that one would not be a strict weak order.)
