@@ -48,6 +48,14 @@ double turnLimitedSpeed(Vec2 velocity, Vec2 offset, double turnRate) {
   return turnRate * distance / (2.0 * s);
 }
 
+std::span<const pathing::TimedCell>::iterator nextStep(std::span<const pathing::TimedCell> steps,
+                                                       double tick) {
+  if (steps.empty()) return steps.end();
+  return std::upper_bound(
+      steps.begin() + 1, steps.end(), tick,
+      [](double t, const pathing::TimedCell& step) { return t < static_cast<double>(step.tick); });
+}
+
 namespace {
 
 // Where the plan puts the body centre at `tick` (fractional), and whether that is a hold.
@@ -55,11 +63,7 @@ std::pair<Vec2, bool> scheduledAt(std::span<const pathing::TimedCell> steps, dou
                                   int size) {
   if (tick <= static_cast<double>(steps.front().tick))
     return {anchorToCentre(steps.front().cell, size), steps.size() == 1};
-  // The first step the plan has not reached by `tick` (ticks strictly increase), found by
-  // bisection: every unit asks several times a tick.
-  const auto next = std::upper_bound(
-      steps.begin() + 1, steps.end(), tick,
-      [](double t, const pathing::TimedCell& step) { return t < static_cast<double>(step.tick); });
+  const auto next = nextStep(steps, tick);
   if (next == steps.end()) return {anchorToCentre(steps.back().cell, size), true};
   const pathing::TimedCell& from = *(next - 1);
   const double t0 = static_cast<double>(from.tick);

@@ -126,10 +126,9 @@ void expireWindow(Refs& w, Unit& unit) {
 bool waitingAt(const TimedPlan& plan, Tick tick) {
   const std::vector<TimedCell>& s = plan.steps;
   if (tick >= s.back().tick) return plan.status != CooperativeStatus::ReachedGoal;
-  // The first step after the first not reached by `tick` (ticks strictly increase).
-  const auto next = std::upper_bound(s.begin() + 1, s.end(), tick,
-                                     [](Tick t, const TimedCell& step) { return t < step.tick; });
-  if (next == s.end()) return false;  // a plan of one step, not begun
+  const std::span<const TimedCell> steps(s);
+  const auto next = units::nextStep(steps, static_cast<double>(tick));
+  if (next == steps.end()) return false;  // a plan of one step, not begun
   const TimedCell& from = *(next - 1);
   return tick >= from.tick && from.cell == next->cell;
 }

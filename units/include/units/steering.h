@@ -70,6 +70,12 @@ struct ScheduleResult {
   bool waiting = false;   // the plan holds the unit where it is now (a wait, or its end)
   bool finished = false;  // the plan's last tick has passed
 };
+// The first step after the first that a plan has not reached by `tick` (ticks strictly
+// increase), found by bisection (every unit asks several times a tick); steps.end() when the
+// plan has reached them all, or has one step. The move or wait under way runs from the step
+// before it.
+std::span<const pathing::TimedCell>::iterator nextStep(std::span<const pathing::TimedCell> steps,
+                                                       double tick);
 // [Limit: !steps.empty(), lookaheadSeconds > 0, ticksPerSecond > 0]
 ScheduleResult followPlan(std::span<const pathing::TimedCell> steps, std::int64_t tick, int size,
                           Vec2 centre, double maxSpeed, double ticksPerSecond,
