@@ -384,7 +384,8 @@ Result<Scenario> replayScenario(const Replay& replay) {
   // came (no older scenario can name them), with window searches unsliced before they were,
   // with jump point searches taking every side turn before they took only forced ones, and
   // with units kept out of a passage leaving it by its highest level, and let through by the
-  // priority order of all, before they stepped out and were let through nearest first.
+  // priority order of all, before they stepped out and were let through nearest first, and
+  // with vehicles' lanes ending at junctions before they went on through them.
   WorldSettings defaults;
   if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
   if (replay.version < kFirstCongestionReplayVersion) defaults.pathing.congestion = false;
@@ -395,6 +396,8 @@ Result<Scenario> replayScenario(const Replay& replay) {
     defaults.pathing.keepOutExit = pathing::KeepOutExit::HighestLevel;
     defaults.pathing.nearestKeptOutFirst = false;
   }
+  if (replay.version < kFirstJunctionLanesReplayVersion)
+    defaults.pathing.lanesThroughJunctions = false;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

@@ -34,8 +34,12 @@ Cell rightOf(std::span<const Cell> path, std::size_t i) {
   return {0, 0};
 }
 
+// laneShift where the passage across is wider than laneWidth().
+constexpr int kTooWide = -2;
+
 // How many cells along `right` the footprint at `c` moves to lie in the right half of the
-// passage across it (0 when it does already); -1 when the passage is too narrow or too wide.
+// passage across it (0 when it does already); kTooWide, or -1 when the passage is too narrow
+// or the path runs diagonally.
 int laneShift(const ClearanceField& clearance, int size, Cell c, Cell right) {
   if (right == Cell{0, 0}) return -1;
   const auto standable = [&](int k) {
@@ -49,7 +53,8 @@ int laneShift(const ClearanceField& clearance, int size, Cell c, Cell right) {
   while (toLeft + toRight + size <= widest && standable(toRight + 1))
     ++toRight;
   const int width = toLeft + toRight + size;  // cells across, footprint included
-  if (width < 2 * size || width > widest) return -1;
+  if (width > widest) return kTooWide;
+  if (width < 2 * size) return -1;
   const int rightHalf = (width + 1) / 2;  // its first cell, counted from the left edge
   return std::clamp(rightHalf - toLeft, 0, toRight);
 }
@@ -76,9 +81,46 @@ bool join(const AgentLayer& layer, const GridMap& map, std::vector<Cell>& out, C
   return true;
 }
 
+// Through a junction (a stretch where the passage across is too wide for lanes, at most
+// laneWidth() long, between two lane runs of one direction) the lane goes on along the line it
+// entered on, where the anchors up to it are standable (a path already right of it stays):
+// otherwise the path comes back to its own line in the junction, the shortest one, where the flows
+// of both ways meet head on (the crossroads' tanks). `found` is laneShift's answer per cell,
+// `shift` the lane runs' shifts.
+void keepLaneThroughJunctions(const ClearanceField& clearance, int size, std::span<const Cell> path,
+                              const std::vector<int>& found, std::vector<Cell>& right,
+                              std::vector<int>& shift) {
+  const std::size_t n = path.size();
+  const auto across = [](Cell c, Cell r) { return c.x * r.x + c.y * r.y; };
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    if (found[i] != kTooWide || shift[i - 1] <= 0) continue;
+    std::size_t end = i;  // the junction is [i, end)
+    while (end + 1 < n && found[end] == kTooWide)
+      ++end;
+    const Cell r = right[i - 1];
+    if (end + 1 < n && shift[end] > 0 && right[end] == r &&
+        end - i <= static_cast<std::size_t>(laneWidth(size))) {
+      const int line = across(path[i - 1], r) + shift[i - 1];
+      // Where the path runs right of that line it stays (shifts only ever go right).
+      const auto shiftAt = [&](std::size_t k) { return std::max(0, line - across(path[k], r)); };
+      bool standable = true;
+      for (std::size_t k = i; k < end && standable; ++k) {
+        for (int s = 1; s <= shiftAt(k) && standable; ++s)
+          standable = clearance.at({path[k].x + s * r.x, path[k].y + s * r.y}) >= size;
+      }
+      for (std::size_t k = i; k < end && standable; ++k) {
+        shift[k] = shiftAt(k);
+        right[k] = r;
+      }
+    }
+    i = end;
+  }
+}
+
 }  // namespace
 
-std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<const Cell> path) {
+std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<const Cell> path,
+                            bool throughJunctions) {
   std::vector<Cell> unchanged(path.begin(), path.end());
   const std::size_t n = path.size();
   if (n < 3 || agent.size < 1) return unchanged;
@@ -91,6 +133,7 @@ std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<co
     right[i] = rightOf(path, i);
     shift[i] = laneShift(clearance, agent.size, path[i], right[i]);
   }
+  const std::vector<int> found = shift;
   // Only a passage the path runs along for kMinLaneRun cells gets lanes: through a shorter one
   // (a gap, or a small map's whole width) local avoidance lets two units by, and a lane there
   // only bends the path.
@@ -105,6 +148,7 @@ std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<co
     if (end - i < kMinLaneRun) std::fill(shift.begin() + i, shift.begin() + end, 0);
     i = end;
   }
+  if (throughJunctions) keepLaneThroughJunctions(clearance, agent.size, path, found, right, shift);
   // A lane begins before its passage and ends after it: a shift carries over to the cells
   // around, a cell less each, where the anchors it crosses are standable.
   const auto carry = [&](std::size_t from, std::size_t to) {

@@ -333,6 +333,16 @@ Result<Scenario> copyWithPathing(const fs::path& dir, const std::string& scenari
   return loadRecordedScenario(file, source);
 }
 
+// The rules that formats after `format` brought, set back as files of `format` play back: the
+// kept-out rules (format 11) and lanes through junctions (12).
+void useRulesOfFormat(Scenario& s, std::uint32_t format) {
+  if (format < 11) {
+    s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;
+    s.settings.pathing.nearestKeptOutFirst = false;
+  }
+  if (format < 12) s.settings.pathing.lanesThroughJunctions = false;
+}
+
 void expectVerifiesOnlyAsItsFormat(const Scenario& s, const ReplaySource& source,
                                    const fs::path& file, std::uint32_t format,
                                    std::int64_t lastTick) {
@@ -367,8 +377,7 @@ TEST_F(Replays, AFormat6ReplayPlaysBackWithCooperationOff) {
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.cooperative);  // the default now
   s.settings.pathing.cooperative = false;       // format 6's
-  s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;
-  s.settings.pathing.nearestKeptOutFirst = false;
+  useRulesOfFormat(s, 6);
   source.seed = s.settings.seed;
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format6.rpl", 6, INT64_MAX);
 }
@@ -384,8 +393,7 @@ TEST_F(Replays, AFormat7ReplayPlaysBackWithoutCongestionAwareRoutes) {
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.cooperative && s.settings.pathing.congestion);  // the defaults
   s.settings.pathing.congestion = false;                                         // format 7's
-  s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;
-  s.settings.pathing.nearestKeptOutFirst = false;
+  useRulesOfFormat(s, 7);
   source.seed = s.settings.seed;
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format7.rpl", 7, 300);
   // Formats before 3 hash another way, and none after this build's can be written.
@@ -404,8 +412,7 @@ TEST_F(Replays, AFormat8ReplayPlaysBackWithoutSlicedWindows) {
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.sliced && s.settings.pathing.slicedWindows);
   s.settings.pathing.slicedWindows = false;  // format 8's
-  s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;
-  s.settings.pathing.nearestKeptOutFirst = false;
+  useRulesOfFormat(s, 8);
   source.seed = s.settings.seed;
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format8.rpl", 8, 300);
 }
@@ -421,8 +428,7 @@ TEST_F(Replays, AFormat9ReplayPlaysBackWithJumpPointsTakingEverySideTurn) {
   Scenario s = std::move(loaded).value();
   ASSERT_EQ(s.settings.pathing.jumpSuccessors, warpath::pathing::JumpSuccessors::ForcedOnly);
   s.settings.pathing.jumpSuccessors = warpath::pathing::JumpSuccessors::EverySide;  // format 9's
-  s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;
-  s.settings.pathing.nearestKeptOutFirst = false;
+  useRulesOfFormat(s, 9);
   source.seed = s.settings.seed;
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format9.rpl", 9, 300);
 }
@@ -444,12 +450,27 @@ TEST_F(Replays, AFormat10ReplayPlaysBackWithTheKeptOutRulesOfThen) {
     Scenario s = std::move(loaded).value();
     ASSERT_EQ(s.settings.pathing.keepOutExit, warpath::pathing::KeepOutExit::Stepwise);
     ASSERT_TRUE(s.settings.pathing.nearestKeptOutFirst);
-    s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;  // format 10's
-    s.settings.pathing.nearestKeptOutFirst = false;
+    useRulesOfFormat(s, 10);
     s.settings.seed = 5;
     source.seed = s.settings.seed;
     expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format10.rpl", 10, lastTick);
   }
+}
+
+// Format 11 was recorded when a vehicle's lane ended where the passage grew too wide for lanes,
+// a junction included: a run plays back so, and such a file verifies; read as format 12 (lanes
+// go on through junctions) the same records do not. At the crossroads the tanks reach the
+// crossing within 10 s.
+TEST_F(Replays, AFormat11ReplayPlaysBackWithLanesEndingAtJunctions) {
+  ReplaySource source;
+  Result<Scenario> loaded = loadRecordedScenario(
+      fs::path(WARPATH_SOURCE_DIR) / "scenarios/chokepoints/crossroads.yaml", source);
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.lanesThroughJunctions);
+  useRulesOfFormat(s, 11);
+  source.seed = s.settings.seed;
+  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format11.rpl", 11, 450);
 }
 
 TEST_F(Replays, AnotherVersionIsRefused) {
@@ -460,21 +481,21 @@ TEST_F(Replays, AnotherVersionIsRefused) {
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
                                  ": replay format version 1 is not supported (this build reads "
-                                 "versions 2 to 11); it was written before battles were recorded: "
+                                 "versions 2 to 12); it was written before battles were recorded: "
                                  "record it again with rts run --replay");
   RtsResult r = rts("replay verify " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(file.string() + ": replay format version 1 is not supported"),
             std::string::npos)
       << r.out;
-  bytes[8] = 12;
+  bytes[8] = 13;
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
-                                 ": replay format version 12 is not supported (this build reads "
-                                 "versions 2 to 11)");
+                                 ": replay format version 13 is not supported (this build reads "
+                                 "versions 2 to 12)");
   r = rts("replay info " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_NE(r.out.find("version 12 is not supported"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("version 13 is not supported"), std::string::npos) << r.out;
   EXPECT_EQ(rts("replay verify " + (dir_ / "none.rpl").string()).status, 2);
 }
 
@@ -583,7 +604,7 @@ TEST_F(Replays, ABattleRecordsAndVerifies) {
 
   const RtsResult info = rts("replay info " + file.string());
   EXPECT_EQ(info.status, 0) << info.out;
-  EXPECT_NE(info.out.find("format version: 11\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("format version: 12\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("orders: 4 (2 attack_move, 1 attack, 1 reinforce)\n"), std::string::npos)
       << info.out;
   const RtsResult verify = rts("replay verify " + file.string());

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "pathing/aa_star.h"
@@ -117,6 +118,53 @@ TEST(Lanes, NoLanesThroughAShortPassage) {
   const AnnotatedGrid shortStrip{GridMap(8, 5)};
   const std::vector<Cell> shortTop = shortest(shortStrip, infantry, {0, 0}, {7, 0});
   EXPECT_EQ(keepRight(shortStrip, infantry, shortTop), shortTop);
+}
+
+// A crossroads: corridors 8 wide (rows and columns 28..35) across a 64×64 map, rock elsewhere.
+GridMap crossroadsMap() {
+  GridMap map(64, 64);
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      if ((y < 28 || y > 35) && (x < 28 || x > 35)) map.set({x, y}, Terrain::Blocked);
+    }
+  }
+  return map;
+}
+
+// The rows a path's anchors take over columns x0..x1.
+std::vector<int> rowsOver(const std::vector<Cell>& path, int x0, int x1) {
+  std::vector<int> rows;
+  for (const Cell& c : path) {
+    if (c.x >= x0 && c.x <= x1) rows.push_back(c.y);
+  }
+  return rows;
+}
+
+TEST(Lanes, ALaneGoesOnThroughAJunction) {
+  const AnnotatedGrid grid(crossroadsMap());
+  const Agent tank{3, kGround};
+  // From the west arm's middle to the east arm's top row: the shortest path drifts north.
+  const std::vector<Cell> east = shortest(grid, tank, {4, 30}, {58, 28});
+  const std::vector<Cell> lane = keepRight(grid, tank, east);
+  expectLegalBetween(grid, tank, lane, east);
+  // Heading east the right is south: the lane's row in the west arm (footprints in the south
+  // half, rows 32..35) holds across the junction (columns 28..35) and into the east arm.
+  const std::vector<int> westArm = rowsOver(lane, 16, 22);
+  ASSERT_FALSE(westArm.empty());
+  const int row = westArm.front();
+  EXPECT_GE(row, 32);
+  for (const int y : westArm)
+    EXPECT_EQ(y, row);
+  const std::vector<int> junction = rowsOver(lane, 26, 37);
+  ASSERT_FALSE(junction.empty());
+  for (const int y : junction)
+    EXPECT_EQ(y, row);
+  // As lanes were before replay format 12: the lane ends at the junction, where the path comes
+  // back north toward its own line.
+  const std::vector<Cell> ending = keepRight(grid, tank, east, false);
+  expectLegalBetween(grid, tank, ending, east);
+  const std::vector<int> junctionBefore = rowsOver(ending, 26, 37);
+  EXPECT_LT(*std::min_element(junctionBefore.begin(), junctionBefore.end()), row);
 }
 
 TEST(Lanes, AlwaysLegalOnRandomMaps) {

@@ -89,6 +89,10 @@ struct PathServiceSettings {
   // passage were let through in the priority order of all (longest wait first), not nearest to
   // it first (kFirstKeptOutRulesReplayVersion).
   bool nearestKeptOutFirst = true;
+  // Not a scenario key: false plays back replays before format 12, when vehicles' lanes ended
+  // at a junction too wide for lanes (pathing::keepRight's throughJunctions;
+  // kFirstJunctionLanesReplayVersion).
+  bool lanesThroughJunctions = true;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
 // [Unit: expansions] what sliced window searches may spend in a tick the spatial searches left

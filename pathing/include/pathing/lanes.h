@@ -25,7 +25,11 @@ constexpr int laneWidth(int size) {
 // its passage and ends after it (a shift carries to the cells around, a cell less each). Shifts
 // grow and shrink by at most a cell per step (so the start and the goal stay where they are) and
 // the shifted cells are joined by legal single moves; if they cannot be, the path comes back
-// unchanged. The result is legal for the agent and runs from path.front() to path.back().
-std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<const Cell> path);
+// unchanged. With `throughJunctions` a lane goes on through a junction, a stretch of at most
+// laneWidth() cells too wide for lanes between two lane runs of one direction, along the line it
+// entered on (without, the path comes back to its own line there). The result is legal for the
+// agent and runs from path.front() to path.back().
+std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<const Cell> path,
+                            bool throughJunctions = true);
 
 }  // namespace warpath::pathing
