@@ -385,7 +385,8 @@ Result<Scenario> replayScenario(const Replay& replay) {
   // with jump point searches taking every side turn before they took only forced ones, and
   // with units kept out of a passage leaving it by its highest level, and let through by the
   // priority order of all, before they stepped out and were let through nearest first, and
-  // with vehicles' lanes ending at junctions before they went on through them.
+  // with vehicles' lanes ending at junctions, and walkers stepping aside on their side of a
+  // vehicle, before lanes went on through junctions and walkers stepped to the side with room.
   WorldSettings defaults;
   if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
   if (replay.version < kFirstCongestionReplayVersion) defaults.pathing.congestion = false;
@@ -396,8 +397,10 @@ Result<Scenario> replayScenario(const Replay& replay) {
     defaults.pathing.keepOutExit = pathing::KeepOutExit::HighestLevel;
     defaults.pathing.nearestKeptOutFirst = false;
   }
-  if (replay.version < kFirstJunctionLanesReplayVersion)
+  if (replay.version < kFirstJunctionRulesReplayVersion) {
     defaults.pathing.lanesThroughJunctions = false;
+    defaults.pathing.stepAsideToRoom = false;
+  }
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

@@ -321,14 +321,48 @@ TEST(Cooperative, TanksKeepTheirLanesThroughTheCrossroads) {
       const Report r = runToEnd(s, seed);
       bool anyLate = false;
       for (const ArrivalStats& a : r.arrivals) {
-        if (a.type == "tank")
-          anyLate = anyLate || a.arrived < a.units || a.arrivedAt.back() > 46.0;
+        if (a.type == "tank") anyLate = anyLate || a.arrived < a.units || a.arrivedAt.back() > 46.0;
       }
       late[through ? 1 : 0] += anyLate ? 1 : 0;
     }
   }
   EXPECT_LE(late[1], 1);
   EXPECT_LT(late[1], late[0]);
+}
+
+// A tank keeping right in a corridor 6 cells wide drives south along its west wall, and a
+// rifleman of the other team walks north along the same wall. With no room between the tank and
+// the wall, it steps out of the tank's way on the open side (stepAsideToRoom, replay format
+// 12) and arrives in 13 s; stepping toward the wall, on the side it was on, it was pushed back
+// down the corridor by the tank and had not arrived when the run ended.
+TEST(Cooperative, ARiflemanBetweenATankAndAWallStepsOutOnTheOpenSide) {
+  std::string rows;
+  for (int y = 0; y < 40; ++y)
+    rows += std::string(y > 0 ? ", '" : "'") + std::string(6, '.') + "'";
+  const std::string text =
+      "map: {rows: [" + rows + "]}\n" +
+      "catalogue: ../assets/units.yaml\n"
+      "duration: 30\n"
+      "combat: {enabled: false}\n"
+      "teams: [blue, red]\n"
+      "groups:\n"
+      "  - {name: tank, team: blue, type: tank, count: 1, spawn: {x: 0, y: 0, w: 3, h: 3},\n"
+      "     goal: {x: 0, y: 35, w: 3, h: 3}}\n"
+      "  - {name: rifle, team: red, type: infantry, count: 1, spawn: {x: 0, y: 14, w: 1, h: 1},\n"
+      "     goal: {x: 0, y: 0, w: 1, h: 2}}\n"
+      "expectations:\n"
+      "  - arrival_rate: {team: red, type: infantry, at_least: 1.0, by: 16}\n"
+      "  - arrival_rate: {team: blue, type: tank, at_least: 1.0, by: 20}\n";
+  Scenario s = parse(text);
+  ASSERT_TRUE(s.settings.pathing.stepAsideToRoom);  // the default
+  EXPECT_TRUE(runToEnd(s, 1).passed());
+  s.settings.pathing.stepAsideToRoom = false;
+  const Report before = runToEnd(s, 1);
+  for (const ArrivalStats& a : before.arrivals) {
+    if (a.type == "infantry") {
+      EXPECT_EQ(a.arrived, 0);
+    }
+  }
 }
 
 // Congestion-aware routes (engine/congestion.h): 200 infantry cross a river where a near bridge

@@ -334,13 +334,17 @@ Result<Scenario> copyWithPathing(const fs::path& dir, const std::string& scenari
 }
 
 // The rules that formats after `format` brought, set back as files of `format` play back: the
-// kept-out rules (format 11) and lanes through junctions (12).
+// kept-out rules (format 11), lanes through junctions and stepping aside to the side with room
+// (12).
 void useRulesOfFormat(Scenario& s, std::uint32_t format) {
   if (format < 11) {
     s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;
     s.settings.pathing.nearestKeptOutFirst = false;
   }
-  if (format < 12) s.settings.pathing.lanesThroughJunctions = false;
+  if (format < 12) {
+    s.settings.pathing.lanesThroughJunctions = false;
+    s.settings.pathing.stepAsideToRoom = false;
+  }
 }
 
 void expectVerifiesOnlyAsItsFormat(const Scenario& s, const ReplaySource& source,
@@ -458,16 +462,17 @@ TEST_F(Replays, AFormat10ReplayPlaysBackWithTheKeptOutRulesOfThen) {
 }
 
 // Format 11 was recorded when a vehicle's lane ended where the passage grew too wide for lanes,
-// a junction included: a run plays back so, and such a file verifies; read as format 12 (lanes
-// go on through junctions) the same records do not. At the crossroads the tanks reach the
-// crossing within 10 s.
-TEST_F(Replays, AFormat11ReplayPlaysBackWithLanesEndingAtJunctions) {
+// a junction included, and a walker a vehicle drove into stepped aside on the side it was on:
+// a run plays back so, and such a file verifies; read as format 12 (lanes go on through
+// junctions, walkers step to the side with room) the same records do not. At the crossroads the
+// tanks reach the crossing within 10 s.
+TEST_F(Replays, AFormat11ReplayPlaysBackWithTheJunctionRulesOfThen) {
   ReplaySource source;
   Result<Scenario> loaded = loadRecordedScenario(
       fs::path(WARPATH_SOURCE_DIR) / "scenarios/chokepoints/crossroads.yaml", source);
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.lanesThroughJunctions);
+  ASSERT_TRUE(s.settings.pathing.lanesThroughJunctions && s.settings.pathing.stepAsideToRoom);
   useRulesOfFormat(s, 11);
   source.seed = s.settings.seed;
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format11.rpl", 11, 450);

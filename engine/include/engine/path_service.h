@@ -91,8 +91,12 @@ struct PathServiceSettings {
   bool nearestKeptOutFirst = true;
   // Not a scenario key: false plays back replays before format 12, when vehicles' lanes ended
   // at a junction too wide for lanes (pathing::keepRight's throughJunctions;
-  // kFirstJunctionLanesReplayVersion).
+  // kFirstJunctionRulesReplayVersion).
   bool lanesThroughJunctions = true;
+  // Not a scenario key: false plays back replays before format 12, when a walker a vehicle
+  // drove into stepped off its course on the side it was on even where it had no room there
+  // (docs/cooperative.md).
+  bool stepAsideToRoom = true;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
 // [Unit: expansions] what sliced window searches may spend in a tick the spatial searches left

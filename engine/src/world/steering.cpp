@@ -102,16 +102,34 @@ Vec2 stepAside(const Refs& w, const Unit& unit, Vec2 heading, double side, Vec2 
   return heading * along + left * (side * w.typeOf(unit).maxSpeed());
 }
 
+// [Unit: cells] Room a unit stepping off a vehicle's course needs beyond its own body.
+constexpr double kStepAsideMargin = 0.2;
+
 // Cooperative movement: a moving unit of the lightest kind that a heavier unit drives into
 // steps off the vehicle's course at its own top speed, keeping what it was doing along it:
 // vehicles are not held to infantry's pace by infantry that would let them by. (Parked units
-// steer back to their cells; vehicles veer round them.)
+// steer back to their cells; vehicles veer round them.) It steps to the side it already is on,
+// unless it could not stand there clear of the vehicle's body (a wall, water) and could on the
+// other (PathServiceSettings::stepAsideToRoom, replay format 12): at the crossroads a rifleman
+// between a tank keeping right and the arm's wall stepped into the wall, and the tank pushed it
+// back down the arm 20 cells.
 Vec2 stepAside(const Refs& w, const Unit& unit, const Unit& vehicle, Vec2 desired) {
   const Vec2 heading = vehicle.velocity * (1.0 / vehicle.velocity.length());
   const Vec2 left{heading.y, -heading.x};
   const Vec2 offset = unit.position - vehicle.position;
-  // Sideways from the vehicle's course, on the side the unit already is.
-  return stepAside(w, unit, heading, offset.dot(left) >= 0.0 ? 1.0 : -1.0, desired);
+  double side = offset.dot(left) >= 0.0 ? 1.0 : -1.0;
+  if (w.settings.pathing.stepAsideToRoom) {
+    const units::UnitType& type = w.typeOf(unit);
+    // Where the unit would stand beside the vehicle's body, level with where it is.
+    const Vec2 abreast = vehicle.position + heading * offset.dot(heading);
+    const double clear = w.typeOf(vehicle).radius + 2.0 * type.radius + kStepAsideMargin;
+    const auto roomOn = [&](double s) {
+      return w.grid.canStand(type.agent(),
+                             units::centreToAnchor(abreast + left * (s * clear), type.size));
+    };
+    if (!roomOn(side) && roomOn(-side)) side = -side;
+  }
+  return stepAside(w, unit, heading, side, desired);
 }
 
 // Each vehicle's contacts (Box2D's, after the last step) into s.touching, and for each moving
