@@ -331,36 +331,44 @@ TEST(Cooperative, TanksKeepTheirLanesThroughTheCrossroads) {
 }
 
 // A tank keeping right in a corridor 6 cells wide drives south along its west wall, and a
-// rifleman of the other team walks north along the same wall. With no room between the tank and
-// the wall, it steps out of the tank's way on the open side (stepAsideToRoom, replay format
-// 12) and arrives in 13 s; stepping toward the wall, on the side it was on, it was pushed back
-// down the corridor by the tank and had not arrived when the run ended.
+// rifleman walks north along the same wall. With no room between the tank and the wall, it
+// steps out of the tank's way on the open side (stepAsideToRoom, replay format 12): of its own
+// team when the tank drives into it, arriving in 13 s; of the other team already out of the
+// tank's lane ahead, before the tank reaches it, arriving in 12 s. Stepping toward the wall, on
+// the side it was on, it was pushed back down the corridor by the tank and had not arrived when
+// the run ended.
 TEST(Cooperative, ARiflemanBetweenATankAndAWallStepsOutOnTheOpenSide) {
   std::string rows;
   for (int y = 0; y < 40; ++y)
     rows += std::string(y > 0 ? ", '" : "'") + std::string(6, '.') + "'";
-  const std::string text =
-      "map: {rows: [" + rows + "]}\n" +
-      "catalogue: ../assets/units.yaml\n"
-      "duration: 30\n"
-      "combat: {enabled: false}\n"
-      "teams: [blue, red]\n"
-      "groups:\n"
-      "  - {name: tank, team: blue, type: tank, count: 1, spawn: {x: 0, y: 0, w: 3, h: 3},\n"
-      "     goal: {x: 0, y: 35, w: 3, h: 3}}\n"
-      "  - {name: rifle, team: red, type: infantry, count: 1, spawn: {x: 0, y: 14, w: 1, h: 1},\n"
-      "     goal: {x: 0, y: 0, w: 1, h: 2}}\n"
-      "expectations:\n"
-      "  - arrival_rate: {team: red, type: infantry, at_least: 1.0, by: 16}\n"
-      "  - arrival_rate: {team: blue, type: tank, at_least: 1.0, by: 20}\n";
-  Scenario s = parse(text);
-  ASSERT_TRUE(s.settings.pathing.stepAsideToRoom);  // the default
-  EXPECT_TRUE(runToEnd(s, 1).passed());
-  s.settings.pathing.stepAsideToRoom = false;
-  const Report before = runToEnd(s, 1);
-  for (const ArrivalStats& a : before.arrivals) {
-    if (a.type == "infantry") {
-      EXPECT_EQ(a.arrived, 0);
+  for (const auto& [riflemen, by] : {std::pair{"blue", "14"}, std::pair{"red", "12.5"}}) {
+    const std::string text =
+        "map: {rows: [" + rows + "]}\n" +
+        "catalogue: ../assets/units.yaml\n"
+        "duration: 30\n"
+        "combat: {enabled: false}\n"
+        "teams: [blue, red]\n"
+        "groups:\n"
+        "  - {name: tank, team: blue, type: tank, count: 1, spawn: {x: 0, y: 0, w: 3, h: 3},\n"
+        "     goal: {x: 0, y: 35, w: 3, h: 3}}\n"
+        "  - {name: rifle, team: " +
+        riflemen +
+        ", type: infantry, count: 1, spawn: {x: 0, y: 14, w: 1, h: 1},\n"
+        "     goal: {x: 0, y: 0, w: 1, h: 2}}\n"
+        "expectations:\n"
+        "  - arrival_rate: {team: " +
+        riflemen + ", type: infantry, at_least: 1.0, by: " + by +
+        "}\n"
+        "  - arrival_rate: {team: blue, type: tank, at_least: 1.0, by: 20}\n";
+    Scenario s = parse(text);
+    ASSERT_TRUE(s.settings.pathing.stepAsideToRoom);  // the default
+    EXPECT_TRUE(runToEnd(s, 1).passed()) << riflemen;
+    s.settings.pathing.stepAsideToRoom = false;
+    const Report before = runToEnd(s, 1);
+    for (const ArrivalStats& a : before.arrivals) {
+      if (a.type == "infantry") {
+        EXPECT_EQ(a.arrived, 0) << riflemen;
+      }
     }
   }
 }

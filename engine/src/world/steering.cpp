@@ -105,6 +105,20 @@ Vec2 stepAside(const Refs& w, const Unit& unit, Vec2 heading, double side, Vec2 
 // [Unit: cells] Room a unit stepping off a vehicle's course needs beyond its own body.
 constexpr double kStepAsideMargin = 0.2;
 
+// The side (+1 along `left`, -1 against it) a unit steps to off a vehicle's course: `side`,
+// unless the unit could not stand there beside the vehicle's body (of `vehicleRadius`, at
+// `abreast` on the course level with the unit) and could on the other.
+double sideWithRoom(const Refs& w, const Unit& unit, Vec2 abreast, Vec2 left, double side,
+                    double vehicleRadius) {
+  const units::UnitType& type = w.typeOf(unit);
+  const double clear = vehicleRadius + 2.0 * type.radius + kStepAsideMargin;
+  const auto roomOn = [&](double s) {
+    return w.grid.canStand(type.agent(),
+                           units::centreToAnchor(abreast + left * (s * clear), type.size));
+  };
+  return !roomOn(side) && roomOn(-side) ? -side : side;
+}
+
 // Cooperative movement: a moving unit of the lightest kind that a heavier unit drives into
 // steps off the vehicle's course at its own top speed, keeping what it was doing along it:
 // vehicles are not held to infantry's pace by infantry that would let them by. (Parked units
@@ -118,17 +132,9 @@ Vec2 stepAside(const Refs& w, const Unit& unit, const Unit& vehicle, Vec2 desire
   const Vec2 left{heading.y, -heading.x};
   const Vec2 offset = unit.position - vehicle.position;
   double side = offset.dot(left) >= 0.0 ? 1.0 : -1.0;
-  if (w.settings.pathing.stepAsideToRoom) {
-    const units::UnitType& type = w.typeOf(unit);
-    // Where the unit would stand beside the vehicle's body, level with where it is.
-    const Vec2 abreast = vehicle.position + heading * offset.dot(heading);
-    const double clear = w.typeOf(vehicle).radius + 2.0 * type.radius + kStepAsideMargin;
-    const auto roomOn = [&](double s) {
-      return w.grid.canStand(type.agent(),
-                             units::centreToAnchor(abreast + left * (s * clear), type.size));
-    };
-    if (!roomOn(side) && roomOn(-side)) side = -side;
-  }
+  if (w.settings.pathing.stepAsideToRoom)
+    side = sideWithRoom(w, unit, vehicle.position + heading * offset.dot(heading), left, side,
+                        w.typeOf(vehicle).radius);
   return stepAside(w, unit, heading, side, desired);
 }
 
@@ -292,7 +298,12 @@ void findVehicleLanes(const Refs& w, double lightest, SteeringScratch& s) {
         const Vec2 ahead = way * (1.0 / length);
         const Vec2 offset = p - s.coursePoints[*k];
         s.laneHeading[walker.id.index] = ahead;
-        s.laneSide[walker.id.index] = offset.dot(Vec2{ahead.y, -ahead.x}) >= 0.0 ? 1.0 : -1.0;
+        const Vec2 left{ahead.y, -ahead.x};
+        double side = offset.dot(left) >= 0.0 ? 1.0 : -1.0;
+        if (w.settings.pathing.stepAsideToRoom)
+          side = sideWithRoom(w, walker, s.coursePoints[*k] + ahead * offset.dot(ahead), left, side,
+                              type.radius);
+        s.laneSide[walker.id.index] = side;
         return true;
       }
       // Where along its way ahead the walker would step into the lane; one going the
