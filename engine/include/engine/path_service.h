@@ -93,9 +93,9 @@ struct PathServiceSettings {
   // at a junction too wide for lanes (pathing::keepRight's throughJunctions;
   // kFirstJunctionRulesReplayVersion).
   bool lanesThroughJunctions = true;
-  // Not a scenario key: false plays back replays before format 12, when a walker a vehicle
-  // drove into stepped off its course on the side it was on even where it had no room there
-  // (docs/cooperative.md).
+  // Not a scenario key: false plays back replays before format 12, when a walker stepping off a
+  // vehicle's course (driven into, or in another team's vehicle's lane ahead) stepped to the
+  // side it was on even where it had no room there (docs/cooperative.md).
   bool stepAsideToRoom = true;
 };
 inline constexpr int kMaxCooperativeWindow = 256;

@@ -43,8 +43,8 @@ namespace warpath::engine {
 // passage steps out of the stream and mouth a row at a time and does not wait there, and those
 // kept out nearest to the passage are let through first (older files play back with
 // pathing::KeepOutExit::HighestLevel, in the priority order of all). 12: the same records and
-// hashes; vehicles' lanes go on through junctions too wide for lanes, and a walker a vehicle
-// drives into steps aside where it has room (older files play back with lanes that end there,
+// hashes; vehicles' lanes go on through junctions too wide for lanes, and a walker stepping off
+// a vehicle's course steps to the side with room (older files play back with lanes that end there,
 // stepping aside on the side the walker is on). Version-1 files (move orders only) are refused with
 // a message saying so.
 inline constexpr std::uint32_t kReplayVersion = 12;
@@ -69,8 +69,8 @@ inline constexpr std::uint32_t kFirstForcedJumpsReplayVersion = 10;
 // play back so (PathServiceSettings::keepOutExit HighestLevel, nearestKeptOutFirst false).
 inline constexpr std::uint32_t kFirstKeptOutRulesReplayVersion = 11;
 // Formats before this one were recorded when a vehicle's lane ended where the passage grew too
-// wide for lanes, a junction included, and a walker a vehicle drove into stepped aside on the
-// side it was on even without room there: they play back so
+// wide for lanes, a junction included, and a walker stepping off a vehicle's course stepped to
+// the side it was on even without room there: they play back so
 // (PathServiceSettings::lanesThroughJunctions and stepAsideToRoom off).
 inline constexpr std::uint32_t kFirstJunctionRulesReplayVersion = 12;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
