@@ -333,6 +333,12 @@ Result<Scenario> copyWithPathing(const fs::path& dir, const std::string& scenari
   return loadRecordedScenario(file, source);
 }
 
+// A bundled chokepoint scenario (scenarios/chokepoints/FILE) as a replay records it.
+Result<Scenario> loadRecordedChokepoint(const std::string& file, ReplaySource& source) {
+  return loadRecordedScenario(fs::path(WARPATH_SOURCE_DIR) / "scenarios/chokepoints" / file,
+                              source);
+}
+
 // The rules that formats after `format` brought, set back as files of `format` play back: the
 // kept-out rules (format 11), lanes through junctions and stepping aside to the side with room
 // (12).
@@ -391,8 +397,7 @@ TEST_F(Replays, AFormat6ReplayPlaysBackWithCooperationOff) {
 // bridges scenario's crowd makes queues at once; 300 ticks are enough to part the runs.
 TEST_F(Replays, AFormat7ReplayPlaysBackWithoutCongestionAwareRoutes) {
   ReplaySource source;
-  Result<Scenario> loaded = loadRecordedScenario(
-      fs::path(WARPATH_SOURCE_DIR) / "scenarios/chokepoints/two_bridges.yaml", source);
+  Result<Scenario> loaded = loadRecordedChokepoint("two_bridges.yaml", source);
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.cooperative && s.settings.pathing.congestion);  // the defaults
@@ -448,8 +453,7 @@ TEST_F(Replays, AFormat10ReplayPlaysBackWithTheKeptOutRulesOfThen) {
   for (const auto& [scenario, lastTick] :
        {std::pair{"corridor_tanks_4.yaml", 400}, std::pair{"door_30v30.yaml", 600}}) {
     ReplaySource source;
-    Result<Scenario> loaded = loadRecordedScenario(
-        fs::path(WARPATH_SOURCE_DIR) / "scenarios/chokepoints" / scenario, source);
+    Result<Scenario> loaded = loadRecordedChokepoint(scenario, source);
     ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
     Scenario s = std::move(loaded).value();
     ASSERT_EQ(s.settings.pathing.keepOutExit, warpath::pathing::KeepOutExit::Stepwise);
@@ -462,14 +466,13 @@ TEST_F(Replays, AFormat10ReplayPlaysBackWithTheKeptOutRulesOfThen) {
 }
 
 // Format 11 was recorded when a vehicle's lane ended where the passage grew too wide for lanes,
-// a junction included, and a walker a vehicle drove into stepped aside on the side it was on:
-// a run plays back so, and such a file verifies; read as format 12 (lanes go on through
+// a junction included, and a walker stepping off a vehicle's course stepped to the side it was
+// on: a run plays back so, and such a file verifies; read as format 12 (lanes go on through
 // junctions, walkers step to the side with room) the same records do not. At the crossroads the
 // tanks reach the crossing within 10 s.
 TEST_F(Replays, AFormat11ReplayPlaysBackWithTheJunctionRulesOfThen) {
   ReplaySource source;
-  Result<Scenario> loaded = loadRecordedScenario(
-      fs::path(WARPATH_SOURCE_DIR) / "scenarios/chokepoints/crossroads.yaml", source);
+  Result<Scenario> loaded = loadRecordedChokepoint("crossroads.yaml", source);
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.lanesThroughJunctions && s.settings.pathing.stepAsideToRoom);
