@@ -291,10 +291,11 @@ TEST(Cooperative, TheUTrapAndTheGapPassAtEverySeed) {
 // (scenarios/chokepoints) streams of infantry cross the vehicles' ways at the bridge's ends
 // and in the crossing. Walkers about to step into a vehicle's lane stop short of it, and those
 // walking head on in it step out, so the tanks get through. Seeds 1-20 passed: bridge 8 and
-// crossroads 5 without the rule, 13 and 10 with it.
+// crossroads 5 without the rule, 13 and 10 with it; with format 12's lanes through junctions
+// and stepping aside to the side with room, 15 and 19 (the floors leave a seed of slack).
 TEST(Cooperative, InfantryGiveWayToVehiclesAtTheBridgeAndTheCrossroads) {
   for (const auto& [file, atLeast] :
-       {std::pair{"bridge_two_way.yaml", 11}, std::pair{"crossroads.yaml", 8}}) {
+       {std::pair{"bridge_two_way.yaml", 14}, std::pair{"crossroads.yaml", 18}}) {
     Result<Scenario> loaded = loadChokepoint(file);
     ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
     int passed = 0;
