@@ -308,8 +308,9 @@ TEST(Cooperative, InfantryGiveWayToVehiclesAtTheBridgeAndTheCrossroads) {
 // At the crossroads the paths of opposite arms cross over in the 8×8 crossing, toward goal
 // cells on the far side. With lanes through junctions (replay format 12) each tank pair holds its
 // right half across it; with lanes ending there (before) the pairs met head on in the middle
-// and knotted with the pairs crossing them. Seeds 1-8: a tank later than its bound (46 s) at
-// seed 8 only, against seeds 4, 7 and 8.
+// and knotted with the pairs crossing them. Seeds 1-8: no tank later than its bound (46 s),
+// against 3 seeds with a late tank (with lanes through junctions alone, before stepping aside to
+// room: seed 8, against seeds 4, 7 and 8).
 TEST(Cooperative, TanksKeepTheirLanesThroughTheCrossroads) {
   Result<Scenario> loaded = loadChokepoint("crossroads.yaml");
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
