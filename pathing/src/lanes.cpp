@@ -59,6 +59,15 @@ int laneShift(const ClearanceField& clearance, int size, Cell c, Cell right) {
   return std::clamp(rightHalf - toLeft, 0, toRight);
 }
 
+// Whether the anchors 1 to `shift` cells along `right` from `c` are standable for a size-s
+// agent: a shift that far keeps the footprint on its passage, and so does any shorter one.
+bool standableUpTo(const ClearanceField& clearance, int size, Cell c, Cell right, int shift) {
+  for (int k = 1; k <= shift; ++k) {
+    if (clearance.at({c.x + k * right.x, c.y + k * right.y}) < size) return false;
+  }
+  return true;
+}
+
 // Appends legal single moves from out.back() to `to`; false when a step is not legal.
 bool join(const AgentLayer& layer, const GridMap& map, std::vector<Cell>& out, Cell to) {
   const std::span<const std::uint8_t> moves = layer.moveMasks();
@@ -104,10 +113,8 @@ void keepLaneThroughJunctions(const ClearanceField& clearance, int size, std::sp
       // Where the path runs right of that line it stays (shifts only ever go right).
       const auto shiftAt = [&](std::size_t k) { return std::max(0, line - across(path[k], r)); };
       bool standable = true;
-      for (std::size_t k = i; k < end && standable; ++k) {
-        for (int s = 1; s <= shiftAt(k) && standable; ++s)
-          standable = clearance.at({path[k].x + s * r.x, path[k].y + s * r.y}) >= size;
-      }
+      for (std::size_t k = i; k < end && standable; ++k)
+        standable = standableUpTo(clearance, size, path[k], r, shiftAt(k));
       for (std::size_t k = i; k < end && standable; ++k) {
         shift[k] = shiftAt(k);
         right[k] = r;
@@ -153,12 +160,7 @@ std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<co
   // around, a cell less each, where the anchors it crosses are standable.
   const auto carry = [&](std::size_t from, std::size_t to) {
     const int s = shift[from] - 1;
-    if (s <= shift[to]) return;
-    for (int k = 1; k <= s; ++k) {
-      if (clearance.at({path[to].x + k * right[from].x, path[to].y + k * right[from].y}) <
-          agent.size)
-        return;
-    }
+    if (s <= shift[to] || !standableUpTo(clearance, agent.size, path[to], right[from], s)) return;
     shift[to] = s;
     right[to] = right[from];
   };
