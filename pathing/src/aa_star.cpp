@@ -69,6 +69,7 @@ PathStatus AnnotatedAStar::begin(Agent agent, Cell start, Cell goal, const CostF
     result_.status = *answer;
   } else {
     layer_ = &grid_.layer(agent);
+    agentSize_ = agent.size;
     resetScratch();
     const std::uint32_t startIndex = grid_.map().indexOf(start);
     const double h = octileDistance(goal.x - start.x, goal.y - start.y);
@@ -84,15 +85,20 @@ PathStatus AnnotatedAStar::begin(Agent agent, Cell start, Cell goal, const CostF
 PathStatus AnnotatedAStar::updatePath(std::uint64_t maxExpansions) {
   if (result_.status != PathStatus::Pending || maxExpansions == 0) return result_.status;
   const QueryClock clock = timing_.phaseClock();
-  if (costs_) {
-    result_.status =
-        limits_.region ? search<true, true>(maxExpansions) : search<false, true>(maxExpansions);
-  } else {
-    result_.status =
-        limits_.region ? search<true, false>(maxExpansions) : search<false, false>(maxExpansions);
-  }
+  result_.status = limits_.avoid.empty() ? searchAvoiding<false>(maxExpansions)
+                                         : searchAvoiding<true>(maxExpansions);
   result_.metrics.microseconds += clock.elapsedMicroseconds();
   return result_.status;
+}
+
+template <bool kAvoiding>
+PathStatus AnnotatedAStar::searchAvoiding(std::uint64_t maxExpansions) {
+  if (costs_) {
+    return limits_.region ? search<true, true, kAvoiding>(maxExpansions)
+                          : search<false, true, kAvoiding>(maxExpansions);
+  }
+  return limits_.region ? search<true, false, kAvoiding>(maxExpansions)
+                        : search<false, false, kAvoiding>(maxExpansions);
 }
 
 PathResult AnnotatedAStar::finalizePath(std::vector<Cell>* path) {
@@ -109,12 +115,14 @@ PathResult AnnotatedAStar::finalizePath(std::vector<Cell>* path) {
       at = static_cast<std::uint32_t>(at - (dir.dy * width + dir.dx));
     }
     std::reverse(path->begin(), path->end());
+    // The search's cost held the penalties of the footprints avoided: the path's own instead.
+    if (!limits_.avoid.empty()) result_.cost = costs_ ? costs_->pathCost(*path) : pathCost(*path);
   }
   result_.metrics.microseconds += clock.elapsedMicroseconds();
   return result_;
 }
 
-template <bool kInRegion, bool kWeighted>
+template <bool kInRegion, bool kWeighted, bool kAvoiding>
 PathStatus AnnotatedAStar::search(std::uint64_t maxExpansions) {
   const GridMap& map = grid_.map();
   const Cell goal = goal_;
@@ -135,6 +143,14 @@ PathStatus AnnotatedAStar::search(std::uint64_t maxExpansions) {
     return octileDistance(goal.x - x, goal.y - y);
   };
   const CellRect region = limits.region.value_or(CellRect{});
+  const int size = agentSize_;
+  // Whether the footprint at anchor (x, y) overlaps an area to avoid.
+  const auto inTheWay = [&](int x, int y) {
+    for (const CellRect& a : limits.avoid) {
+      if (x < a.x + a.width && a.x < x + size && y < a.y + a.height && a.y < y + size) return true;
+    }
+    return false;
+  };
 
   const std::uint32_t openStamp = generation_ << kGenerationShift;
   const std::uint32_t closedStamp = openStamp | kClosedBit;
@@ -177,6 +193,9 @@ PathStatus AnnotatedAStar::search(std::uint64_t maxExpansions) {
       if constexpr (kWeighted) {
         step = costs->moveCost({x, y}, d);
         if (!std::isfinite(step)) continue;
+      }
+      if constexpr (kAvoiding) {
+        if (inTheWay(x + dir.dx, y + dir.dy)) step += limits.avoidPenalty;
       }
       const double g = currentG + step;
       const std::uint32_t seen = stamps_[next] & ~7u;

@@ -152,6 +152,52 @@ TEST(AnnotatedAStarTest, TerrainCapabilityDecidesTheRoute) {
   EXPECT_EQ(findIllegalStep(grid, {1, kInfantry}, path), "");
 }
 
+// A jammed unit's detour: footprints to avoid are gone around where the way around costs less
+// than the penalties, and crossed where it does not; the cost reported is the path's own.
+TEST(AnnotatedAStarTest, AvoidedFootprintsAreGoneAroundWhenTheDetourIsCheaper) {
+  const GridMap map = mapFromRows(
+      "type octile\nheight 6\nwidth 12\nmap\n"
+      "............\n"
+      "............\n"
+      "............\n"
+      "............\n"
+      "............\n"
+      "@@@@@@@@@@@@\n");
+  const AnnotatedGrid grid(map);
+  AnnotatedAStar search(grid);
+  std::vector<Cell> path;
+  const Agent tank{2, kGround};
+  const PathResult straight = search.findPath(tank, {0, 1}, {10, 1}, &path);
+  ASSERT_TRUE(straight.found());
+  EXPECT_DOUBLE_EQ(straight.cost, 10.0);
+  // A parked unit's 2x2 footprint on the straight line, with room to pass below it.
+  const std::vector<CellRect> parked{{5, 1, 2, 2}};
+  SearchLimits limits;
+  limits.avoid = parked;
+  limits.avoidPenalty = 10.0;
+  const PathResult around = search.findPath(tank, {0, 1}, {10, 1}, &path, limits);
+  ASSERT_TRUE(around.found());
+  EXPECT_EQ(findIllegalStep(grid, tank, path), "");
+  for (const Cell& c : path) {
+    const bool overlaps = c.x < 7 && 5 < c.x + 2 && c.y < 3 && 1 < c.y + 2;
+    EXPECT_FALSE(overlaps) << "anchor (" << c.x << "," << c.y << ") overlaps the parked unit";
+  }
+  EXPECT_GT(around.cost, straight.cost);
+  EXPECT_DOUBLE_EQ(around.cost, pathCost(path));
+  // The same unit filling the passage from wall to wall cannot be gone around: crossed.
+  const std::vector<CellRect> wall{{5, 0, 2, 5}};
+  limits.avoid = wall;
+  const PathResult through = search.findPath(tank, {0, 1}, {10, 1}, &path, limits);
+  ASSERT_TRUE(through.found());
+  EXPECT_DOUBLE_EQ(through.cost, 10.0);
+  // A detour dearer than the penalty it saves is not taken.
+  limits.avoid = parked;
+  limits.avoidPenalty = 0.01;
+  const PathResult cheap = search.findPath(tank, {0, 1}, {10, 1}, &path, limits);
+  ASSERT_TRUE(cheap.found());
+  EXPECT_DOUBLE_EQ(cheap.cost, 10.0);
+}
+
 TEST(AnnotatedAStarTest, StatusForBadEndsAndTrivialQueries) {
   GridMap map(6, 6, Terrain::Ground);
   map.set({5, 5}, Terrain::Blocked);

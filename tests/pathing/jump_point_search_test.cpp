@@ -71,10 +71,7 @@ int regionQueriesAsAStar(const AnnotatedGrid& grid, JumpPointSearch& jps, CellRe
                     rng.between(region.y, region.y + region.height - 1)};
     const Agent agent = agentFor(q);
     if (!grid.canStand(agent, start) || !grid.canStand(agent, goal)) continue;
-    found += expectSameAsAStar(grid, jps, agent, start, goal,
-                               {.maxExpanded = UINT64_MAX, .region = region})
-                 ? 1
-                 : 0;
+    found += expectSameAsAStar(grid, jps, agent, start, goal, limitsOf(UINT64_MAX, region)) ? 1 : 0;
   }
   return found;
 }
@@ -178,8 +175,7 @@ TEST(JumpPointSearch, StatusForBadEndsBudgetsAndTrivialQueries) {
   ASSERT_TRUE(same.found());
   EXPECT_EQ(same.cost, 0.0);
   EXPECT_EQ(path, (std::vector<Cell>{{2, 2}}));
-  EXPECT_EQ(jps.findPath(agent, {0, 0}, {11, 7}, &path, {.maxExpanded = 0, .region = std::nullopt})
-                .status,
+  EXPECT_EQ(jps.findPath(agent, {0, 0}, {11, 7}, &path, limitsOf(0, std::nullopt)).status,
             PathStatus::BudgetExhausted);
   EXPECT_TRUE(path.empty());
 }

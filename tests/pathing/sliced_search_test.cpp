@@ -325,9 +325,8 @@ TEST(SlicedSearch, LimitsHoldWhenSliced) {
   const std::vector<CompletenessCase> cases =
       drawCompletenessCases(grid, {agent, {1, agent.capability}}, 5, 6, 6, 0);
   for (const SearchLimits& limits :
-       {SearchLimits{.maxExpanded = 1, .region = {}}, SearchLimits{.maxExpanded = 37, .region = {}},
-        SearchLimits{.region = CellRect{10, 10, 40, 35}},
-        SearchLimits{.maxExpanded = 60, .region = CellRect{0, 20, 70, 30}}}) {
+       {limitsOf(1, std::nullopt), limitsOf(37, std::nullopt),
+        limitsOf(UINT64_MAX, CellRect{10, 10, 40, 35}), limitsOf(60, CellRect{0, 20, 70, 30})}) {
     for (const CompletenessCase& c : cases) {
       const auto check = [&](auto& whole, auto& sliced, const char* name) {
         Answer expected;

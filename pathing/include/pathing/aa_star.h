@@ -52,12 +52,16 @@ class AnnotatedAStar {
   PathStatus begin(Agent agent, Cell start, Cell goal, const CostField* costs,
                    const SearchLimits& limits);
   // Expands until done or `maxExpansions` more were expanded (then Pending).
-  template <bool kInRegion, bool kWeighted>
+  template <bool kInRegion, bool kWeighted, bool kAvoiding>
   PathStatus search(std::uint64_t maxExpansions);
+  // The dispatch of search() on the query's limits and costs.
+  template <bool kAvoiding>
+  PathStatus searchAvoiding(std::uint64_t maxExpansions);
 
   const AnnotatedGrid& grid_;
   // The query under way: its arguments and its result so far (status Pending until done).
   const AgentLayer* layer_ = nullptr;
+  int agentSize_ = 1;
   Cell start_;
   Cell goal_;
   const CostField* costs_ = nullptr;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include "pathing/enum_names.h"
@@ -54,7 +55,21 @@ struct SearchLimits {
   // When set, the agent's anchor never leaves this block (start and goal must lie in it);
   // a goal not reachable inside it is Unreachable.
   std::optional<CellRect> region;
+  // Footprints to keep off where a way around costs less: a move onto an anchor whose footprint
+  // overlaps one of them costs `avoidPenalty` more (in the search's cost unit), so the path
+  // goes around them unless every way around costs more than the penalties it saves (a jammed
+  // unit's detour around the units standing in its way). The result's cost is the path's own,
+  // without penalties. Honoured by AnnotatedAStar; the areas must outlive the query.
+  std::span<const CellRect> avoid;
+  double avoidPenalty = 0.0;  // [Limit: >= 0]
 };
+// Limits of expansions and region alone.
+inline SearchLimits limitsOf(std::uint64_t maxExpanded, std::optional<CellRect> region) {
+  SearchLimits limits;
+  limits.maxExpanded = maxExpanded;
+  limits.region = region;
+  return limits;
+}
 
 struct PathResult {
   PathStatus status = PathStatus::Unreachable;
