@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "engine/fnv1a.h"
 #include "pathing/moves.h"
@@ -73,7 +74,7 @@ bool sameOnMap(const CostProfile& a, const CostProfile& b, Capability present) {
 PathService::PathService(const AnnotatedGrid& grid, const PathServiceSettings& settings,
                          std::vector<Capability> capabilities, int maxAgentSize,
                          std::vector<CostProfile> costProfiles)
-    : grid_(grid), settings_(settings) {
+    : grid_(grid), settings_(settings), detourSearch_(grid) {
   if (std::string problem = problemWith(settings); !problem.empty())
     throw std::invalid_argument(problem);
   const auto began = std::chrono::steady_clock::now();
@@ -161,6 +162,7 @@ const ClusterAbstraction* PathService::abstraction() const {
 PathService::~PathService() = default;
 
 std::uint64_t PathService::slicedExpanded() const {
+  if (detourInFlight_) return detourSearch_.expandedSoFar();
   return inFlight_ ? inFlight_->expandedSoFar() : 0;
 }
 
@@ -173,6 +175,7 @@ void PathService::changeTerrain(const TerrainChange& change) {
   if (!change.changed) return;
   // A search under way read the old terrain (and graphs about to be repaired): begun again.
   inFlight_ = nullptr;
+  detourInFlight_ = false;
   const auto began = std::chrono::steady_clock::now();
   ++metrics_.terrainChanges;
   // The graphs catch up in chunks a few clusters a side, within the ticks' budgets (serve()):
@@ -232,7 +235,10 @@ void PathService::request(const PathRequest& request) {
 }
 
 void PathService::cancel(UnitId unit) {
-  if (inFlight_ && queue_.front().unit == unit) inFlight_ = nullptr;
+  if (!queue_.empty() && queue_.front().unit == unit) {
+    inFlight_ = nullptr;
+    detourInFlight_ = false;
+  }
   std::erase_if(queue_, [&](const PathRequest& r) { return r.unit == unit; });
   if (congestion_) congestion_->cancel(unit);
 }
@@ -250,6 +256,75 @@ std::uint64_t PathService::repairChunk() {
   metrics_.repairExpanded += spent;
   metrics_.repairMilliseconds += elapsedMilliseconds(began);
   return spent;
+}
+
+PathService::DetourOutcome PathService::detourFor(const PathRequest& request, std::uint64_t budget,
+                                                  std::uint64_t& spent) {
+  DetourOutcome outcome;
+  const Detour& detour = *request.detour;
+  const bool weighted = request.costProfile >= 0 &&
+                        static_cast<std::size_t>(request.costProfile) < distinctOf_.size();
+  const WeightedPlanner* w = weighted ? &weightedPlanner(request.costProfile) : nullptr;
+  // Under terrain costs the detour plans by the profile's own costs: its AA* field, or its
+  // graph's.
+  const CostField* costs = w ? (w->field         ? &*w->field
+                                : w->abstraction ? w->abstraction->costs()
+                                                 : nullptr)
+                             : nullptr;
+  if (w && !costs) return outcome;
+  std::vector<Cell> cells;
+  PathResult result;
+  if (!detourInFlight_) {
+    SearchLimits limits;
+    limits.region = detour.region;
+    limits.avoid = detour.avoid;  // held by the request, queued until the search ends
+    limits.avoidPenalty = kDetourPenalty * (costs ? costs->cheapest() : 1.0);
+    const Agent agent = w ? w->agent : request.agent;
+    const Cell rejoin = detour.rest->cells[detour.rejoin];
+    if (costs) {
+      detourSearch_.beginPath(agent, request.start, rejoin, *costs, limits);
+    } else {
+      detourSearch_.beginPath(agent, request.start, rejoin, limits);
+    }
+    detourInFlight_ = true;
+  }
+  const std::uint64_t before = detourSearch_.expandedSoFar();
+  const PathStatus status =
+      detourSearch_.updatePath(settings_.sliced ? budget : pathing::kUnboundedExpansions);
+  spent += detourSearch_.expandedSoFar() - before;
+  if (status == PathStatus::Pending) {
+    ++metrics_.slices;
+    outcome.status = PathStatus::Pending;
+    return outcome;
+  }
+  detourInFlight_ = false;
+  result = detourSearch_.finalizePath(&cells);
+  ++metrics_.searches;
+  metrics_.expanded += result.metrics.expanded;
+  metrics_.microseconds += result.metrics.microseconds;
+  if (!result.found()) return outcome;
+  ++metrics_.found;
+  ++metrics_.detours;
+  // The way around may cross the rest of the path beyond the cell it was sent to (it went round
+  // the far end of an obstacle the path runs along): it joins the rest at the first such
+  // crossing, at the crossing's farthest cell of the rest, instead of doubling back.
+  const std::vector<Cell>& rest = detour.rest->cells;
+  std::unordered_map<std::uint32_t, std::size_t> restAt;
+  for (std::size_t j = detour.rejoin; j < rest.size(); ++j)
+    restAt[grid_.map().indexOf(rest[j])] = j;
+  std::size_t joins = detour.rejoin;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const auto it = restAt.find(grid_.map().indexOf(cells[i]));
+    if (it == restAt.end()) continue;
+    cells.resize(i + 1);
+    joins = it->second;
+    break;
+  }
+  cells.insert(cells.end(), rest.begin() + static_cast<std::ptrdiff_t>(joins) + 1, rest.end());
+  if (costs) outcome.seconds = costs->pathCost(cells);
+  outcome.status = PathStatus::Found;
+  outcome.cells = std::move(cells);
+  return outcome;
 }
 
 std::optional<PathResult> PathService::search(const PathRequest& request, std::uint64_t budget,
@@ -317,6 +392,24 @@ std::uint64_t PathService::serve(std::vector<PathDelivery>& out, double now) {
     // path that now meets a queue is planned again around it.
     Congestion* congestion = congestion_ && front.speed > 0.0 ? &*congestion_ : nullptr;
     if (congestion) congestion->cancel(front.unit);
+    if (front.detour) {
+      if (spent >= settings_.expansionBudget) break;
+      DetourOutcome detour = detourFor(front, settings_.expansionBudget - spent, spent);
+      if (detour.status == PathStatus::Pending) break;  // sliced: resumed next tick
+      if (detour.status == PathStatus::Found) {
+        const PathRequest request = front;
+        queue_.pop_front();
+        auto path = std::make_shared<const PlannedPath>(planned(std::move(detour.cells)));
+        if (congestion)
+          congestion->book(request.unit, request.agent, request.speed, path->cells, now);
+        out.push_back(
+            {request.unit, request.serial, PathStatus::Found, std::move(path), detour.seconds});
+        continue;
+      }
+      // No way around inside the region: planned as any request, its detour dropped so that
+      // a sliced search of it does not look again.
+      queue_.front().detour = nullptr;
+    }
     auto hit = cache_.find(key);
     if (congestion && hit != cache_.end() && hit->second.path &&
         congestion->waitAlong(front.agent, front.speed, hit->second.path->cells, now) > 0.0)

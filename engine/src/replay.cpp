@@ -401,6 +401,7 @@ Result<Scenario> replayScenario(const Replay& replay) {
     defaults.pathing.lanesThroughJunctions = false;
     defaults.pathing.stepAsideToRoom = false;
   }
+  if (replay.version < kFirstJamDetoursReplayVersion) defaults.pathing.jamDetours = false;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

@@ -375,6 +375,50 @@ TEST(Cooperative, ARiflemanBetweenATankAndAWallStepsOutOnTheOpenSide) {
   }
 }
 
+// A repath after a jam changes something (jamDetours, replay format 13): a road 5 cells wide
+// runs below a wall, with another above it, and a squad of 15 riflemen holds position across the
+// lower road, braced. A tank on the lower road jams against the squad at 21 s, asks for a detour
+// around the units standing there, goes round the wall on the upper road and arrives at 48 s
+// (free flow 27 s). Re-planning its window against the reservations (or asking for the same
+// path) instead, it stays jammed against the squad until the run ends.
+TEST(Cooperative, AJammedTankTakesADetourAroundASquadHoldingItsRoad) {
+  std::string rows;
+  for (int y = 0; y < 13; ++y) {
+    const std::string wall = y >= 5 && y <= 7 ? std::string(19, '@') : std::string(19, '.');
+    rows +=
+        std::string(y > 0 ? ", '" : "'") + std::string(20, '.') + wall + std::string(21, '.') + "'";
+  }
+  const std::string text =
+      "map: {rows: [" + rows +
+      "]}\n"
+      "catalogue: ../assets/units.yaml\n"
+      "duration: 60\n"
+      "combat: {enabled: false}\n"
+      "teams: [blue, red]\n"
+      "groups:\n"
+      "  - {name: squad, team: red, type: infantry, count: 15,\n"
+      "     spawn: {x: 28, y: 8, w: 3, h: 5}}\n"
+      "  - {name: tank, team: blue, type: tank, count: 1,\n"
+      "     spawn: {x: 1, y: 9, w: 3, h: 3}, goal: {x: 55, y: 9, w: 3, h: 3}}\n"
+      "orders:\n"
+      "  - {at: 0, group: squad, order: hold}\n"
+      "expectations:\n"
+      "  - arrival_rate: {team: blue, type: tank, at_least: 1.0, by: 50}\n";
+  Scenario s = parse(text);
+  ASSERT_TRUE(s.settings.pathing.jamDetours);  // the default
+  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+    const Report r = runToEnd(s, seed);
+    EXPECT_TRUE(r.passed()) << "seed " << seed;
+    EXPECT_GE(r.pathing.detours, 1u) << "seed " << seed;
+  }
+  s.settings.pathing.jamDetours = false;
+  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+    const Report r = runToEnd(s, seed);
+    EXPECT_FALSE(r.passed()) << "seed " << seed;
+    EXPECT_EQ(r.pathing.detours, 0u) << "seed " << seed;
+  }
+}
+
 // Congestion-aware routes (engine/congestion.h): 200 infantry cross a river where a near bridge
 // 2 cells wide lies in their way and a far one 3 cells wide 16 rows south. Their routes book
 // the near bridge's queue as they are planned, and the later ones, for whom the wait costs more

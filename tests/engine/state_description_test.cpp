@@ -82,6 +82,7 @@ TEST(StateDescription, NamesEveryFieldOfEveryStateType) {
   expectComplete<Shot>("Shot");
   expectComplete<Command>("Command");
   expectComplete<PathRequest>("PathRequest");
+  expectComplete<Detour>("Detour");
   expectComplete<TerrainEdit>("TerrainEdit");
   expectComplete<TerrainLog>("TerrainLog");
   expectComplete<WorldState>("WorldState");
@@ -142,6 +143,8 @@ struct Perturber {
     } else if constexpr (std::is_same_v<F, SharedPlan>) {
       f = std::make_shared<const TimedPlan>(
           timedPlan({{{1, 2}, 3}}, pathing::CooperativeStatus::Windowed, true));
+    } else if constexpr (std::is_same_v<F, DetourIfAny>) {  // refers to the request's field
+      const_cast<std::shared_ptr<const Detour>&>(f.detour) = std::make_shared<const Detour>();
     } else if constexpr (requires { f.push_back({}); }) {
       f.push_back({});
     } else if constexpr (requires { f.get(); }) {
@@ -185,6 +188,7 @@ TEST(StateDescription, EveryFieldReachesTheHash) {
   expectEveryFieldChangesTheHash<Shot>("Shot", hashOf<Shot>);
   expectEveryFieldChangesTheHash<Command>("Command", hashOf<Command>);
   expectEveryFieldChangesTheHash<PathRequest>("PathRequest", hashOf<PathRequest>);
+  expectEveryFieldChangesTheHash<Detour>("Detour", hashOf<Detour>);
   expectEveryFieldChangesTheHash<RunState>("RunState", hashOf<RunState>);
   expectEveryFieldChangesTheHash<TerrainEdit>("TerrainEdit", hashOf<TerrainEdit>);
   expectEveryFieldChangesTheHash<TerrainLog>("TerrainLog", hashOf<TerrainLog>);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -274,6 +275,114 @@ TEST(PathService, BudgetSpreadsRequestsAndCacheAnswersRepeats) {
   EXPECT_EQ(out[0].status, pathing::PathStatus::Found);
   EXPECT_EQ(service.metrics().requests, 3u);
   EXPECT_EQ(service.metrics().searches, 2u);
+}
+
+// A jammed unit's detour (PathRequest::detour): planned by AA* inside its region around the
+// footprints to avoid, back onto the rest of its path, and on along it; the cache is neither
+// read nor written. Where the region holds no way around, the request is planned as any other.
+TEST(PathService, ADetourGoesAroundWhatStandsOnThePathAndOnAlongIt) {
+  // A wall across x = 20 with a 2-cell gap at rows 10-11 (the only way) and open ground
+  // elsewhere.
+  pathing::GridMap map(40, 24);
+  for (int y = 0; y < 24; ++y) {
+    if (y != 10 && y != 11) map.set({20, y}, Terrain::Blocked);
+  }
+  auto grid = std::make_shared<const pathing::AnnotatedGrid>(std::move(map));
+  PathServiceSettings settings;
+  settings.algorithm = pathing::Algorithm::HaaHigh;
+  const pathing::Agent agent{1, pathing::Capability::of({Terrain::Ground})};
+  PathService service(*grid, settings, {agent.capability}, 1);
+  service.request({{0, 0}, 1, agent, {2, 4}, {37, 4}});
+  std::vector<PathDelivery> out;
+  service.serve(out);
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_EQ(out[0].status, pathing::PathStatus::Found);
+  const SharedPath path = out[0].path;
+  // Something stands on the path at (10, 7)-(11, 8); a way around it inside the region.
+  const auto onPath = [&](const SharedPath& p, pathing::CellRect r) {
+    return std::any_of(p->cells.begin(), p->cells.end(), [&](pathing::Cell c) {
+      return c.x >= r.x && c.x < r.x + r.width && c.y >= r.y && c.y < r.y + r.height;
+    });
+  };
+  std::size_t blocked = 0;
+  while (blocked < path->cells.size() &&
+         !(path->cells[blocked].x >= 10 && path->cells[blocked].y >= 7))
+    ++blocked;
+  ASSERT_LT(blocked, path->cells.size());
+  const pathing::CellRect standing{path->cells[blocked].x, path->cells[blocked].y, 2, 2};
+  auto detour = std::make_shared<Detour>();
+  detour->avoid = {standing};
+  detour->rest = path;
+  detour->rejoin = static_cast<std::uint32_t>(blocked + 4);
+  detour->region = {0, 0, 20, 24};
+  const std::uint64_t searches = service.metrics().searches;
+  service.request({{0, 0}, 2, agent, {2, 4}, {37, 4}, -1, 0.0, detour});
+  out.clear();
+  service.serve(out);
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_EQ(out[0].status, pathing::PathStatus::Found);
+  EXPECT_FALSE(onPath(out[0].path, standing));
+  EXPECT_TRUE(onPath(path, standing));
+  EXPECT_EQ(pathing::findIllegalStep(*grid, agent, out[0].path->cells), "");
+  EXPECT_EQ(out[0].path->cells.back(), (pathing::Cell{37, 4}));
+  // On along the rest: its last cells are the old path's.
+  EXPECT_TRUE(std::equal(path->cells.end() - 10, path->cells.end(), out[0].path->cells.end() - 10));
+  // No cell twice: a way around that meets the rest beyond its rejoin cell joins it there.
+  std::set<std::pair<int, int>> seen;
+  for (const pathing::Cell& c : out[0].path->cells)
+    EXPECT_TRUE(seen.insert({c.x, c.y}).second) << c.x << "," << c.y;
+  EXPECT_EQ(service.metrics().detours, 1u);
+  EXPECT_EQ(service.metrics().searches, searches + 1);
+  EXPECT_EQ(service.metrics().cacheHits, 0u);
+  // Sent beyond the wall through a region that leaves out the gap: no way inside it, so the
+  // request is planned as any (here from the cache, through the gap).
+  detour = std::make_shared<Detour>(*detour);
+  detour->rejoin = static_cast<std::uint32_t>(path->cells.size() - 1);
+  detour->region = {0, 0, 40, 8};
+  service.request({{0, 0}, 3, agent, {2, 4}, {37, 4}, -1, 0.0, detour});
+  out.clear();
+  service.serve(out);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].path, path);  // the cached answer
+  EXPECT_EQ(service.metrics().detours, 1u);
+}
+
+// A way around the far end of a wall that the path runs along meets the rest of the path
+// beyond the cell it was sent to: it joins the rest there instead of doubling back.
+TEST(PathService, ADetourJoinsTheRestWhereItFirstMeetsIt) {
+  pathing::GridMap map(40, 12);
+  for (int x = 10; x < 26; ++x) {
+    map.set({x, 5}, Terrain::Blocked);
+    map.set({x, 6}, Terrain::Blocked);
+  }
+  auto grid = std::make_shared<const pathing::AnnotatedGrid>(std::move(map));
+  PathServiceSettings settings;
+  settings.algorithm = pathing::Algorithm::AStar;
+  const pathing::Agent agent{1, pathing::Capability::of({Terrain::Ground})};
+  PathService service(*grid, settings, {agent.capability}, 1);
+  std::vector<pathing::Cell> straight;
+  for (int x = 2; x <= 37; ++x)
+    straight.push_back({x, 8});
+  auto detour = std::make_shared<Detour>();
+  detour->rest = std::make_shared<const PlannedPath>(planned(straight));
+  detour->avoid = {{14, 7, 3, 5}};  // across the road below the wall
+  detour->rejoin = 16;              // (18, 8), just past them
+  detour->region = {0, 0, 40, 12};
+  service.request({{0, 0}, 1, agent, {2, 8}, {37, 8}, -1, 0.0, detour});
+  std::vector<PathDelivery> out;
+  service.serve(out);
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_EQ(out[0].status, pathing::PathStatus::Found);
+  const std::vector<pathing::Cell>& cells = out[0].path->cells;
+  EXPECT_EQ(pathing::findIllegalStep(*grid, agent, cells), "");
+  EXPECT_EQ(cells.back(), (pathing::Cell{37, 8}));
+  // Over the wall and down past its east end, then east along the road: never back west to
+  // (18, 8).
+  EXPECT_TRUE(std::none_of(cells.begin(), cells.end(),
+                           [](pathing::Cell c) { return c.y == 8 && c.x >= 13 && c.x <= 24; }));
+  std::set<std::pair<int, int>> seen;
+  for (const pathing::Cell& c : cells)
+    EXPECT_TRUE(seen.insert({c.x, c.y}).second) << c.x << "," << c.y;
 }
 
 // Under terrain costs each distinct profile gets one planner (a weighted graph for HAA*),

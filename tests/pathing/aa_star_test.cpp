@@ -155,15 +155,7 @@ TEST(AnnotatedAStarTest, TerrainCapabilityDecidesTheRoute) {
 // A jammed unit's detour: footprints to avoid are gone around where the way around costs less
 // than the penalties, and crossed where it does not; the cost reported is the path's own.
 TEST(AnnotatedAStarTest, AvoidedFootprintsAreGoneAroundWhenTheDetourIsCheaper) {
-  const GridMap map = mapFromRows(
-      "type octile\nheight 6\nwidth 12\nmap\n"
-      "............\n"
-      "............\n"
-      "............\n"
-      "............\n"
-      "............\n"
-      "@@@@@@@@@@@@\n");
-  const AnnotatedGrid grid(map);
+  const AnnotatedGrid grid(GridMap(12, 5, Terrain::Ground));  // a road 5 cells wide
   AnnotatedAStar search(grid);
   std::vector<Cell> path;
   const Agent tank{2, kGround};

@@ -131,6 +131,7 @@ nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& 
                   {"window_slices", m.windowSlices},
                   {"congestion", ps.cooperative && ps.congestion},
                   {"congested_searches", m.congestedSearches},
+                  {"detours", m.detours},
                   {"search_us", m.microseconds},
                   {"preprocess_ms", m.preprocessMilliseconds}};
 

@@ -97,6 +97,10 @@ struct PathServiceSettings {
   // vehicle's course (driven into, or in another team's vehicle's lane ahead) stepped to the
   // side it was on even where it had no room there (docs/cooperative.md).
   bool stepAsideToRoom = true;
+  // Not a scenario key: false plays back replays before format 13, when a cooperating unit
+  // without a timed window that jammed asked for its path again instead of a detour around the
+  // units standing in its way (docs/cooperative.md, "Detours").
+  bool jamDetours = true;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
 // [Unit: expansions] what sliced window searches may spend in a tick the spatial searches left
@@ -104,6 +108,8 @@ inline constexpr int kMaxCooperativeWindow = 256;
 inline constexpr std::uint64_t kWindowBatch = 256;
 // [Unit: clusters] side of a chunk of graph repair (PathService::changeTerrain).
 inline constexpr int kRepairChunkClusters = 4;
+
+struct Detour;
 
 struct PathRequest {
   UnitId unit;
@@ -115,6 +121,8 @@ struct PathRequest {
   // [Unit: cells/s] the unit's top speed, for the waits of congestion-aware routes; 0: the
   // request neither meets nor joins a queue.
   double speed = 0.0;
+  // A jammed unit's way around what stands in its way; null for any other request.
+  std::shared_ptr<const Detour> detour = nullptr;
 };
 
 // What one kind of unit plans by under terrain costs: its agent and its cost per terrain.
@@ -132,6 +140,22 @@ struct PlannedPath {
 };
 PlannedPath planned(std::vector<pathing::Cell> cells);
 using SharedPath = std::shared_ptr<const PlannedPath>;
+
+// A jammed unit's detour (docs/cooperative.md, "Detours"): the service plans from the request's
+// start to `rest`'s cell `rejoin` by AA* inside `region`, entering the footprints in `avoid`
+// (the units standing in its way) only at a penalty of kDetourPenalty cells each anchor, and
+// delivers that way on along `rest` to its end. Where no way inside the region is found, the
+// request is planned as any other. The answer is neither cached nor taken from the cache.
+struct Detour {
+  std::vector<pathing::CellRect> avoid;
+  pathing::CellRect region;
+  SharedPath rest;  // [Limit: rejoin < rest->cells.size(), region holds the request's start and it]
+  std::uint32_t rejoin = 0;
+};
+// [Unit: cells of travel] what a detour pays for each anchor it enters whose footprint overlaps a
+// unit standing in the way (times the cheapest cost of a cell under terrain costs): a way around
+// is taken when it is at most this much longer per anchor saved.
+inline constexpr double kDetourPenalty = 10.0;
 
 struct PathDelivery {
   UnitId unit;
@@ -166,13 +190,14 @@ struct PathServiceMetrics {
   std::uint64_t maxTickExpanded = 0;
   std::uint64_t slices = 0;        // sliced searches' pauses at the end of a tick's budget
   std::uint64_t windowSlices = 0;  // sliced window searches' pauses (countWindows)
+  std::uint64_t detours = 0;       // detours found (PathRequest::detour); also in `searches`
   bool operator==(const PathServiceMetrics& o) const {  // wall-clock fields excluded
     return std::tie(requests, cacheHits, searches, found, failed, expanded, maxQueue,
                     terrainChanges, cacheDropped, repairChunks, repairExpanded, congestedSearches,
-                    maxTickExpanded, slices, windowSlices) ==
+                    maxTickExpanded, slices, windowSlices, detours) ==
            std::tie(o.requests, o.cacheHits, o.searches, o.found, o.failed, o.expanded, o.maxQueue,
                     o.terrainChanges, o.cacheDropped, o.repairChunks, o.repairExpanded,
-                    o.congestedSearches, o.maxTickExpanded, o.slices, o.windowSlices);
+                    o.congestedSearches, o.maxTickExpanded, o.slices, o.windowSlices, o.detours);
   }
 };
 
@@ -261,6 +286,16 @@ class PathService {
   // Plans `request` within `budget` expansions when sliced (else to its end), with the
   // congestion waits at `now` when `congestion` is given: the result, or nullopt while its
   // search is left pending for the next tick. Adds what it spends to `spent`.
+  // The search of `request`'s detour, within `budget` expansions when sliced (else to its end):
+  // Pending while it is left for the next tick; Found with its cells (its start, the way around,
+  // the rest of the path) and under terrain costs their cost in `seconds`; else no way inside its
+  // region. Adds what it expands to `spent`.
+  struct DetourOutcome {
+    pathing::PathStatus status = pathing::PathStatus::Unreachable;
+    std::vector<pathing::Cell> cells;
+    double seconds = -1.0;
+  };
+  DetourOutcome detourFor(const PathRequest& request, std::uint64_t budget, std::uint64_t& spent);
   std::optional<pathing::PathResult> search(const PathRequest& request, std::uint64_t budget,
                                             double now, Congestion* congestion,
                                             std::uint64_t& spent, std::vector<pathing::Cell>& cells,
@@ -270,6 +305,8 @@ class PathService {
   PathServiceSettings settings_;
   std::unique_ptr<pathing::ClusterAbstraction> abstraction_;
   std::optional<pathing::Planner> planner_;
+  pathing::AnnotatedAStar detourSearch_;  // detours plan by AA*, whatever the algorithm
+  bool detourInFlight_ = false;           // sliced: detourSearch_ runs for the queue's head
   std::vector<CostProfile> costProfiles_;
   // Terrains the map has or had: a profile's planner serves the terrains seen so far.
   pathing::Capability present_;

@@ -45,9 +45,11 @@ namespace warpath::engine {
 // pathing::KeepOutExit::HighestLevel, in the priority order of all). 12: the same records and
 // hashes; vehicles' lanes go on through junctions too wide for lanes, and a walker stepping off
 // a vehicle's course steps to the side with room (older files play back with lanes that end there,
-// stepping aside on the side the walker is on). Version-1 files (move orders only) are refused with
-// a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 12;
+// stepping aside on the side the walker is on). 13: the same records and hashes; a cooperating
+// unit without a timed window that jams asks for a detour around the units standing in its way
+// (older files play back asking for its path again). Version-1 files (move orders only) are
+// refused with a message saying so.
+inline constexpr std::uint32_t kReplayVersion = 13;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -73,6 +75,9 @@ inline constexpr std::uint32_t kFirstKeptOutRulesReplayVersion = 11;
 // the side it was on even without room there: they play back so
 // (PathServiceSettings::lanesThroughJunctions and stepAsideToRoom off).
 inline constexpr std::uint32_t kFirstJunctionRulesReplayVersion = 12;
+// Formats before this one were recorded when a cooperating unit without a timed window that
+// jammed asked for the same path again: they play back so (PathServiceSettings::jamDetours off).
+inline constexpr std::uint32_t kFirstJamDetoursReplayVersion = 13;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

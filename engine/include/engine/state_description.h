@@ -172,6 +172,22 @@ void describe(V& v, const Command& c) {
   v("targets", c.targets);
 }
 template <class V>
+void describe(V& v, const Detour& d) {
+  v("avoid", d.avoid);
+  v("region", d.region);
+  v("rest", d.rest);
+  v("rejoin", d.rejoin);
+}
+// A request's detour when it has one, and nothing at all when it has none: requests without
+// one hash as they did before detours (replay format 13) existed.
+struct DetourIfAny {
+  const std::shared_ptr<const Detour>& detour;
+};
+template <class V>
+void describe(V& v, const DetourIfAny& d) {
+  if (d.detour) v("detour", *d.detour);
+}
+template <class V>
 void describe(V& v, const PathRequest& r) {
   v("unit", r.unit);
   v("serial", r.serial);
@@ -180,6 +196,7 @@ void describe(V& v, const PathRequest& r) {
   v("goal", r.goal);
   v(Since{5}, "costProfile", r.costProfile);
   v(Since{8}, "speed", r.speed);
+  v("detour", DetourIfAny{r.detour});
 }
 // Box2D's own state (contacts, warm starts) is not reachable; the bodies' positions and
 // velocities are, through the units they move (read back every step), and so is the count.

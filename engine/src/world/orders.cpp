@@ -257,6 +257,76 @@ void requestPath(Refs& w, Unit& unit) {
        w.settings.pathing.terrainCosts ? unit.type : -1, w.typeOf(unit).maxSpeed()});
 }
 
+namespace {
+
+bool overlaps(const CellRect& a, const CellRect& b) {
+  return a.x < b.x + b.width && b.x < a.x + a.width && a.y < b.y + b.height && b.y < a.y + a.height;
+}
+
+// The smallest block holding both.
+CellRect joined(const CellRect& a, const CellRect& b) {
+  const int x0 = std::min(a.x, b.x);
+  const int y0 = std::min(a.y, b.y);
+  return {x0, y0, std::max(a.x + a.width, b.x + b.width) - x0,
+          std::max(a.y + a.height, b.y + b.height) - y0};
+}
+
+}  // namespace
+
+bool requestDetour(Refs& w, Unit& unit) {
+  const int size = w.typeOf(unit).size;
+  const std::vector<Cell>& path = unit.path->cells;
+  // The stretch looked at: four footprints and a few cells ahead, as the footprint sweeps it.
+  const std::size_t from = std::min(unit.next, path.size() - 1);
+  const std::size_t to = std::min(path.size(), from + static_cast<std::size_t>(4 * size + 4));
+  const auto footprint = [&](std::size_t i) { return CellRect{path[i].x, path[i].y, size, size}; };
+  CellRect swept = footprint(from);
+  for (std::size_t i = from + 1; i < to; ++i)
+    swept = joined(swept, footprint(i));
+  auto detour = std::make_shared<Detour>();
+  std::size_t last = from;  // the last cell of the stretch that meets one of them
+  for (const Unit& other : w.state.units) {
+    if (!other.alive() || other.id == unit.id) continue;
+    // Standing for good: parked, holding, waiting for orders. Units on their way are traffic,
+    // for the windows and steering: going round crawling ones too made crowds worse
+    // (docs/cooperative.md, "Detours").
+    if (other.state == UnitState::Moving) continue;
+    const int otherSize = w.typeOf(other).size;
+    const Cell at = units::centreToAnchor(other.position, otherSize);
+    const CellRect body{at.x, at.y, otherSize, otherSize};
+    if (!overlaps(swept, body)) continue;
+    bool inTheWay = false;
+    for (std::size_t i = from; i < to; ++i) {
+      if (!overlaps(footprint(i), body)) continue;
+      inTheWay = true;
+      last = std::max(last, i);
+    }
+    if (inTheWay) detour->avoid.push_back(body);
+  }
+  // Standing at the end of the path, they are at the goal: a way around them leads nowhere
+  // (a goal cell taken is the goal rule's to change).
+  if (detour->avoid.empty() || last + static_cast<std::size_t>(size + 2) >= path.size() - 1)
+    return false;
+  // Back onto the path a footprint and two cells past the last of them, through a block around
+  // them all with room to go round.
+  detour->rest = unit.path;
+  detour->rejoin = static_cast<std::uint32_t>(
+      std::min(path.size() - 1, last + static_cast<std::size_t>(size + 2)));
+  const Cell start = nearestStandable(w, unit);
+  CellRect around = joined(CellRect{start.x, start.y, size, size}, footprint(detour->rejoin));
+  for (const CellRect& body : detour->avoid)
+    around = joined(around, body);
+  const int margin = 2 * size + 4;
+  around = {around.x - margin, around.y - margin, around.width + 2 * margin,
+            around.height + 2 * margin};
+  detour->region = w.map().clip(around);
+  ++unit.pathSerial;
+  w.state.paths->request({unit.id, unit.pathSerial, w.typeOf(unit).agent(), start, unit.goalCell,
+                          w.settings.pathing.terrainCosts ? unit.type : -1,
+                          w.typeOf(unit).maxSpeed(), std::move(detour)});
+  return true;
+}
+
 std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
   scratch.clear();
   const std::uint64_t spent =

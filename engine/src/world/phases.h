@@ -48,6 +48,10 @@ void pursue(Refs& w, Unit& unit, bool force);
 // The anchor nearest the unit's body where its footprint fits.
 pathing::Cell nearestStandable(const Refs& w, const Unit& unit);
 void requestPath(Refs& w, Unit& unit);
+// A jammed unit asks for a way around the units standing for good (not following a path) on the
+// next stretch of its path, back onto the path past them (docs/cooperative.md, "Detours"). False,
+// asking nothing, when none stands there, or they stand at the end of the path.
+bool requestDetour(Refs& w, Unit& unit);
 // Serves the path service within its budget and hands each answer to its unit; returns the
 // expansions spent.
 std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch);

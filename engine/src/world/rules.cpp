@@ -64,13 +64,16 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor) {
       w.log(EventKind::StuckFlagged, unit);
     }
     // Near the goal, a crowd is the likely cause: a free goal cell resolves it.
-    if (movingToArea && nearEnd) reassignGoal(w, unit);
+    const bool newGoal = movingToArea && nearEnd && reassignGoal(w, unit);
     w.log(EventKind::Repath, unit, 0);
+    // Units standing for good on the path ahead would jam it again: a way around them
+    // (detours). Else the traffic jammed it: a unit keeping to a window plans a new one
+    // against today's reservations (at the same place at a passage's gate); one following its
+    // path asks for it again, which plans its window anew too.
+    const bool detours = settings.pathing.cooperative && settings.pathing.jamDetours && !newGoal;
     if (cooperative) {
-      // The spatial path is not what jammed: a new window against today's reservations is
-      // (at the same place at a passage's gate).
-      expireWindow(w, unit);
-    } else {
+      if (!detours || !requestDetour(w, unit)) expireWindow(w, unit);
+    } else if (!detours || !requestDetour(w, unit)) {
       requestPath(w, unit);
     }
   }
