@@ -116,6 +116,7 @@ World::World(std::shared_ptr<const AnnotatedGrid> grid, std::vector<units::UnitT
 World::~World() = default;
 
 UnitId World::spawn(int type, int team, int group, Cell anchor) {
+  settleStateHash();
   const units::UnitType& kind = catalogue_[static_cast<std::size_t>(type)];
   if (settings_.pathing.cooperative && !phases_->contestedTracked[static_cast<std::size_t>(type)]) {
     // The first of its kind: the chokepoints it cannot pass others in are tracked from now on.
@@ -152,10 +153,12 @@ int World::aliveCount(int team) const {
 }
 
 void World::order(Command command) {
+  settleStateHash();
   state_.pending.push_back(std::move(command));
 }
 
 void World::setTerrain(CellRect area, Terrain terrain) {
+  settleStateHash();
   if (!settings_.terrainChanges)
     throw std::logic_error("World::setTerrain needs WorldSettings::terrainChanges");
   state_.terrain.pending.push_back({TerrainEditKind::SetTerrain, area, terrain});
@@ -239,15 +242,24 @@ void World::step() {
   // 5. Rules on the new tick: wrecks, arrivals, pursuit, repaths, stuck units.
   ++state_.tick;
   world::applyRules(w);
-  // 6. The state hash.
-  stateHash_ = hashState(state_);
+  // 6. The state hash, when asked for.
+  stateHash_.reset();
   eventsKept_ = events_.size();
   timer.mark(Phase::Bookkeeping);
   timer.endTick();
 }
 
+void World::settleStateHash() const {
+  if (!stateHash_) stateHash_ = hashState(state_);
+}
+
+std::uint64_t World::stateHash() const {
+  settleStateHash();
+  return *stateHash_;
+}
+
 std::uint64_t World::stateHash(std::uint32_t format) const {
-  return format >= kStateFormat ? stateHash_ : hashState(state_, format);
+  return format >= kStateFormat ? stateHash() : hashState(state_, format);
 }
 
 std::uint64_t World::legacyStateHash() const {

@@ -351,9 +351,10 @@ class World {
   const PathService& pathService() const { return *state_.paths; }
   const Physics& physics() const { return *state_.physics; }
   const WorldState& state() const { return state_; }
-  // Hash of the whole WorldState (engine/state_description.h), updated at the end of every
-  // step: positions and velocities quantised to 1/1024 cell, everything else exact.
-  std::uint64_t stateHash() const { return stateHash_; }
+  // Hash of the whole WorldState (engine/state_description.h) as the last step left it (0
+  // before the first step): positions and velocities quantised to 1/1024 cell, everything else
+  // exact.
+  std::uint64_t stateHash() const;
   // The same hash as an older replay format laid the state out (engine/state_description.h),
   // computed on demand.
   std::uint64_t stateHash(std::uint32_t format) const;
@@ -375,7 +376,10 @@ class World {
   std::vector<Event> events_;
   std::unique_ptr<Phases> phases_;
   std::size_t eventsKept_ = 0;  // events_ entries from before the last step ended
-  std::uint64_t stateHash_ = 0;
+  // stateHash(), computed when first asked after a step (a run that records no hashes does not
+  // pay for them), or before spawn, order or setTerrain change the state the step left.
+  void settleStateHash() const;
+  mutable std::optional<std::uint64_t> stateHash_ = 0;
 };
 
 }  // namespace warpath::engine
