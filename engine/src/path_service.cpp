@@ -211,12 +211,9 @@ void PathService::changeTerrain(const TerrainChange& change) {
   const auto touched = [&](const Key& key, const Answer& answer) {
     if (!answer.path) return true;
     const int size = std::get<0>(key);
-    for (const Cell& c : answer.path->cells) {
-      if (c.x + size > area.x && c.x < area.x + area.width && c.y + size > area.y &&
-          c.y < area.y + area.height)
-        return true;
-    }
-    return false;
+    return std::any_of(answer.path->cells.begin(), answer.path->cells.end(), [&](Cell c) {
+      return area.overlaps({c.x, c.y, size, size});
+    });
   };
   std::erase_if(cacheOrder_, [&](const Key& key) {
     const auto it = cache_.find(key);

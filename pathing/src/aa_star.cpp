@@ -146,10 +146,9 @@ PathStatus AnnotatedAStar::search(std::uint64_t maxExpansions) {
   const int size = agentSize_;
   // Whether the footprint at anchor (x, y) overlaps an area to avoid.
   const auto inTheWay = [&](int x, int y) {
-    for (const CellRect& a : limits.avoid) {
-      if (x < a.x + a.width && a.x < x + size && y < a.y + a.height && a.y < y + size) return true;
-    }
-    return false;
+    const CellRect footprint{x, y, size, size};
+    return std::any_of(limits.avoid.begin(), limits.avoid.end(),
+                       [&](const CellRect& a) { return a.overlaps(footprint); });
   };
 
   const std::uint32_t openStamp = generation_ << kGenerationShift;

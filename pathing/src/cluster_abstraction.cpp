@@ -173,11 +173,11 @@ class AbstractionBuilder {
         const int k = cy * g_.clustersX_ + cx;
         const CellRect r = g_.clusterBounds(k);
         if (cx >= cx0 && cy >= cy0) redo[static_cast<std::size_t>(k)] = true;
-        if (cx + 1 < g_.clustersX_ && overlaps(reach, {r.x + b - 1, r.y, 2, r.height})) {
+        if (cx + 1 < g_.clustersX_ && reach.overlaps({r.x + b - 1, r.y, 2, r.height})) {
           borders.push_back({k, true});
           redo[static_cast<std::size_t>(k)] = redo[static_cast<std::size_t>(k + 1)] = true;
         }
-        if (cy + 1 < g_.clustersY_ && overlaps(reach, {r.x, r.y + b - 1, r.width, 2})) {
+        if (cy + 1 < g_.clustersY_ && reach.overlaps({r.x, r.y + b - 1, r.width, 2})) {
           borders.push_back({k, false});
           redo[static_cast<std::size_t>(k)] = redo[static_cast<std::size_t>(k + g_.clustersX_)] =
               true;
@@ -282,11 +282,6 @@ class AbstractionBuilder {
 
  private:
   static constexpr std::uint32_t kNone = UINT32_MAX;
-
-  static bool overlaps(CellRect a, CellRect b) {
-    return a.x < b.x + b.width && b.x < a.x + a.width && a.y < b.y + b.height &&
-           b.y < a.y + a.height;
-  }
 
   // Removes node n's edges that match, and their reverses at the other end.
   template <class Match>

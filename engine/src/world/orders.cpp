@@ -259,10 +259,6 @@ void requestPath(Refs& w, Unit& unit) {
 
 namespace {
 
-bool overlaps(const CellRect& a, const CellRect& b) {
-  return a.x < b.x + b.width && b.x < a.x + a.width && a.y < b.y + b.height && b.y < a.y + a.height;
-}
-
 // The smallest block holding both.
 CellRect joined(const CellRect& a, const CellRect& b) {
   const int x0 = std::min(a.x, b.x);
@@ -276,7 +272,7 @@ CellRect joined(const CellRect& a, const CellRect& b) {
 bool requestDetour(Refs& w, Unit& unit) {
   const int size = w.typeOf(unit).size;
   const std::vector<Cell>& path = unit.path->cells;
-  // The stretch looked at: four footprints and a few cells ahead, as the footprint sweeps it.
+  // The stretch looked at: four footprints and four cells ahead, as the footprint sweeps it.
   const std::size_t from = std::min(unit.next, path.size() - 1);
   const std::size_t to = std::min(path.size(), from + static_cast<std::size_t>(4 * size + 4));
   const auto footprint = [&](std::size_t i) { return CellRect{path[i].x, path[i].y, size, size}; };
@@ -294,10 +290,10 @@ bool requestDetour(Refs& w, Unit& unit) {
     const int otherSize = w.typeOf(other).size;
     const Cell at = units::centreToAnchor(other.position, otherSize);
     const CellRect body{at.x, at.y, otherSize, otherSize};
-    if (!overlaps(swept, body)) continue;
+    if (!swept.overlaps(body)) continue;
     bool inTheWay = false;
     for (std::size_t i = from; i < to; ++i) {
-      if (!overlaps(footprint(i), body)) continue;
+      if (!footprint(i).overlaps(body)) continue;
       inTheWay = true;
       last = std::max(last, i);
     }

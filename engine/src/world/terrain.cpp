@@ -16,8 +16,7 @@ namespace {
 
 // The footprint of an agent of `size` anchored at `anchor` shares a cell with `area`.
 bool footprintMeets(Cell anchor, int size, const CellRect& area) {
-  return anchor.x < area.x + area.width && anchor.x + size > area.x &&
-         anchor.y < area.y + area.height && anchor.y + size > area.y;
+  return area.overlaps({anchor.x, anchor.y, size, size});
 }
 
 // What is left of the unit's path (from the waypoint it left), or its window, crosses `area`.

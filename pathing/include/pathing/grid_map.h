@@ -25,6 +25,11 @@ struct CellRect {
   constexpr bool contains(Cell c) const {
     return c.x >= x && c.y >= y && c.x < x + width && c.y < y + height;
   }
+  // Shares a cell with `other`.
+  constexpr bool overlaps(const CellRect& other) const {
+    return x < other.x + other.width && other.x < x + width && y < other.y + other.height &&
+           other.y < y + height;
+  }
   constexpr bool operator==(const CellRect&) const = default;
 };
 
