@@ -300,7 +300,7 @@ struct TickTiming {
   double combatMicros = 0.0;  // targets, firing, shots landing
   double steeringMicros = 0.0;
   double physicsMicros = 0.0;
-  double bookkeepingMicros = 0.0;  // commands, rules, state hash
+  double bookkeepingMicros = 0.0;  // commands, rules (not the state hash: computed when asked)
   double slowestTickMicros = 0.0;  // the whole of the slowest tick (not a mean)
   std::int64_t ticks = 0;
 };
