@@ -105,11 +105,17 @@ Vec2 stepAside(const Refs& w, const Unit& unit, Vec2 heading, double side, Vec2 
 // [Unit: cells] Room a unit stepping off a vehicle's course needs beyond its own body.
 constexpr double kStepAsideMargin = 0.2;
 
-// The side (+1 along `left`, -1 against it) a unit steps to off a vehicle's course: `side`,
-// unless the unit could not stand there beside the vehicle's body (of `vehicleRadius`, at
-// `abreast` on the course level with the unit) and could on the other.
-double sideWithRoom(const Refs& w, const Unit& unit, Vec2 abreast, Vec2 left, double side,
-                    double vehicleRadius) {
+// The side (+1 left of the course, -1 right) a unit steps to off a vehicle's course through
+// `through` along `heading` (a unit vector): the side it is on, unless (stepAsideToRoom) it
+// could not stand there beside the vehicle's body (of `vehicleRadius`, on the course level
+// with the unit) and could on the other.
+double sideToStep(const Refs& w, const Unit& unit, Vec2 through, Vec2 heading,
+                  double vehicleRadius) {
+  const Vec2 left{heading.y, -heading.x};
+  const Vec2 offset = unit.position - through;
+  const double side = offset.dot(left) >= 0.0 ? 1.0 : -1.0;
+  if (!w.settings.pathing.stepAsideToRoom) return side;
+  const Vec2 abreast = through + heading * offset.dot(heading);
   const units::UnitType& type = w.typeOf(unit);
   const double clear = vehicleRadius + 2.0 * type.radius + kStepAsideMargin;
   const auto roomOn = [&](double s) {
@@ -129,13 +135,9 @@ double sideWithRoom(const Refs& w, const Unit& unit, Vec2 abreast, Vec2 left, do
 // back down the arm 20 cells.
 Vec2 stepAside(const Refs& w, const Unit& unit, const Unit& vehicle, Vec2 desired) {
   const Vec2 heading = vehicle.velocity * (1.0 / vehicle.velocity.length());
-  const Vec2 left{heading.y, -heading.x};
-  const Vec2 offset = unit.position - vehicle.position;
-  double side = offset.dot(left) >= 0.0 ? 1.0 : -1.0;
-  if (w.settings.pathing.stepAsideToRoom)
-    side = sideWithRoom(w, unit, vehicle.position + heading * offset.dot(heading), left, side,
-                        w.typeOf(vehicle).radius);
-  return stepAside(w, unit, heading, side, desired);
+  return stepAside(w, unit, heading,
+                   sideToStep(w, unit, vehicle.position, heading, w.typeOf(vehicle).radius),
+                   desired);
 }
 
 // Each vehicle's contacts (Box2D's, after the last step) into s.touching, and for each moving
@@ -296,14 +298,8 @@ void findVehicleLanes(const Refs& w, double lightest, SteeringScratch& s) {
         const double length = way.length();
         if (length < 1e-9 || heading.dot(way) > -0.5 * length) return true;
         const Vec2 ahead = way * (1.0 / length);
-        const Vec2 offset = p - s.coursePoints[*k];
         s.laneHeading[walker.id.index] = ahead;
-        const Vec2 left{ahead.y, -ahead.x};
-        double side = offset.dot(left) >= 0.0 ? 1.0 : -1.0;
-        if (w.settings.pathing.stepAsideToRoom)
-          side = sideWithRoom(w, walker, s.coursePoints[*k] + ahead * offset.dot(ahead), left, side,
-                              type.radius);
-        s.laneSide[walker.id.index] = side;
+        s.laneSide[walker.id.index] = sideToStep(w, walker, s.coursePoints[*k], ahead, type.radius);
         return true;
       }
       // Where along its way ahead the walker would step into the lane; one going the
