@@ -377,15 +377,7 @@ std::optional<CellRect> AnnotatedGrid::changedSince(std::uint64_t revision) cons
   for (std::size_t i = changes_.size() - static_cast<std::size_t>(revision_ - revision);
        i < changes_.size(); ++i) {
     const CellRect& c = changes_[i];
-    if (!all) {
-      all = c;
-      continue;
-    }
-    const int x0 = std::min(all->x, c.x);
-    const int y0 = std::min(all->y, c.y);
-    const int x1 = std::max(all->x + all->width, c.x + c.width);
-    const int y1 = std::max(all->y + all->height, c.y + c.height);
-    all = CellRect{x0, y0, x1 - x0, y1 - y0};
+    all = all ? all->joinedWith(c) : c;
   }
   return all.value_or(CellRect{0, 0, 0, 0});
 }

@@ -250,24 +250,25 @@ void pursue(Refs& w, Unit& unit, bool force) {
   requestPath(w, unit);
 }
 
-void requestPath(Refs& w, Unit& unit) {
-  ++unit.pathSerial;
-  w.state.paths->request(
-      {unit.id, unit.pathSerial, w.typeOf(unit).agent(), nearestStandable(w, unit), unit.goalCell,
-       w.settings.pathing.terrainCosts ? unit.type : -1, w.typeOf(unit).maxSpeed()});
-}
-
 namespace {
 
-// The smallest block holding both.
-CellRect joined(const CellRect& a, const CellRect& b) {
-  const int x0 = std::min(a.x, b.x);
-  const int y0 = std::min(a.y, b.y);
-  return {x0, y0, std::max(a.x + a.width, b.x + b.width) - x0,
-          std::max(a.y + a.height, b.y + b.height) - y0};
+// The unit's next request for a path from `start` to its goal cell.
+PathRequest nextRequest(const Refs& w, Unit& unit, Cell start) {
+  ++unit.pathSerial;
+  return {unit.id,
+          unit.pathSerial,
+          w.typeOf(unit).agent(),
+          start,
+          unit.goalCell,
+          w.settings.pathing.terrainCosts ? unit.type : -1,
+          w.typeOf(unit).maxSpeed()};
 }
 
 }  // namespace
+
+void requestPath(Refs& w, Unit& unit) {
+  w.state.paths->request(nextRequest(w, unit, nearestStandable(w, unit)));
+}
 
 bool requestDetour(Refs& w, Unit& unit) {
   const int size = w.typeOf(unit).size;
@@ -278,7 +279,7 @@ bool requestDetour(Refs& w, Unit& unit) {
   const auto footprint = [&](std::size_t i) { return CellRect{path[i].x, path[i].y, size, size}; };
   CellRect swept = footprint(from);
   for (std::size_t i = from + 1; i < to; ++i)
-    swept = joined(swept, footprint(i));
+    swept = swept.joinedWith(footprint(i));
   auto detour = std::make_shared<Detour>();
   std::size_t last = from;  // the last cell of the stretch that meets one of them
   for (const Unit& other : w.state.units) {
@@ -309,17 +310,16 @@ bool requestDetour(Refs& w, Unit& unit) {
   detour->rejoin = static_cast<std::uint32_t>(
       std::min(path.size() - 1, last + static_cast<std::size_t>(size + 2)));
   const Cell start = nearestStandable(w, unit);
-  CellRect around = joined(CellRect{start.x, start.y, size, size}, footprint(detour->rejoin));
+  CellRect around = CellRect{start.x, start.y, size, size}.joinedWith(footprint(detour->rejoin));
   for (const CellRect& body : detour->avoid)
-    around = joined(around, body);
+    around = around.joinedWith(body);
   const int margin = 2 * size + 4;
   around = {around.x - margin, around.y - margin, around.width + 2 * margin,
             around.height + 2 * margin};
   detour->region = w.map().clip(around);
-  ++unit.pathSerial;
-  w.state.paths->request({unit.id, unit.pathSerial, w.typeOf(unit).agent(), start, unit.goalCell,
-                          w.settings.pathing.terrainCosts ? unit.type : -1,
-                          w.typeOf(unit).maxSpeed(), std::move(detour)});
+  PathRequest request = nextRequest(w, unit, start);
+  request.detour = std::move(detour);
+  w.state.paths->request(request);
   return true;
 }
 

@@ -2,6 +2,7 @@
 // A rectangular grid of terrain bytes. x is the column, y the row, (0, 0) the top-left,
 // as in the MovingAI benchmark. The map knows nothing of searches or agents.
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -29,6 +30,13 @@ struct CellRect {
   constexpr bool overlaps(const CellRect& other) const {
     return x < other.x + other.width && other.x < x + width && y < other.y + other.height &&
            other.y < y + height;
+  }
+  // The smallest block holding both.
+  constexpr CellRect joinedWith(const CellRect& other) const {
+    const int x0 = std::min(x, other.x);
+    const int y0 = std::min(y, other.y);
+    return {x0, y0, std::max(x + width, other.x + other.width) - x0,
+            std::max(y + height, other.y + other.height) - y0};
   }
   constexpr bool operator==(const CellRect&) const = default;
 };
