@@ -255,6 +255,12 @@ std::uint64_t PathService::repairChunk() {
   return spent;
 }
 
+void PathService::countSearch(const PathResult& result) {
+  ++metrics_.searches;
+  metrics_.expanded += result.metrics.expanded;
+  metrics_.microseconds += result.metrics.microseconds;
+}
+
 PathService::DetourOutcome PathService::detourFor(const PathRequest& request, std::uint64_t budget,
                                                   std::uint64_t& spent) {
   DetourOutcome outcome;
@@ -270,7 +276,6 @@ PathService::DetourOutcome PathService::detourFor(const PathRequest& request, st
                              : nullptr;
   if (w && !costs) return outcome;
   std::vector<Cell> cells;
-  PathResult result;
   if (!detourInFlight_) {
     SearchLimits limits;
     limits.region = detour.region;
@@ -295,10 +300,8 @@ PathService::DetourOutcome PathService::detourFor(const PathRequest& request, st
     return outcome;
   }
   detourInFlight_ = false;
-  result = detourSearch_.finalizePath(&cells);
-  ++metrics_.searches;
-  metrics_.expanded += result.metrics.expanded;
-  metrics_.microseconds += result.metrics.microseconds;
+  const PathResult result = detourSearch_.finalizePath(&cells);
+  countSearch(result);
   if (!result.found()) return outcome;
   ++metrics_.found;
   ++metrics_.detours;
@@ -379,6 +382,15 @@ std::uint64_t PathService::serve(std::vector<PathDelivery>& out, double now) {
     metrics_.maxTickExpanded = std::max(metrics_.maxTickExpanded, spent);
     return spent;
   }
+  // Hands the answer to the request at the head of the queue, which leaves it, and books it.
+  const auto deliver = [&](const Answer& answer, Congestion* congestion) {
+    const PathRequest request = queue_.front();
+    queue_.pop_front();
+    inFlight_ = nullptr;  // a sliced search of the request, if any, is done or not needed
+    if (congestion && answer.path)
+      congestion->book(request.unit, request.agent, request.speed, answer.path->cells, now);
+    out.push_back({request.unit, request.serial, answer.status, answer.path, answer.seconds});
+  };
   while (!queue_.empty()) {
     const PathRequest& front = queue_.front();
     const Key key{front.agent.size, front.agent.capability.mask(),
@@ -394,13 +406,10 @@ std::uint64_t PathService::serve(std::vector<PathDelivery>& out, double now) {
       DetourOutcome detour = detourFor(front, settings_.expansionBudget - spent, spent);
       if (detour.status == PathStatus::Pending) break;  // sliced: resumed next tick
       if (detour.status == PathStatus::Found) {
-        const PathRequest request = front;
-        queue_.pop_front();
-        auto path = std::make_shared<const PlannedPath>(planned(std::move(detour.cells)));
-        if (congestion)
-          congestion->book(request.unit, request.agent, request.speed, path->cells, now);
-        out.push_back(
-            {request.unit, request.serial, PathStatus::Found, std::move(path), detour.seconds});
+        deliver(
+            {PathStatus::Found,
+             std::make_shared<const PlannedPath>(planned(std::move(detour.cells))), detour.seconds},
+            congestion);
         continue;
       }
       // No way around inside the region: planned as any request, its detour dropped so that
@@ -423,9 +432,7 @@ std::uint64_t PathService::serve(std::vector<PathDelivery>& out, double now) {
       const std::optional<PathResult> result =
           search(front, settings_.expansionBudget - spent, now, congestion, spent, cells, seconds);
       if (!result) break;  // sliced: resumed next tick
-      ++metrics_.searches;
-      metrics_.expanded += result->metrics.expanded;
-      metrics_.microseconds += result->metrics.microseconds;
+      countSearch(*result);
       if (result->found())
         ++metrics_.found;
       else
@@ -450,12 +457,7 @@ std::uint64_t PathService::serve(std::vector<PathDelivery>& out, double now) {
         cacheOrder_.push_back(key);
       }
     }
-    const PathRequest request = front;
-    queue_.pop_front();
-    inFlight_ = nullptr;  // a sliced search of the request, if any, is done or not needed
-    if (congestion && answer.path)
-      congestion->book(request.unit, request.agent, request.speed, answer.path->cells, now);
-    out.push_back({request.unit, request.serial, answer.status, answer.path, answer.seconds});
+    deliver(answer, congestion);
   }
   metrics_.maxTickExpanded = std::max(metrics_.maxTickExpanded, spent);
   return spent;

@@ -286,6 +286,8 @@ class PathService {
   // Plans `request` within `budget` expansions when sliced (else to its end), with the
   // congestion waits at `now` when `congestion` is given: the result, or nullopt while its
   // search is left pending for the next tick. Adds what it spends to `spent`.
+  // A search done: counted in the metrics with what it expanded and took.
+  void countSearch(const pathing::PathResult& result);
   // The search of `request`'s detour, within `budget` expansions when sliced (else to its end):
   // Pending while it is left for the next tick; Found with its cells (its start, the way around,
   // the rest of the path) and under terrain costs their cost in `seconds`; else no way inside its
