@@ -386,11 +386,17 @@ void CooperativeSearch::add(std::uint32_t cell, Tick tick, std::int32_t parent, 
 }
 
 void CooperativeSearch::SeenStates::clear() {
-  count_ = 0;
-  if (++generation_ == 0) {  // wrapped: no slot may look live
+  // Sized for the plan just done: most plans reach a few hundred states, and a table grown for
+  // the largest (thousands) spreads them over more cache lines than stay cached (stress_2000:
+  // a fifth of the window searches' time went to that miss).
+  if (slots_.size() > kSmallSlots && count_ * 16 < slots_.size()) {
+    slots_.assign(kSmallSlots, Slot{});
+    generation_ = 1;
+  } else if (++generation_ == 0) {  // wrapped: no slot may look live
     std::fill(slots_.begin(), slots_.end(), Slot{});
     generation_ = 1;
   }
+  count_ = 0;
 }
 
 std::size_t CooperativeSearch::SeenStates::home(std::uint64_t key) const {
@@ -412,7 +418,7 @@ bool CooperativeSearch::SeenStates::insert(std::uint64_t key) {
 }
 
 void CooperativeSearch::SeenStates::grow() {
-  std::vector<Slot> old(std::max<std::size_t>(slots_.size() * 2, 4096));
+  std::vector<Slot> old(std::max(slots_.size() * 2, kSmallSlots));
   old.swap(slots_);
   const std::uint32_t live = generation_;
   count_ = 0;

@@ -361,6 +361,7 @@ class CooperativeSearch {
       std::uint64_t key = 0;
       std::uint32_t generation = 0;  // live when the set's
     };
+    static constexpr std::size_t kSmallSlots = 4096;
     std::size_t home(std::uint64_t key) const;
     void grow();
     std::vector<Slot> slots_;
