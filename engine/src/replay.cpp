@@ -386,7 +386,9 @@ Result<Scenario> replayScenario(const Replay& replay) {
   // with units kept out of a passage leaving it by its highest level, and let through by the
   // priority order of all, before they stepped out and were let through nearest first, and
   // with vehicles' lanes ending at junctions, and walkers stepping aside on their side of a
-  // vehicle, before lanes went on through junctions and walkers stepped to the side with room.
+  // vehicle, before lanes went on through junctions and walkers stepped to the side with room,
+  // and with jammed units asking for their path again before detours, and stopped vehicles
+  // claiming no lane before they claimed theirs.
   WorldSettings defaults;
   if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
   if (replay.version < kFirstCongestionReplayVersion) defaults.pathing.congestion = false;
@@ -402,6 +404,8 @@ Result<Scenario> replayScenario(const Replay& replay) {
     defaults.pathing.stepAsideToRoom = false;
   }
   if (replay.version < kFirstJamDetoursReplayVersion) defaults.pathing.jamDetours = false;
+  if (replay.version < kFirstStandingLanesReplayVersion)
+    defaults.pathing.standingVehicleLanes = false;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

@@ -305,6 +305,22 @@ TEST(Cooperative, InfantryGiveWayToVehiclesAtTheBridgeAndTheCrossroads) {
   }
 }
 
+// A vehicle stopped in the traffic claims its lane ahead as one on the move does (replay format
+// 14), unless its window holds it or a passage's gate keeps it out. At seed 15 of the two-way
+// bridge the last blue tank stops at the bridge's west end as red's infantry stream comes onto
+// the bridge toward it: with the lane the riflemen step out of its way and it arrives at 27.5 s
+// (bound 34 s); claiming none while stopped (format 13) the stream engulfed it mid-bridge until
+// it had passed, and it arrived at 47.7 s.
+TEST(Cooperative, AStoppedTankClaimsItsLaneThroughAnOncomingStream) {
+  Result<Scenario> loaded = loadChokepoint("bridge_two_way.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.standingVehicleLanes);  // the default
+  EXPECT_TRUE(runToEnd(s, 15).passed());
+  s.settings.pathing.standingVehicleLanes = false;
+  EXPECT_FALSE(runToEnd(s, 15).passed());
+}
+
 // At the crossroads the paths of opposite arms cross over in the 8×8 crossing, toward goal
 // cells on the far side. With lanes through junctions (replay format 12) each tank pair holds its
 // right half across it; with lanes ending there (before) the pairs met head on in the middle

@@ -341,7 +341,7 @@ Result<Scenario> loadRecordedChokepoint(const std::string& file, ReplaySource& s
 
 // The rules that formats after `format` brought, set back as files of `format` play back: the
 // kept-out rules (format 11), lanes through junctions and stepping aside to the side with room
-// (12), detours after a jam (13).
+// (12), detours after a jam (13), lanes of stopped vehicles (14).
 void useRulesOfFormat(Scenario& s, std::uint32_t format) {
   if (format < 11) {
     s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;
@@ -352,6 +352,7 @@ void useRulesOfFormat(Scenario& s, std::uint32_t format) {
     s.settings.pathing.stepAsideToRoom = false;
   }
   if (format < 13) s.settings.pathing.jamDetours = false;
+  if (format < 14) s.settings.pathing.standingVehicleLanes = false;
 }
 
 void expectVerifiesOnlyAsItsFormat(const Scenario& s, const ReplaySource& source,
@@ -498,6 +499,21 @@ TEST_F(Replays, AFormat12ReplayPlaysBackWithoutDetoursAfterAJam) {
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format12.rpl", 12, 900);
 }
 
+// Format 13 was recorded when a vehicle stopped in the traffic claimed no lane: a run plays back
+// so, and such a file verifies; read as format 14 (a stopped vehicle claims its lane unless its
+// window holds it or a gate keeps it out) the same records do not. At the crossroads the runs
+// part before 15 s.
+TEST_F(Replays, AFormat13ReplayPlaysBackWithStoppedVehiclesClaimingNoLane) {
+  ReplaySource source;
+  Result<Scenario> loaded = loadRecordedChokepoint("crossroads.yaml", source);
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.standingVehicleLanes);
+  useRulesOfFormat(s, 13);
+  source.seed = s.settings.seed;
+  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format13.rpl", 13, 450);
+}
+
 TEST_F(Replays, AnotherVersionIsRefused) {
   const fs::path file = record(1);
   std::string bytes = slurp(file);
@@ -506,21 +522,21 @@ TEST_F(Replays, AnotherVersionIsRefused) {
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
                                  ": replay format version 1 is not supported (this build reads "
-                                 "versions 2 to 13); it was written before battles were recorded: "
+                                 "versions 2 to 14); it was written before battles were recorded: "
                                  "record it again with rts run --replay");
   RtsResult r = rts("replay verify " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(file.string() + ": replay format version 1 is not supported"),
             std::string::npos)
       << r.out;
-  bytes[8] = 14;
+  bytes[8] = 15;
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
-                                 ": replay format version 14 is not supported (this build reads "
-                                 "versions 2 to 13)");
+                                 ": replay format version 15 is not supported (this build reads "
+                                 "versions 2 to 14)");
   r = rts("replay info " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_NE(r.out.find("version 14 is not supported"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("version 15 is not supported"), std::string::npos) << r.out;
   EXPECT_EQ(rts("replay verify " + (dir_ / "none.rpl").string()).status, 2);
 }
 
@@ -629,7 +645,7 @@ TEST_F(Replays, ABattleRecordsAndVerifies) {
 
   const RtsResult info = rts("replay info " + file.string());
   EXPECT_EQ(info.status, 0) << info.out;
-  EXPECT_NE(info.out.find("format version: 13\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("format version: 14\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("orders: 4 (2 attack_move, 1 attack, 1 reinforce)\n"), std::string::npos)
       << info.out;
   const RtsResult verify = rts("replay verify " + file.string());

@@ -101,6 +101,9 @@ struct PathServiceSettings {
   // without a timed window that jammed asked for its path again instead of a detour around the
   // units standing in its way (docs/cooperative.md, "Detours").
   bool jamDetours = true;
+  // Not a scenario key: false plays back replays before format 14, when a vehicle stopped in
+  // the traffic claimed no lane, whatever stopped it (docs/cooperative.md, "Lanes").
+  bool standingVehicleLanes = true;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
 // [Unit: expansions] what sliced window searches may spend in a tick the spatial searches left

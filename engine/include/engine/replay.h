@@ -47,9 +47,11 @@ namespace warpath::engine {
 // a vehicle's course steps to the side with room (older files play back with lanes that end there,
 // stepping aside on the side the walker is on). 13: the same records and hashes; a cooperating
 // unit without a timed window that jams asks for a detour around the units standing in its way
-// (older files play back asking for its path again). Version-1 files (move orders only) are
-// refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 13;
+// (older files play back asking for its path again). 14: the same records and hashes; a vehicle
+// stopped in the traffic, but not by its own window or a passage's gate, claims its lane ahead,
+// which another team's walkers step out of (older files play back with stopped vehicles
+// claiming none). Version-1 files (move orders only) are refused with a message saying so.
+inline constexpr std::uint32_t kReplayVersion = 14;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -78,6 +80,9 @@ inline constexpr std::uint32_t kFirstJunctionRulesReplayVersion = 12;
 // Formats before this one were recorded when a cooperating unit without a timed window that
 // jammed asked for the same path again: they play back so (PathServiceSettings::jamDetours off).
 inline constexpr std::uint32_t kFirstJamDetoursReplayVersion = 13;
+// Formats before this one were recorded when a vehicle stopped in the traffic claimed no lane:
+// they play back so (PathServiceSettings::standingVehicleLanes off).
+inline constexpr std::uint32_t kFirstStandingLanesReplayVersion = 14;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

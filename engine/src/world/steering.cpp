@@ -181,8 +181,11 @@ constexpr int kWalkerBucket = 8;
 // going the vehicle's way follows it. A stream of infantry across a bridge's exit otherwise
 // holds a tank there until the whole stream has passed (bridge_two_way, crossroads). Giving
 // way to one's own team's vehicles too made convoys' riflemen wait for their vehicles at every
-// merge (measured: river_ambush's ambush then met only the rearguard). Walkers firing on the
-// move, and vehicles standing in a queue or chasing a target, are not traffic here. Vehicles
+// merge (measured: river_ambush's ambush then met only the rearguard). A vehicle stopped in
+// the traffic claims its lane too (its lane ahead is where it would go), unless its window
+// holds it or a passage's gate keeps it out: the walkers coming at it would otherwise stop it
+// for good, a stream of them at a bridge's mouth until the last has passed. Walkers firing on
+// the move, and vehicles waiting their turn or chasing a target, are not traffic here. Vehicles
 // never wait for walkers here, so no cycle of waits forms. Decided from the state at the start
 // of the tick.
 void findVehicleLanes(const Refs& w, double lightest, SteeringScratch& s) {
@@ -239,9 +242,12 @@ void findVehicleLanes(const Refs& w, double lightest, SteeringScratch& s) {
     if (!vehicle.alive() || vehicle.state != UnitState::Moving || vehicle.engaged || !vehicle.path)
       continue;
     const units::UnitType& type = w.typeOf(vehicle);
-    // A vehicle standing in a queue claims no lane yet, nor one chasing a target (its path
-    // follows the target, re-planned every second).
-    if (!(type.radius > lightest) || vehicle.velocity.length() < 0.25 ||
+    // A vehicle waiting its turn claims no lane yet, nor one chasing a target (its path follows
+    // the target, re-planned every second). Replays before format 14: no stopped vehicle did.
+    const bool waitsItsTurn = !w.settings.pathing.standingVehicleLanes ||
+                              (vehicle.plan && vehicle.plan->timed &&
+                               (keptOut(*vehicle.plan) || waitingAt(*vehicle.plan, w.state.tick)));
+    if (!(type.radius > lightest) || (vehicle.velocity.length() < 0.25 && waitsItsTurn) ||
         vehicle.order == OrderKind::Attack)
       continue;
     // The lane: the body, then the path's waypoints ahead.
