@@ -35,6 +35,19 @@ struct Refs {
 int chebyshev(pathing::Cell a, pathing::Cell b);
 // The largest unit size in the catalogue (1 when it is empty).
 int maxUnitSize(const std::vector<units::UnitType>& catalogue);
+// Each path is an allocation of its own, so a pass over every unit that reads each one's next
+// waypoint waits on a cache miss or two per unit (stress_2000: most of the rules' and a fifth of
+// steering's time). A pass calls this at unit i to have the cache fetch the path of unit i + 8
+// and the waypoint (cell and remaining length) of unit i + 4 meanwhile. Changes no state.
+// Always inlined: GCC 12 finds a call to it free of side effects and deletes it otherwise.
+[[gnu::always_inline]] inline void prefetchPaths(const std::vector<Unit>& all, std::size_t i) {
+  if (i + 8 < all.size() && all[i + 8].path) __builtin_prefetch(all[i + 8].path.get());
+  if (i + 4 >= all.size() || !all[i + 4].path) return;
+  const PlannedPath& path = *all[i + 4].path;
+  const std::size_t next = all[i + 4].next;
+  if (next < path.cells.size()) __builtin_prefetch(&path.cells[next]);
+  if (next < path.remaining.size()) __builtin_prefetch(&path.remaining[next]);
+}
 
 // --- Orders: what a unit was told and what it holds for it (engine/src/world/orders.cpp) ---
 

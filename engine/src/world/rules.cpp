@@ -83,7 +83,10 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor) {
 
 void applyRules(Refs& w) {
   const std::int64_t tick = w.state.tick;
-  for (Unit& unit : w.state.units) {
+  std::vector<Unit>& all = w.state.units;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    prefetchPaths(all, i);
+    Unit& unit = all[i];
     if (!unit.alive()) {
       if (unit.wreckUntilTick >= 0 && tick >= unit.wreckUntilTick) {
         w.state.physics->removeBody(unit.body);

@@ -363,7 +363,10 @@ void steerAll(Refs& w, SteeringScratch& scratch) {
     findContacts(w, lightest, scratch);
     findVehicleLanes(w, lightest, scratch);
   }
-  for (Unit& unit : w.state.units) {
+  std::vector<Unit>& all = w.state.units;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    prefetchPaths(all, k);
+    Unit& unit = all[k];
     if (!unit.alive()) continue;
     const units::UnitType& type = w.typeOf(unit);
     Vec2 desired;
