@@ -244,10 +244,13 @@ void findVehicleLanes(const Refs& w, double lightest, SteeringScratch& s) {
     const units::UnitType& type = w.typeOf(vehicle);
     // A vehicle waiting its turn claims no lane yet, nor one chasing a target (its path follows
     // the target, re-planned every second). Replays before format 14: no stopped vehicle did.
-    const bool waitsItsTurn = !w.settings.pathing.standingVehicleLanes ||
-                              (vehicle.plan && vehicle.plan->timed &&
-                               (keptOut(*vehicle.plan) || waitingAt(*vehicle.plan, w.state.tick)));
-    if (!(type.radius > lightest) || (vehicle.velocity.length() < 0.25 && waitsItsTurn) ||
+    // (Asked of stopped vehicles only: most vehicles move, and a plan's wait is a bisection.)
+    const auto waitsItsTurn = [&] {
+      return !w.settings.pathing.standingVehicleLanes ||
+             (vehicle.plan && vehicle.plan->timed &&
+              (keptOut(*vehicle.plan) || waitingAt(*vehicle.plan, w.state.tick)));
+    };
+    if (!(type.radius > lightest) || (vehicle.velocity.length() < 0.25 && waitsItsTurn()) ||
         vehicle.order == OrderKind::Attack)
       continue;
     // The lane: the body, then the path's waypoints ahead.
