@@ -133,29 +133,25 @@ CorridorDistance::CorridorDistance(const AnnotatedGrid& grid, Agent agent,
       }
     }
   }
-  // The corridor's runs: each row's runs of marked cells, their slots in row-major order.
-  rowRuns_.assign(static_cast<std::size_t>(height) + 1, 0);
+  // Each row's span, from its first marked cell to its last; a slot per cell of it.
+  rowX0_.assign(static_cast<std::size_t>(height), 0);
+  rowBegin_.assign(static_cast<std::size_t>(height) + 1, 0);
   std::uint32_t cells = 0;
   for (int r = 0; r < height; ++r) {
-    rowRuns_[static_cast<std::size_t>(r)] = static_cast<std::uint32_t>(runs_.size());
     const std::uint64_t* row = &marked[static_cast<std::size_t>(r) * words];
-    // The first cell at or after x whose bit is `set`, or width.
-    const auto next = [&](int x, bool set) {
-      while (x < width) {
-        const std::uint64_t bits = (set ? row[x / 64] : ~row[x / 64]) >> (x % 64);
-        if (bits != 0) return std::min(width, x + std::countr_zero(bits));
-        x = (x / 64 + 1) * 64;
-      }
-      return width;
-    };
-    for (int x = next(0, true); x < width; x = next(x, true)) {
-      const int end = next(x, false);
-      runs_.push_back({top_ + r, left + x, left + end - 1, cells});
-      cells += static_cast<std::uint32_t>(end - x);
-      x = end;
+    int first = width;
+    int last = -1;
+    for (std::size_t w = 0; w < words; ++w) {
+      if (row[w] == 0) continue;
+      const int base = static_cast<int>(w) * 64;
+      first = std::min(first, base + std::countr_zero(row[w]));
+      last = std::max(last, base + 63 - std::countl_zero(row[w]));
     }
+    rowBegin_[static_cast<std::size_t>(r)] = cells;
+    rowX0_[static_cast<std::size_t>(r)] = left + (last >= first ? first : 0);
+    if (last >= first) cells += static_cast<std::uint32_t>(last - first + 1);
   }
-  rowRuns_[static_cast<std::size_t>(height)] = static_cast<std::uint32_t>(runs_.size());
+  rowBegin_[static_cast<std::size_t>(height)] = cells;
   distances_.assign(cells, kInfinity);
 
   // Dijkstra from the goal over the corridor (moves are symmetric; they lead only to cells the
@@ -166,53 +162,54 @@ CorridorDistance::CorridorDistance(const AnnotatedGrid& grid, Agent agent,
   map_ = &map;
   moves_ = grid.layer(agent).moveMasks();
   cellOf_.resize(cells);
-  for (const Run& run : runs_) {
-    for (int x = run.x0; x <= run.x1; ++x)
-      cellOf_[run.offset + static_cast<std::uint32_t>(x - run.x0)] = {x, run.y};
+  state_.assign(cells, kOutside);
+  for (int r = 0; r < height; ++r) {
+    const std::uint64_t* row = &marked[static_cast<std::size_t>(r) * words];
+    const auto ri = static_cast<std::size_t>(r);
+    for (std::uint32_t at = rowBegin_[ri]; at < rowBegin_[ri + 1]; ++at) {
+      const int x = rowX0_[ri] + static_cast<int>(at - rowBegin_[ri]);
+      const int bit = x - left;
+      cellOf_[at] = {x, top_ + r};
+      if ((row[bit / 64] >> (bit % 64)) & 1u) state_[at] = kOpen;
+    }
   }
-  closed_.assign(cells, false);
   const auto goal = static_cast<std::uint32_t>(slot(path.back()));
   distances_[goal] = 0.0;
-  open_.push(OpenList::makeKey(0.0, 0.0), goal);
+  open_.push(false, OpenList::makeKey(0.0, 0.0), goal);
 }
 
 bool CorridorDistance::settle(Cell /*c*/, std::uint64_t& allowance) {
+  // Raw pointers: the stores to state_ would otherwise make the compiler reload the vectors'
+  // data pointers (a byte store may alias them).
+  double* const distances = distances_.data();
+  std::uint8_t* const state = state_.data();
+  const Cell* const cellOf = cellOf_.data();
   while (!open_.empty()) {
     if (allowance == 0) return false;
     const std::uint32_t current = open_.pop();
-    if (closed_[current]) continue;
-    closed_[current] = true;
+    if (state[current] == kClosed) continue;
+    state[current] = kClosed;
     ++expanded_;
     --allowance;
-    const double g = distances_[current];
-    const Cell here = cellOf_[current];
+    const double g = distances[current];
+    const Cell here = cellOf[current];
     for (unsigned mask = moves_[map_->indexOf(here)]; mask != 0; mask &= mask - 1) {
-      const Direction& dir = kDirections[static_cast<std::size_t>(std::countr_zero(mask))];
+      const int d = std::countr_zero(mask);
+      const Direction& dir = kDirections[static_cast<std::size_t>(d)];
       const std::ptrdiff_t at = slot({here.x + dir.dx, here.y + dir.dy});
-      if (at < 0) continue;
-      double& known = distances_[static_cast<std::size_t>(at)];
+      if (at < 0 || state[at] == kOutside) continue;
+      double& known = distances[at];
       if (known <= g + dir.cost) continue;
       known = g + dir.cost;
-      open_.push(OpenList::makeKey(known, known), static_cast<std::uint32_t>(at));
+      open_.push(isDiagonal(d), OpenList::makeKey(known, known), static_cast<std::uint32_t>(at));
     }
   }
   if (!cellOf_.empty()) {  // done: the scratch goes
     cellOf_ = {};
-    closed_ = {};
+    state_ = {};
+    open_ = {};
   }
   return true;
-}
-
-std::ptrdiff_t CorridorDistance::slot(Cell c) const {
-  const int row = c.y - top_;
-  if (row < 0 || row + 1 >= static_cast<int>(rowRuns_.size())) return -1;
-  for (std::uint32_t i = rowRuns_[static_cast<std::size_t>(row)];
-       i < rowRuns_[static_cast<std::size_t>(row) + 1]; ++i) {
-    const Run& run = runs_[i];
-    if (c.x < run.x0) return -1;
-    if (c.x <= run.x1) return static_cast<std::ptrdiff_t>(run.offset) + (c.x - run.x0);
-  }
-  return -1;
 }
 
 double CorridorDistance::settled(Cell c) const {

@@ -183,9 +183,44 @@ TEST(CooperativeSearch, SharedReservationsDoNotBlock) {
   EXPECT_LT(plan.steps.back().tick, 300);
 }
 
+// The reference for CorridorDistance: a plain Dijkstra to path.back() over the set of
+// standable cells within `radius` of a path cell, +inf elsewhere; per cell index.
+std::vector<double> corridorReference(const AnnotatedGrid& grid, Agent agent,
+                                      const std::vector<Cell>& path, int radius) {
+  const GridMap& map = grid.map();
+  std::vector<char> inside(static_cast<std::size_t>(map.width() * map.height()), 0);
+  for (const Cell& p : path) {
+    for (int y = p.y - radius; y <= p.y + radius; ++y) {
+      for (int x = p.x - radius; x <= p.x + radius; ++x) {
+        if (map.contains({x, y}) && grid.canStand(agent, {x, y})) inside[map.indexOf({x, y})] = 1;
+      }
+    }
+  }
+  std::vector<double> expected(inside.size(), std::numeric_limits<double>::infinity());
+  std::set<std::pair<double, std::uint32_t>> open{{0.0, map.indexOf(path.back())}};
+  expected[map.indexOf(path.back())] = 0.0;
+  const std::span<const std::uint8_t> moves = grid.layer(agent).moveMasks();
+  while (!open.empty()) {
+    const auto [g, index] = *open.begin();
+    open.erase(open.begin());
+    const Cell here{static_cast<int>(index) % map.width(), static_cast<int>(index) / map.width()};
+    for (int d = 0; d < kDirectionCount; ++d) {
+      if ((moves[index] & (1u << d)) == 0) continue;
+      const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+      const Cell next{here.x + dir.dx, here.y + dir.dy};
+      const std::uint32_t n = map.indexOf(next);
+      if (inside[n] == 0 || expected[n] <= g + dir.cost) continue;
+      open.erase({expected[n], n});
+      expected[n] = g + dir.cost;
+      open.insert({expected[n], n});
+    }
+  }
+  return expected;
+}
+
 TEST(CorridorDistance, IsDijkstraInsideTheCellsNearThePath) {
-  // Against a plain Dijkstra over the set of standable cells within `radius` of a path cell:
-  // equal inside, infinite outside, never below the distance on the whole map.
+  // Against the reference: equal inside, infinite outside, never below the distance on the
+  // whole map.
   int compared = 0;
   for (std::uint64_t seed = 1; seed <= 12; ++seed) {
     const AnnotatedGrid grid = randomGrid(48, 36, seed, 12);
@@ -207,33 +242,7 @@ TEST(CorridorDistance, IsDijkstraInsideTheCellsNearThePath) {
     const int radius = 1 + static_cast<int>(seed % 3);
     CorridorDistance corridor(grid, agent, path, radius);
     ReverseResumableSearch whole(grid, agent, goal, start);
-    std::vector<char> inside(static_cast<std::size_t>(map.width() * map.height()), 0);
-    for (const Cell& p : path) {
-      for (int y = p.y - radius; y <= p.y + radius; ++y) {
-        for (int x = p.x - radius; x <= p.x + radius; ++x) {
-          if (map.contains({x, y}) && grid.canStand(agent, {x, y})) inside[map.indexOf({x, y})] = 1;
-        }
-      }
-    }
-    std::vector<double> expected(inside.size(), std::numeric_limits<double>::infinity());
-    std::set<std::pair<double, std::uint32_t>> open{{0.0, map.indexOf(goal)}};
-    expected[map.indexOf(goal)] = 0.0;
-    const std::span<const std::uint8_t> moves = grid.layer(agent).moveMasks();
-    while (!open.empty()) {
-      const auto [g, index] = *open.begin();
-      open.erase(open.begin());
-      const Cell here{static_cast<int>(index) % map.width(), static_cast<int>(index) / map.width()};
-      for (int d = 0; d < kDirectionCount; ++d) {
-        if ((moves[index] & (1u << d)) == 0) continue;
-        const Direction& dir = kDirections[static_cast<std::size_t>(d)];
-        const Cell next{here.x + dir.dx, here.y + dir.dy};
-        const std::uint32_t n = map.indexOf(next);
-        if (inside[n] == 0 || expected[n] <= g + dir.cost) continue;
-        open.erase({expected[n], n});
-        expected[n] = g + dir.cost;
-        open.insert({expected[n], n});
-      }
-    }
+    const std::vector<double> expected = corridorReference(grid, agent, path, radius);
     for (int y = -1; y <= map.height(); ++y) {
       for (int x = -1; x <= map.width(); ++x) {
         const double got = corridor.distance({x, y});
@@ -250,6 +259,39 @@ TEST(CorridorDistance, IsDijkstraInsideTheCellsNearThePath) {
     }
   }
   EXPECT_GE(compared, 6);
+}
+
+TEST(CorridorDistance, DoesNotCrossTheGapBetweenTwoArmsOfAPath) {
+  // A U-shaped path on open ground: down one column, along the bottom, up another. Rows the
+  // two arms cross hold two stretches of the corridor with open ground between them, which is
+  // outside: distances go round the U, and the ground between is unreached.
+  std::ostringstream rows;
+  rows << "type octile\nheight 20\nwidth 26\nmap\n";
+  for (int y = 0; y < 20; ++y)
+    rows << std::string(26, '.') << "\n";
+  const AnnotatedGrid grid(mapFromRows(rows.str()));
+  const Agent agent{1, kGround};
+  std::vector<Cell> path;
+  for (int y = 2; y <= 17; ++y)
+    path.push_back({3, y});
+  for (int x = 4; x <= 20; ++x)
+    path.push_back({x, 17});
+  for (int y = 16; y >= 2; --y)
+    path.push_back({20, y});
+  const int radius = 2;
+  CorridorDistance corridor(grid, agent, path, radius);
+  const std::vector<double> expected = corridorReference(grid, agent, path, radius);
+  const GridMap& map = grid.map();
+  for (int y = 0; y < map.height(); ++y) {
+    for (int x = 0; x < map.width(); ++x) {
+      EXPECT_DOUBLE_EQ(corridor.distance({x, y}), expected[map.indexOf({x, y})])
+          << "at " << x << "," << y;
+    }
+  }
+  EXPECT_TRUE(std::isinf(corridor.distance({12, 8})));  // between the arms
+  EXPECT_TRUE(std::isinf(corridor.distance({24, 8})));  // beside the right arm
+  // From the top of the left arm round the U: far more than straight across (17 cells).
+  EXPECT_GT(corridor.distance({3, 2}), 35.0);
 }
 
 TEST(CooperativeSearch, WaitsOutsideAPassageSomeoneHolds) {

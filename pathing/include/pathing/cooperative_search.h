@@ -98,28 +98,34 @@ class CorridorDistance final : public DistanceField {
   std::uint64_t expanded() const override { return expanded_; }
 
  private:
-  // The corridor as runs of cells along rows, by row then column; `distances_` has a slot per
-  // cell of each run, from `offset` on. Lookups cost a scan of one row's runs.
-  struct Run {
-    int y;
-    int x0;
-    int x1;  // inclusive
-    std::uint32_t offset;
-  };
-  // The slot of `c` in distances_; -1 outside the corridor.
-  std::ptrdiff_t slot(Cell c) const;
+  // The slot of `c` in distances_ (-1 outside the rows' spans): O(1), as the Dijkstra asks it
+  // for every neighbour it relaxes.
+  std::ptrdiff_t slot(Cell c) const {
+    const int row = c.y - top_;
+    if (row < 0 || row >= static_cast<int>(rowX0_.size())) return -1;
+    const auto r = static_cast<std::size_t>(row);
+    const int dx = c.x - rowX0_[r];
+    if (dx < 0 || static_cast<std::uint32_t>(dx) >= rowBegin_[r + 1] - rowBegin_[r]) return -1;
+    return static_cast<std::ptrdiff_t>(rowBegin_[r]) + dx;
+  }
 
-  int top_ = 0;                         // first row of the corridor
-  std::vector<std::uint32_t> rowRuns_;  // per row from top_: first run; one entry past the end
-  std::vector<Run> runs_;
-  std::vector<double> distances_;  // +inf until reached
+  // The corridor row by row: each row's span from its first to its last cell, a slot per cell
+  // of the span in `distances_` (a path that turns back leaves gaps in a span: slots outside
+  // the corridor, never reached).
+  int top_ = 0;                          // first row of the corridor
+  std::vector<int> rowX0_;               // per row from top_: first column of its span
+  std::vector<std::uint32_t> rowBegin_;  // per row: first slot; one entry past the end
+  std::vector<double> distances_;        // +inf until reached
   std::uint64_t expanded_ = 0;
   // The Dijkstra under way (from the goal's slot), dropped when done.
   const GridMap* map_ = nullptr;
   std::span<const std::uint8_t> moves_;
-  std::vector<Cell> cellOf_;  // per slot
-  std::vector<bool> closed_;  // per slot
-  OpenList open_;
+  std::vector<Cell> cellOf_;                   // per slot
+  static constexpr std::uint8_t kOutside = 0;  // a gap in a row's span
+  static constexpr std::uint8_t kOpen = 1;     // in the corridor, not settled yet
+  static constexpr std::uint8_t kClosed = 2;   // settled
+  std::vector<std::uint8_t> state_;            // per slot
+  TwoCostOpenList open_;
 };
 
 // One byte per cell: 1 where two agents of this kind could stand side by side around an

@@ -17,6 +17,7 @@
 // the branch mispredictions that made up half of an expansion on the bg512 maps.
 // Duplicates are allowed (lazy deletion): callers skip entries of nodes already closed.
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstdint>
@@ -128,6 +129,103 @@ class OpenList {
   std::vector<std::uint32_t> sameF_;
   std::uint64_t lastKey_ = 0;
   std::uint64_t poppedF_ = 0;
+};
+
+// The open list of uniform Dijkstra searches (moves cost 1 or √2, no heuristic): ClusterDijkstra's
+// and the cooperative search's corridor.
+// Popped keys never decrease, so the keys pushed through moves of one cost arrive in order and
+// a FIFO queue per cost keeps them sorted: a push and a pop cost O(1), where OpenList's radix
+// heap spent a third of a search on its buckets. It pops exactly what OpenList pops, so the
+// searches and the graphs stay bit-identical: the smallest key, and of equal keys the last
+// pushed (the radix heap keeps equal keys in push order in one bucket and drains its lowest
+// bucket from the back). Entries of one key reached by a √2 move were pushed by parents about
+// 0.41 cheaper than those reached by a move of 1, so before them: the last pushed first is
+// the cardinal queue's run of that key from its back, then the diagonal queue's.
+// Keys are OpenList::makeKey's.
+class TwoCostOpenList {
+ public:
+  static constexpr std::uint32_t kEmpty = UINT32_MAX;
+
+  void clear() {
+    for (Queue& q : queues_) {
+      q.entries.clear();
+      q.begin = q.cursor = q.end = q.lastRun = 0;
+      q.lastKey = kNoKey;
+    }
+    popping_ = kNoKey;
+  }
+  // `diagonal`: pushed through a move of cost √2 (else 1).
+  void push(bool diagonal, std::uint64_t key, std::uint32_t node) {
+    Queue& q = queues_[diagonal ? 1 : 0];
+    WARPATH_INVARIANT(q.entries.empty() || q.entries.back().key <= key,
+                      "two-cost open list: keys of one move cost must arrive in order");
+    WARPATH_INVARIANT(popping_ == kNoKey || key > popping_,
+                      "two-cost open list: a push must not tie the key being popped");
+    // Counted at its first entry, a run of one key needs no scan when its turn comes.
+    const std::size_t at = q.entries.size();
+    // Without a branch: whether a key repeats is data, and a mispredict costs more.
+    const std::size_t repeats = std::size_t{0} - static_cast<std::size_t>(q.lastKey == key);
+    q.lastRun = (q.lastRun & repeats) | (at & ~repeats);
+    q.lastKey = key;
+    q.entries.push_back({key, node, 0});
+    ++q.entries[q.lastRun].run;
+  }
+  // No entry left to pop (entries of nodes already settled count).
+  bool empty() const {
+    for (const Queue& q : queues_) {
+      if (q.cursor > q.begin || q.end < q.entries.size()) return false;
+    }
+    return true;
+  }
+  // The next node, or kEmpty.
+  std::uint32_t pop() {
+    Queue& cardinal = queues_[0];
+    Queue& diagonal = queues_[1];
+    if (cardinal.cursor == cardinal.begin && diagonal.cursor == diagonal.begin && !nextKey())
+      return kEmpty;
+    if (cardinal.cursor > cardinal.begin) return cardinal.entries[--cardinal.cursor].node;
+    return diagonal.entries[--diagonal.cursor].node;
+  }
+
+ private:
+  static constexpr std::uint64_t kNoKey = UINT64_MAX;  // above any key of a path cost
+  struct Entry {
+    std::uint64_t key;
+    std::uint32_t node;
+    std::uint32_t run;  // at the first entry of a run of one key: its length
+  };
+  // Entries [begin, end) hold the key being popped, popped from cursor down to begin; entries
+  // from end on are still to come.
+  struct Queue {
+    std::vector<Entry> entries;
+    std::size_t begin = 0;
+    std::size_t cursor = 0;
+    std::size_t end = 0;
+    std::size_t lastRun = 0;         // first entry of the last run
+    std::uint64_t lastKey = kNoKey;  // its key
+  };
+
+  // Starts on the smallest key left; false when none is.
+  bool nextKey() {
+    bool any = false;
+    std::uint64_t key = 0;
+    for (Queue& q : queues_) {
+      q.begin = q.cursor = q.end;
+      if (q.end == q.entries.size()) continue;
+      key = any ? std::min(key, q.entries[q.end].key) : q.entries[q.end].key;
+      any = true;
+    }
+    if (!any) return false;
+    popping_ = key;
+    for (Queue& q : queues_) {
+      if (q.end < q.entries.size() && q.entries[q.end].key == key) q.end += q.entries[q.end].run;
+      q.cursor = q.end;
+    }
+    return true;
+  }
+
+  std::array<Queue, 2> queues_;
+  std::uint64_t popping_ = kNoKey;  // the key being popped, kNoKey before the first
 };
 
 }  // namespace warpath::pathing
