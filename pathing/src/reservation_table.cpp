@@ -58,7 +58,10 @@ void ReservationTable::reserve(Cell anchor, int size, Tick from, Tick to, std::u
   owners_[owner].push_back({anchor, size, from, to});
   forEachCell(anchor, size, [&](std::size_t cell) {
     if (!tracked_.empty() && tracked_[cell] == 0) return;
-    cells_[cell].push_back({from, to, owner});
+    std::vector<Interval>& held = cells_[cell];
+    held.insert(std::upper_bound(held.begin(), held.end(), from,
+                                 [](Tick t, const Interval& i) { return t < i.from; }),
+                {from, to, owner});
     ++intervals_;
     // Intervals that never end are dropped by release() only.
     if (to != kForever) expiries_.push({to, static_cast<std::uint32_t>(cell)});
@@ -86,7 +89,8 @@ std::optional<std::uint32_t> ReservationTable::blocker(Cell anchor, int size, Ti
   std::optional<std::uint32_t> found;
   forEachCell(anchor, size, [&](std::size_t cell) {
     for (const Interval& i : cells_[cell]) {
-      if (i.owner == self || !(i.from < to && from < i.to)) continue;
+      if (!(i.from < to)) break;  // the rest begin later still
+      if (i.owner == self || !(from < i.to)) continue;
       if (!found || i.owner < *found) found = i.owner;
     }
   });
@@ -99,7 +103,8 @@ bool ReservationTable::freeBut(Cell anchor, int size, Tick from, Tick to, std::u
   // Stops at the first interval in the way: most asks in a crowd are answered no.
   return !anyCell(anchor, size, [&](std::size_t cell) {
     for (const Interval& i : cells_[cell]) {
-      if (i.owner != self && i.from < to && from < i.to && !ignored(i.owner)) return true;
+      if (!(i.from < to)) break;  // the rest begin later still
+      if (i.owner != self && from < i.to && !ignored(i.owner)) return true;
     }
     return false;
   });
@@ -124,7 +129,8 @@ std::vector<std::uint32_t> ReservationTable::holders(Cell anchor, int size, Tick
   std::vector<std::uint32_t> out;
   forEachCell(anchor, size, [&](std::size_t cell) {
     for (const Interval& i : cells_[cell]) {
-      if (i.owner != self && i.from < to && from < i.to) out.push_back(i.owner);
+      if (!(i.from < to)) break;  // the rest begin later still
+      if (i.owner != self && from < i.to) out.push_back(i.owner);
     }
   });
   std::sort(out.begin(), out.end());

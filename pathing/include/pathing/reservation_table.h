@@ -102,8 +102,10 @@ class ReservationTable {
 
   int width_;
   int height_;
-  std::vector<std::uint8_t> tracked_;             // empty: all
-  std::vector<std::vector<Interval>> cells_;      // per cell index, in no order
+  std::vector<std::uint8_t> tracked_;  // empty: all
+  // Per cell index, by `from` (ties in the order reserved): a check for [from, to) stops at
+  // the first interval beginning at or after `to`, where a crowd's later reservations lie.
+  std::vector<std::vector<Interval>> cells_;
   std::vector<std::vector<Reservation>> owners_;  // per owner id
   std::priority_queue<Expiry, std::vector<Expiry>, std::greater<>> expiries_;
   std::size_t intervals_ = 0;
