@@ -386,14 +386,13 @@ void CooperativeSearch::SeenStates::clear() {
   // Sized for the plan just done: most plans reach a few hundred states, and a table grown for
   // the largest (thousands) spreads them over more cache lines than stay cached (stress_2000:
   // a fifth of the window searches' time went to that miss).
-  if (slots_.size() > kSmallSlots && count_ * 16 < slots_.size()) {
-    slots_.assign(kSmallSlots, Slot{});
-    generation_ = 1;
-  } else if (++generation_ == 0) {  // wrapped: no slot may look live
-    std::fill(slots_.begin(), slots_.end(), Slot{});
-    generation_ = 1;
+  if (slots_.size() > kSmallSlots && used_.size() * 16 < slots_.size()) {
+    slots_.assign(kSmallSlots, kEmptySlot);
+  } else {
+    for (const std::uint32_t i : used_)
+      slots_[i] = kEmptySlot;
   }
-  count_ = 0;
+  used_.clear();
 }
 
 std::size_t CooperativeSearch::SeenStates::home(std::uint64_t key) const {
@@ -402,27 +401,27 @@ std::size_t CooperativeSearch::SeenStates::home(std::uint64_t key) const {
 }
 
 bool CooperativeSearch::SeenStates::insert(std::uint64_t key) {
-  if ((count_ + 1) * 2 > slots_.size()) grow();
+  if ((used_.size() + 1) * 2 > slots_.size()) grow();
   for (std::size_t i = home(key);; i = (i + 1) & (slots_.size() - 1)) {
-    Slot& slot = slots_[i];
-    if (slot.generation != generation_) {
-      slot = {key, generation_};
-      ++count_;
+    std::uint64_t& slot = slots_[i];
+    if (slot == kEmptySlot) {
+      slot = key;
+      used_.push_back(static_cast<std::uint32_t>(i));
       return true;
     }
-    if (slot.key == key) return false;
+    if (slot == key) return false;
   }
 }
 
 void CooperativeSearch::SeenStates::grow() {
-  std::vector<Slot> old(std::max(slots_.size() * 2, kSmallSlots));
-  old.swap(slots_);
-  const std::uint32_t live = generation_;
-  count_ = 0;
-  generation_ = 1;
-  for (const Slot& slot : old) {
-    if (slot.generation == live) insert(slot.key);
-  }
+  std::vector<std::uint64_t> keys;
+  keys.reserve(used_.size());
+  for (const std::uint32_t i : used_)
+    keys.push_back(slots_[i]);
+  slots_.assign(std::max(slots_.size() * 2, kSmallSlots), kEmptySlot);
+  used_.clear();
+  for (const std::uint64_t key : keys)
+    insert(key);
 }
 
 bool CooperativeSearch::startChain(std::int32_t at) const {
