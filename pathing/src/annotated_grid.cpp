@@ -61,8 +61,10 @@ struct AgentLayer::Scratch {
   std::vector<std::uint32_t> stamp;  // per cell: == epoch when reached
   std::vector<std::uint32_t> group;  // per cell: the group that reached it
   std::uint32_t epoch = 0;
-  std::vector<std::uint32_t> parent;                // union-find over groups
-  std::vector<std::uint32_t> seed;                  // per group: the cell it started from
+  std::vector<std::uint32_t> parent;   // union-find over groups
+  std::vector<std::uint32_t> seed;     // per group: the cell it started from
+  std::vector<std::uint32_t> oldId;    // per group: its seed's component before
+  std::vector<std::uint32_t> sharing;  // per old component id: groups of it still searching
   std::vector<std::vector<std::uint32_t>> reached;  // per root: cells, in the order reached
   std::vector<std::size_t> head;                    // per root: next of `reached` to expand
 };
@@ -75,28 +77,39 @@ void AgentLayer::update(const GridMap& map, const ClearanceField& clearance, Age
   const int y0 = std::max(0, changed.y - 1);
   const int x1 = std::min(map.width(), changed.x + changed.width + 1);
   const int y1 = std::min(map.height(), changed.y + changed.height + 1);
-  bool differs = false;
+  // Components follow from where the agent stands alone (a cardinal move needs it at both
+  // ends, and diagonals join nothing the cardinals do not): a change that only removed such
+  // cells can split components but not join them, one that only added them the reverse.
+  bool lost = false;
+  bool gained = false;
   for (int y = y0; y < y1; ++y) {
     for (int x = x0; x < x1; ++x) {
       const std::uint32_t i = map.indexOf({x, y});
-      const std::uint8_t now = movesFrom(clearance, agent.size, x, y);
-      // A cell where the agent now stands alone, or no longer does, changes components too.
+      moveMasks_[i] = movesFrom(clearance, agent.size, x, y);
       const bool stands = clearance.values()[i] >= agent.size;
-      differs = differs || now != moveMasks_[i] || stands != (components_[i] != 0);
-      moveMasks_[i] = now;
+      const bool stood = components_[i] != 0;
+      lost = lost || (stood && !stands);
+      gained = gained || (stands && !stood);
     }
   }
-  if (differs) relabel(map, clearance, agent, {x0, y0, x1 - x0, y1 - y0}, scratch);
+  if (!lost && !gained) return;
+  const Change change = !gained ? Change::Split : !lost ? Change::Join : Change::Both;
+  relabel(map, clearance, agent, {x0, y0, x1 - x0, y1 - y0}, change, scratch);
 }
 
 void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Agent agent,
-                         CellRect region, Scratch& s) {
+                         CellRect region, Change change, Scratch& s) {
   // Connectivity changed only through the cells of `region`. Searches start from every cell
   // there and next to it where the agent stands, one group each, and advance a cell per group
   // in turn; groups that meet merge. A group that runs out of cells holds a whole component
   // and gets a new id; once at most one group is still searching, the rest is the component of
   // every id that group met (merged under the largest). A change in the open thus costs about
   // its own area, and a split costs the smaller side.
+  // Knowing the kind of change saves most searches: after cells were only removed, groups of
+  // different old components cannot meet, and a group alone in its old component holds all of
+  // it that is left (were it split, each part would border the region, in a group of its own),
+  // so only groups sharing an old component search, until one of each is left. After cells
+  // were only added, nothing splits: each group joins the components it touches, unsearched.
   const int w = map.width();
   if (s.stamp.size() != components_.size()) {
     s.stamp.assign(components_.size(), 0);
@@ -109,6 +122,7 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
   }
   s.parent.clear();
   s.seed.clear();
+  s.oldId.clear();
   for (std::vector<std::uint32_t>& cells : s.reached)
     cells.clear();  // keeps their memory for the next update
   s.head.clear();
@@ -134,6 +148,7 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
       const auto g = static_cast<std::uint32_t>(s.parent.size());
       s.parent.push_back(g);
       s.seed.push_back(cell);
+      s.oldId.push_back(components_[cell]);
       s.stamp[cell] = s.epoch;
       s.group[cell] = g;
     }
@@ -156,15 +171,72 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
     s.reached[r].push_back(s.seed[g]);
     if (r == g) live.push_back(g);
   }
+  // Every id met among `cells` (joined now) is one component, under the largest of them.
+  const auto joinAll = [&](const std::vector<std::uint32_t>& cells) {
+    std::vector<std::uint32_t> met;
+    for (std::uint32_t cell : cells) {
+      const std::uint32_t id = components_[cell];
+      if (id != 0 && (met.empty() || met.back() != id)) met.push_back(id);  // runs of one id
+    }
+    std::sort(met.begin(), met.end());
+    met.erase(std::unique(met.begin(), met.end()), met.end());
+    std::uint32_t keep = 0;
+    for (std::uint32_t id : met) {
+      if (keep == 0 || sizes_[id] > sizes_[keep]) keep = id;
+    }
+    if (keep == 0) {
+      keep = ++componentCount_;
+      sizes_.resize(componentCount_ + 1, 0);
+    }
+    std::vector<std::uint32_t> stack;
+    for (std::uint32_t id : met) {
+      if (id == keep) continue;
+      // Every cell of `id` left is joined to these cells: flood it from them.
+      for (std::uint32_t cell : cells) {
+        if (components_[cell] == id) stack.push_back(cell);
+      }
+      while (!stack.empty()) {
+        const std::uint32_t cell = stack.back();
+        stack.pop_back();
+        if (components_[cell] != id) continue;
+        components_[cell] = keep;
+        ++sizes_[keep];
+        forCardinalMoves(moveMasks_[cell], cell, w, [&](std::uint32_t next) {
+          if (components_[next] == id) stack.push_back(next);
+        });
+      }
+      sizes_[id] = 0;
+    }
+    for (std::uint32_t cell : cells) {
+      if (components_[cell] == 0) ++sizes_[keep];
+      components_[cell] = keep;
+    }
+  };
+  if (change == Change::Join) {
+    for (const std::uint32_t g : live)
+      joinAll(s.reached[g]);
+    return;
+  }
+  // After a split, a group searches while another shares its old component.
+  const bool split = change == Change::Split;
+  if (split) {
+    s.sharing.resize(componentCount_ + 1, 0);
+    for (const std::uint32_t g : live)
+      ++s.sharing[s.oldId[g]];
+  }
+  const auto searching = [&](std::uint32_t g) { return !split || s.sharing[s.oldId[g]] > 1; };
+  const std::vector<std::uint32_t> groups = live;
+  std::erase_if(live, [&](std::uint32_t g) { return !searching(g); });
   std::vector<std::uint32_t> done;  // roots that ran out of cells
   std::vector<std::uint32_t> stillLive;
   std::vector<std::uint32_t> pending;
-  while (live.size() > 1) {
+  while (split ? !live.empty() : live.size() > 1) {
     stillLive.clear();
     for (std::uint32_t g : live) {
       if (root(g) != g) continue;  // merged into another this round
       if (s.head[g] == s.reached[g].size()) {
         done.push_back(g);
+        if (split) --s.sharing[s.oldId[g]];
         continue;
       }
       const std::uint32_t cell = s.reached[g][s.head[g]++];
@@ -182,6 +254,7 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
         std::uint32_t gone = other;
         if (s.reached[keep].size() < s.reached[gone].size()) std::swap(keep, gone);
         s.parent[gone] = keep;
+        if (split) --s.sharing[s.oldId[keep]];  // both of one old component
         std::vector<std::uint32_t>& into = s.reached[keep];
         std::vector<std::uint32_t>& from = s.reached[gone];
         // Cells not yet expanded go to the end of the survivor's list; expanded ones need not.
@@ -203,8 +276,12 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
     if (!std::is_sorted(stillLive.begin(), stillLive.end()))
       std::sort(stillLive.begin(), stillLive.end());
     stillLive.erase(std::unique(stillLive.begin(), stillLive.end()), stillLive.end());
-    std::erase_if(stillLive, [&](std::uint32_t g) { return root(g) != g; });
+    std::erase_if(stillLive, [&](std::uint32_t g) { return root(g) != g || !searching(g); });
     std::swap(live, stillLive);
+  }
+  if (split) {
+    for (const std::uint32_t g : groups)
+      s.sharing[s.oldId[g]] = 0;
   }
   // Groups that ran out hold whole components: new ids.
   for (std::uint32_t g : done) {
@@ -218,47 +295,10 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
     }
     sizes_[id] = static_cast<std::uint32_t>(s.reached[g].size());
   }
-  if (live.empty()) return;
-  // The last group: every id it met is one component now, under the largest of them.
-  const std::uint32_t last = root(live.front());
-  std::vector<std::uint32_t> met;
-  for (std::uint32_t cell : s.reached[last]) {
-    const std::uint32_t id = components_[cell];
-    if (id != 0 && (met.empty() || met.back() != id)) met.push_back(id);  // runs of one id
-  }
-  std::sort(met.begin(), met.end());
-  met.erase(std::unique(met.begin(), met.end()), met.end());
-  std::uint32_t keep = 0;
-  for (std::uint32_t id : met) {
-    if (keep == 0 || sizes_[id] > sizes_[keep]) keep = id;
-  }
-  if (keep == 0) {
-    keep = ++componentCount_;
-    sizes_.resize(componentCount_ + 1, 0);
-  }
-  std::vector<std::uint32_t> stack;
-  for (std::uint32_t id : met) {
-    if (id == keep) continue;
-    // Every cell of `id` left is joined to the last group's cells: flood it from them.
-    for (std::uint32_t cell : s.reached[last]) {
-      if (components_[cell] == id) stack.push_back(cell);
-    }
-    while (!stack.empty()) {
-      const std::uint32_t cell = stack.back();
-      stack.pop_back();
-      if (components_[cell] != id) continue;
-      components_[cell] = keep;
-      ++sizes_[keep];
-      forCardinalMoves(moveMasks_[cell], cell, w, [&](std::uint32_t next) {
-        if (components_[next] == id) stack.push_back(next);
-      });
-    }
-    sizes_[id] = 0;
-  }
-  for (std::uint32_t cell : s.reached[last]) {
-    if (components_[cell] == 0) ++sizes_[keep];
-    components_[cell] = keep;
-  }
+  // After a split the groups left each hold what is left of their old component, whose id
+  // they keep; otherwise the last group joins every id it met.
+  if (split || live.empty()) return;
+  joinAll(s.reached[root(live.front())]);
 }
 
 void AgentLayer::labelComponents(const GridMap& map, const ClearanceField& clearance, Agent agent) {

@@ -49,9 +49,12 @@ class AgentLayer {
   std::uint32_t componentCount() const { return componentCount_; }
 
  private:
+  // What a change did to the cells the agent stands on: only removed some, only added some,
+  // or both.
+  enum class Change { Split, Join, Both };
   void labelComponents(const GridMap& map, const ClearanceField& clearance, Agent agent);
   void relabel(const GridMap& map, const ClearanceField& clearance, Agent agent, CellRect region,
-               Scratch& scratch);
+               Change change, Scratch& scratch);
 
   std::vector<std::uint8_t> moveMasks_;
   std::vector<std::uint32_t> components_;
