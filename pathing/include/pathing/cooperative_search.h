@@ -363,10 +363,10 @@ class CooperativeSearch {
     bool insert(std::uint64_t key);  // true when the key is new
 
    private:
-    // Keys are (cell << 32 | tick offset), never all ones. Eight bytes a slot, and no
-    // generation: clear() empties the slots it used, so 4,096 slots take 32 KB, which the L1
-    // cache holds (with a generation per slot, 64 KB that it did not: the insert's probe was
-    // most of an expansion).
+    // Keys are (cell << 32 | tick offset), never all ones. Eight bytes a slot and no
+    // generation (clear() empties the slots it used): 4,096 slots take 32 KB, half what they
+    // took with a generation each; the probe's first load is still a cache miss for most
+    // states (stress_2000).
     static constexpr std::uint64_t kEmptySlot = ~std::uint64_t{0};
     static constexpr std::size_t kSmallSlots = 4096;
     std::size_t home(std::uint64_t key) const;
