@@ -159,10 +159,10 @@ CorridorDistance::CorridorDistance(const AnnotatedGrid& grid, Agent agent,
   // equal keys, nor on where slices end: a cell's distance is the least of its closer
   // neighbours' plus a move, and moves cost at least 1.
   if (!grid.canStand(agent, path.back())) return;
-  map_ = &map;
-  moves_ = grid.layer(agent).moveMasks();
+  const std::span<const std::uint8_t> moves = grid.layer(agent).moveMasks();
   cellOf_.resize(cells);
   state_.assign(cells, kOutside);
+  moves_.assign(cells, 0);
   for (int r = 0; r < height; ++r) {
     const std::uint64_t* row = &marked[static_cast<std::size_t>(r) * words];
     const auto ri = static_cast<std::size_t>(r);
@@ -170,7 +170,9 @@ CorridorDistance::CorridorDistance(const AnnotatedGrid& grid, Agent agent,
       const int x = rowX0_[ri] + static_cast<int>(at - rowBegin_[ri]);
       const int bit = x - left;
       cellOf_[at] = {x, top_ + r};
-      if ((row[bit / 64] >> (bit % 64)) & 1u) state_[at] = kOpen;
+      if (((row[bit / 64] >> (bit % 64)) & 1u) == 0) continue;
+      state_[at] = kOpen;
+      moves_[at] = moves[map.indexOf({x, top_ + r})];
     }
   }
   const auto goal = static_cast<std::uint32_t>(slot(path.back()));
@@ -184,6 +186,7 @@ bool CorridorDistance::settle(Cell /*c*/, std::uint64_t& allowance) {
   double* const distances = distances_.data();
   std::uint8_t* const state = state_.data();
   const Cell* const cellOf = cellOf_.data();
+  const std::uint8_t* const moves = moves_.data();
   while (!open_.empty()) {
     if (allowance == 0) return false;
     const std::uint32_t current = open_.pop();
@@ -193,7 +196,7 @@ bool CorridorDistance::settle(Cell /*c*/, std::uint64_t& allowance) {
     --allowance;
     const double g = distances[current];
     const Cell here = cellOf[current];
-    for (unsigned mask = moves_[map_->indexOf(here)]; mask != 0; mask &= mask - 1) {
+    for (unsigned mask = moves[current]; mask != 0; mask &= mask - 1) {
       const int d = std::countr_zero(mask);
       const Direction& dir = kDirections[static_cast<std::size_t>(d)];
       const std::ptrdiff_t at = slot({here.x + dir.dx, here.y + dir.dy});
@@ -207,6 +210,7 @@ bool CorridorDistance::settle(Cell /*c*/, std::uint64_t& allowance) {
   if (!cellOf_.empty()) {  // done: the scratch goes
     cellOf_ = {};
     state_ = {};
+    moves_ = {};
     open_ = {};
   }
   return true;

@@ -118,9 +118,8 @@ class CorridorDistance final : public DistanceField {
   std::vector<double> distances_;        // +inf until reached
   std::uint64_t expanded_ = 0;
   // The Dijkstra under way (from the goal's slot), dropped when done.
-  const GridMap* map_ = nullptr;
-  std::span<const std::uint8_t> moves_;
   std::vector<Cell> cellOf_;                   // per slot
+  std::vector<std::uint8_t> moves_;            // per slot: the agent's moves there (moves.h)
   static constexpr std::uint8_t kOutside = 0;  // a gap in a row's span
   static constexpr std::uint8_t kOpen = 1;     // in the corridor, not settled yet
   static constexpr std::uint8_t kClosed = 2;   // settled
