@@ -225,7 +225,6 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
       ++s.sharing[s.oldId[g]];
   }
   const auto searching = [&](std::uint32_t g) { return !split || s.sharing[s.oldId[g]] > 1; };
-  const std::vector<std::uint32_t> groups = live;
   std::erase_if(live, [&](std::uint32_t g) { return !searching(g); });
   std::vector<std::uint32_t> done;  // roots that ran out of cells
   std::vector<std::uint32_t> stillLive;
@@ -280,8 +279,8 @@ void AgentLayer::relabel(const GridMap& map, const ClearanceField& clearance, Ag
     std::swap(live, stillLive);
   }
   if (split) {
-    for (const std::uint32_t g : groups)
-      s.sharing[s.oldId[g]] = 0;
+    for (const std::uint32_t id : s.oldId)
+      s.sharing[id] = 0;
   }
   // Groups that ran out hold whole components: new ids.
   for (std::uint32_t g : done) {
