@@ -9,7 +9,8 @@ ReservationTable::ReservationTable(int width, int height, std::vector<std::uint8
     : width_(std::max(0, width)),
       height_(std::max(0, height)),
       tracked_(std::move(tracked)),
-      cells_(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_)) {
+      cells_(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_)),
+      occupied_(cells_.size(), 0) {
   if (tracked_.size() != cells_.size()) tracked_.clear();
 }
 
@@ -59,6 +60,7 @@ void ReservationTable::reserve(Cell anchor, int size, Tick from, Tick to, std::u
   forEachCell(anchor, size, [&](std::size_t cell) {
     if (!tracked_.empty() && tracked_[cell] == 0) return;
     std::vector<Interval>& held = cells_[cell];
+    occupied_[cell] = 1;
     held.insert(std::upper_bound(held.begin(), held.end(), from,
                                  [](Tick t, const Interval& i) { return t < i.from; }),
                 {from, to, owner});
@@ -79,6 +81,7 @@ void ReservationTable::release(std::uint32_t owner) {
     forEachCell(r.anchor, r.size, [&](std::size_t cell) {
       intervals_ -=
           std::erase_if(cells_[cell], [&](const Interval& i) { return i.owner == owner; });
+      occupied_[cell] = cells_[cell].empty() ? 0 : 1;
     });
   }
   owners_[owner].clear();
@@ -88,6 +91,7 @@ std::optional<std::uint32_t> ReservationTable::blocker(Cell anchor, int size, Ti
                                                        std::uint32_t self) const {
   std::optional<std::uint32_t> found;
   forEachCell(anchor, size, [&](std::size_t cell) {
+    if (occupied_[cell] == 0) return;
     for (const Interval& i : cells_[cell]) {
       if (!(i.from < to)) break;  // the rest begin later still
       if (i.owner == self || !(from < i.to)) continue;
@@ -102,6 +106,7 @@ bool ReservationTable::freeBut(Cell anchor, int size, Tick from, Tick to, std::u
                                Ignored&& ignored) const {
   // Stops at the first interval in the way: most asks in a crowd are answered no.
   return !anyCell(anchor, size, [&](std::size_t cell) {
+    if (occupied_[cell] == 0) return false;
     for (const Interval& i : cells_[cell]) {
       if (!(i.from < to)) break;  // the rest begin later still
       if (i.owner != self && from < i.to && !ignored(i.owner)) return true;
@@ -128,6 +133,7 @@ std::vector<std::uint32_t> ReservationTable::holders(Cell anchor, int size, Tick
                                                      std::uint32_t self) const {
   std::vector<std::uint32_t> out;
   forEachCell(anchor, size, [&](std::size_t cell) {
+    if (occupied_[cell] == 0) return;
     for (const Interval& i : cells_[cell]) {
       if (!(i.from < to)) break;  // the rest begin later still
       if (i.owner != self && from < i.to) out.push_back(i.owner);
@@ -143,6 +149,7 @@ void ReservationTable::forget(Tick now) {
     const std::uint32_t cell = expiries_.top().cell;
     expiries_.pop();
     intervals_ -= std::erase_if(cells_[cell], [&](const Interval& i) { return i.to <= now; });
+    occupied_[cell] = cells_[cell].empty() ? 0 : 1;
   }
 }
 
