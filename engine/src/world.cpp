@@ -71,6 +71,7 @@ struct World::Phases {
   world::Combat combat;
   world::Traffic traffic;
   world::SteeringScratch steering;
+  world::FullGoalAreas fullGoalAreas;
   std::vector<bool> contestedTracked;  // per catalogue type: its chokepoints are tracked
   std::vector<PathDelivery> deliveries;
   world::PhaseTimer timer;
@@ -241,7 +242,7 @@ void World::step() {
   timer.mark(Phase::Physics);
   // 5. Rules on the new tick: wrecks, arrivals, pursuit, repaths, stuck units.
   ++state_.tick;
-  world::applyRules(w);
+  world::applyRules(w, phases_->fullGoalAreas);
   // 6. The state hash, when asked for.
   stateHash_.reset();
   eventsKept_ = events_.size();

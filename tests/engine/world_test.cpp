@@ -66,6 +66,15 @@ void runChecked(ScenarioRun& run) {
 
 const std::string kHeader = "catalogue: ../assets/units.yaml\nteams: [blue]\n";
 
+// A size-1 walker of ground only, at 1.5 cells/s.
+units::UnitType groundInfantry() {
+  units::UnitType infantry;
+  infantry.name = "infantry";
+  infantry.capability = pathing::Capability::of({Terrain::Ground});
+  infantry.setSpeed(1.5);
+  return infantry;
+}
+
 TEST(World, EveryTypeReachesAReachableGoal) {
   const Scenario s =
       load(kHeader +
@@ -459,10 +468,7 @@ TEST(World, AnUnreachableGoalIsReportedOnceAndNotRetried) {
   for (int y = 0; y < 8; ++y)
     map.set({10, y}, Terrain::Blocked);
   auto grid = std::make_shared<const pathing::AnnotatedGrid>(std::move(map));
-  units::UnitType infantry;
-  infantry.name = "infantry";
-  infantry.capability = pathing::Capability::of({Terrain::Ground});
-  infantry.setSpeed(1.5);
+  const units::UnitType infantry = groundInfantry();
   World world(grid, {infantry}, {});
   const UnitId id = world.spawn(0, 0, 0, {1, 1});
   world.orderMove({id}, {12, 2, 2, 2});
@@ -511,10 +517,7 @@ TEST(World, AUnitThatCannotReachItsCellIsRepathedThenFlaggedStuck) {
   // Two units sent to a one-cell area: the first parks there and holds it, the second pushes
   // without progress.
   auto grid = std::make_shared<const pathing::AnnotatedGrid>(pathing::GridMap(12, 6));
-  units::UnitType infantry;
-  infantry.name = "infantry";
-  infantry.capability = pathing::Capability::of({Terrain::Ground});
-  infantry.setSpeed(1.5);
+  const units::UnitType infantry = groundInfantry();
   WorldSettings settings;
   settings.stuck.windowSeconds = 1.0;
   settings.stuck.flagAfter = 2;
@@ -536,6 +539,29 @@ TEST(World, AUnitThatCannotReachItsCellIsRepathedThenFlaggedStuck) {
   EXPECT_GE(flagged, 1);
   // The parked unit was shoved but holds its cell.
   EXPECT_LT((world.find(first)->position - units::anchorToCentre({9, 2}, 1)).length(), 0.6);
+}
+
+TEST(World, AUnitWhoseGoalAreaIsFullTakesACellOnceOneIsFreed) {
+  // Three units sent to a two-cell area: the last finds no free cell (the rules then remember
+  // the area as full for it and do not scan it again while nothing changes). Once a parked unit
+  // is sent elsewhere its cell is free again, and the last one (whose goal cell was the other
+  // one's) takes it.
+  auto grid = std::make_shared<const pathing::AnnotatedGrid>(pathing::GridMap(14, 8));
+  const units::UnitType infantry = groundInfantry();
+  World world(grid, {infantry}, {});
+  const UnitId a = world.spawn(0, 0, 0, {6, 2});
+  const UnitId b = world.spawn(0, 0, 0, {6, 3});
+  const UnitId c = world.spawn(0, 0, 0, {1, 5});
+  world.orderMove({a, b, c}, {10, 3, 2, 1});
+  testing::stepKeepingEvents(world, 20 * 12);
+  ASSERT_EQ(world.find(a)->state, UnitState::Parked);
+  ASSERT_EQ(world.find(b)->state, UnitState::Parked);
+  ASSERT_NE(world.find(c)->state, UnitState::Parked);
+  world.orderMove({b}, {13, 7, 1, 1});
+  testing::stepKeepingEvents(world, 20 * 12);
+  EXPECT_EQ(world.find(b)->state, UnitState::Parked);
+  ASSERT_EQ(world.find(c)->state, UnitState::Parked);
+  EXPECT_EQ(world.find(c)->goalCell, (Cell{11, 3}));  // b's, not a's
 }
 
 }  // namespace

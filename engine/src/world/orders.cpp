@@ -378,28 +378,45 @@ std::int64_t freeFlowTicks(const Refs& w, const Unit& unit, const PathDelivery& 
   return std::llround(seconds * w.settings.tickRate);
 }
 
-bool reassignGoal(Refs& w, Unit& unit) {
+bool FullGoalAreas::stillFull(const Refs& w, const Unit& unit, std::uint32_t component) const {
+  if (unit.id.index >= seen_.size()) return false;
+  const Seen& s = seen_[unit.id.index];
+  return s.full && s.board == w.state.goals.digest() &&
+         s.terrainChanges == w.state.terrain.applied && s.component == component &&
+         s.area == unit.goalArea;
+}
+
+void FullGoalAreas::remember(const Refs& w, const Unit& unit, std::uint32_t component) {
+  if (seen_.size() <= unit.id.index) seen_.resize(static_cast<std::size_t>(unit.id.index) + 1);
+  seen_[unit.id.index] = {w.state.goals.digest(), w.state.terrain.applied, component, unit.goalArea,
+                          true};
+}
+
+bool reassignGoal(Refs& w, Unit& unit, FullGoalAreas* full) {
   const units::UnitType& type = w.typeOf(unit);
   const Agent agent = type.agent();
   const GridMap& map = w.map();
   const auto& components = w.grid.layer(agent).components();
+  const pathing::ClearanceField& clearance = w.grid.clearance(agent.capability);
   const std::uint32_t component = componentOf(w, unit);
+  if (full != nullptr && full->stillFull(w, unit, component)) return false;
   std::optional<Cell> best;
   double bestDistance = INFINITY;
   const CellRect& area = unit.goalArea;
   for (int y = area.y; y < area.y + area.height; ++y) {
     for (int x = area.x; x < area.x + area.width; ++x) {
       const Cell c{x, y};
-      if (!w.grid.canStand(agent, c) || components[map.indexOf(c)] != component) continue;
-      const bool free = w.state.goals.freeFor(GoalLayer::Parked, c, type.size, unit.id) &&
-                        w.state.goals.freeFor(GoalLayer::Claimed, c, type.size, unit.id);
+      if (clearance.at(c) < type.size || components[map.indexOf(c)] != component) continue;
+      // The nearest free cell, the first of equals: the distance is the cheaper test.
       const double d = (units::anchorToCentre(c, type.size) - unit.position).length();
-      if (free && d < bestDistance) {
+      if (d < bestDistance && w.state.goals.freeFor(GoalLayer::Parked, c, type.size, unit.id) &&
+          w.state.goals.freeFor(GoalLayer::Claimed, c, type.size, unit.id)) {
         bestDistance = d;
         best = c;
       }
     }
   }
+  if (!best && full != nullptr) full->remember(w, unit, component);
   if (!best || *best == unit.goalCell) return false;
   w.state.goals.release(GoalLayer::Claimed, unit.goalCell, type.size, unit.id);
   unit.goalCell = *best;

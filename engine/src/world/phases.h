@@ -72,8 +72,29 @@ std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch);
 // plan's cost, else each move at its top speed there): what the report's delays are measured
 // against.
 std::int64_t freeFlowTicks(const Refs& w, const Unit& unit, const PathDelivery& delivery);
+// Units whose goal area reassignGoal last found without a free cell for them, and what that
+// answer depended on: the goal board (its digest), the terrain (changes applied), the unit's
+// component and its area. Until one of those changes the answer stays the same, so the rules do
+// not scan the area again every tick (stress_2000: about 40 units a tick near the end, up to
+// 1,600 cells each, most of the rules' time). Scratch, not state: it only skips work.
+class FullGoalAreas {
+ public:
+  bool stillFull(const Refs& w, const Unit& unit, std::uint32_t component) const;
+  void remember(const Refs& w, const Unit& unit, std::uint32_t component);
+
+ private:
+  struct Seen {
+    std::uint64_t board = 0;
+    std::uint64_t terrainChanges = 0;
+    std::uint32_t component = 0;
+    pathing::CellRect area{};
+    bool full = false;
+  };
+  std::vector<Seen> seen_;  // by unit index
+};
 // Moves the unit to the nearest free goal cell of its area; false when there is none other.
-bool reassignGoal(Refs& w, Unit& unit);
+// With `full`, an area it remembers as full for the unit is not scanned again.
+bool reassignGoal(Refs& w, Unit& unit, FullGoalAreas* full = nullptr);
 // hp reached 0: the unit leaves its order, the path service and (after its wreck) physics.
 void kill(Refs& w, Unit& unit, UnitId killer);
 
@@ -323,7 +344,7 @@ void steerAll(Refs& w, SteeringScratch& scratch);
 void stepPhysics(Refs& w);
 
 // --- Rules: arrivals, wrecks, repaths, stuck units (engine/src/world/rules.cpp) ---
-void applyRules(Refs& w);
+void applyRules(Refs& w, FullGoalAreas& fullGoalAreas);
 
 // --- Terrain: changes during a run (engine/src/world/terrain.cpp, docs/terrain_changes.md) ---
 

@@ -18,7 +18,7 @@ double remainingAlong(const Unit& unit, int size) {
 }
 
 // A moving unit's checks, in order; at most one repath a tick.
-void checkProgress(Refs& w, Unit& unit, Cell anchor) {
+void checkProgress(Refs& w, Unit& unit, Cell anchor, FullGoalAreas& fullGoalAreas) {
   const units::UnitType& type = w.typeOf(unit);
   const std::vector<Cell>& path = unit.path->cells;
   const bool movingToArea = unit.order != OrderKind::Attack;
@@ -26,7 +26,7 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor) {
   const bool nearEnd = unit.next + static_cast<std::size_t>(type.size) + 2 >= path.size();
   if (movingToArea && nearEnd &&
       !w.state.goals.freeFor(GoalLayer::Parked, unit.goalCell, type.size, unit.id) &&
-      reassignGoal(w, unit)) {
+      reassignGoal(w, unit, &fullGoalAreas)) {
     w.log(EventKind::Repath, unit, 2);
     requestPath(w, unit);
     return;
@@ -64,7 +64,7 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor) {
       w.log(EventKind::StuckFlagged, unit);
     }
     // Near the goal, a crowd is the likely cause: a free goal cell resolves it.
-    const bool newGoal = movingToArea && nearEnd && reassignGoal(w, unit);
+    const bool newGoal = movingToArea && nearEnd && reassignGoal(w, unit, &fullGoalAreas);
     w.log(EventKind::Repath, unit, 0);
     // Units standing for good on the path ahead would jam it again: a way around them
     // (detours). Else the traffic jammed it: a unit keeping to a window plans a new one
@@ -81,7 +81,7 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor) {
 
 }  // namespace
 
-void applyRules(Refs& w) {
+void applyRules(Refs& w, FullGoalAreas& fullGoalAreas) {
   const std::int64_t tick = w.state.tick;
   std::vector<Unit>& all = w.state.units;
   for (std::size_t i = 0; i < all.size(); ++i) {
@@ -108,7 +108,7 @@ void applyRules(Refs& w) {
       if (unit.order != OrderKind::Attack) continue;
     }
     if (unit.state != UnitState::Moving || unit.engaged) continue;
-    checkProgress(w, unit, anchor);
+    checkProgress(w, unit, anchor, fullGoalAreas);
   }
 }
 
