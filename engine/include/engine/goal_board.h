@@ -37,6 +37,11 @@ class GoalBoard {
 
   // Order-independent digest of every held cell: equal boards have equal digests.
   std::uint64_t digest() const { return digest_; }
+  // The same over the blocks of kBlock x kBlock cells that meet `area` (clipped to the map):
+  // equal wherever those blocks hold the same, so a search of an area can tell whether
+  // anything in it changed since (World's rules, FullGoalAreas).
+  std::uint64_t digestAround(pathing::CellRect area) const;
+  static constexpr int kBlock = 8;
 
  private:
   void set(GoalLayer layer, std::size_t cell, std::uint32_t holder);
@@ -53,6 +58,8 @@ class GoalBoard {
   std::vector<std::uint32_t> claimed_;
   std::vector<std::uint32_t> parked_;
   std::uint64_t digest_ = 0;
+  int blockColumns_ = 0;
+  std::vector<std::uint64_t> blockDigests_;  // by block, row by row
 };
 
 }  // namespace warpath::engine

@@ -1,5 +1,7 @@
 #include "engine/goal_board.h"
 
+#include <algorithm>
+
 #include "pathing/invariant.h"
 
 namespace warpath::engine {
@@ -34,13 +36,25 @@ GoalBoard::GoalBoard(const pathing::GridMap& map)
     : width_(map.width()),
       height_(map.height()),
       claimed_(map.cellCount(), 0),
-      parked_(map.cellCount(), 0) {}
+      parked_(map.cellCount(), 0),
+      blockColumns_((map.width() + kBlock - 1) / kBlock),
+      blockDigests_(static_cast<std::size_t>(blockColumns_) *
+                        static_cast<std::size_t>((map.height() + kBlock - 1) / kBlock),
+                    0) {}
 
 void GoalBoard::set(GoalLayer layer, std::size_t cell, std::uint32_t holder) {
   std::uint32_t& slot = cells(layer)[cell];
   if (slot == holder) return;
-  if (slot != 0) digest_ ^= entryDigest(layer, cell, slot);
-  if (holder != 0) digest_ ^= entryDigest(layer, cell, holder);
+  const auto x = static_cast<int>(cell % static_cast<std::size_t>(width_));
+  const auto y = static_cast<int>(cell / static_cast<std::size_t>(width_));
+  std::uint64_t& block =
+      blockDigests_[static_cast<std::size_t>(y / kBlock) * static_cast<std::size_t>(blockColumns_) +
+                    static_cast<std::size_t>(x / kBlock)];
+  std::uint64_t change = 0;
+  if (slot != 0) change ^= entryDigest(layer, cell, slot);
+  if (holder != 0) change ^= entryDigest(layer, cell, holder);
+  digest_ ^= change;
+  block ^= change;
   slot = holder;
 }
 
@@ -66,6 +80,21 @@ UnitId GoalBoard::holder(GoalLayer layer, pathing::Cell cell) const {
       cells(layer)[static_cast<std::size_t>(cell.y) * static_cast<std::size_t>(width_) +
                    static_cast<std::size_t>(cell.x)];
   return h == 0 ? UnitId{} : UnitId{h - 1, 0};
+}
+
+std::uint64_t GoalBoard::digestAround(pathing::CellRect area) const {
+  const int x0 = std::max(area.x, 0);
+  const int y0 = std::max(area.y, 0);
+  const int x1 = std::min(area.x + area.width, width_);
+  const int y1 = std::min(area.y + area.height, height_);
+  std::uint64_t d = 0;
+  if (x1 <= x0 || y1 <= y0) return d;
+  for (int by = y0 / kBlock; by <= (y1 - 1) / kBlock; ++by) {
+    for (int bx = x0 / kBlock; bx <= (x1 - 1) / kBlock; ++bx)
+      d ^= blockDigests_[static_cast<std::size_t>(by) * static_cast<std::size_t>(blockColumns_) +
+                         static_cast<std::size_t>(bx)];
+  }
+  return d;
 }
 
 bool GoalBoard::freeFor(GoalLayer layer, pathing::Cell anchor, int size, UnitId self) const {

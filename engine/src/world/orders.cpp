@@ -378,18 +378,29 @@ std::int64_t freeFlowTicks(const Refs& w, const Unit& unit, const PathDelivery& 
   return std::llround(seconds * w.settings.tickRate);
 }
 
+namespace {
+
+// What reassignGoal reads of the goal board: the footprints at the area's cells.
+std::uint64_t goalBoardAround(const Refs& w, const Unit& unit) {
+  const int reach = w.typeOf(unit).size - 1;
+  const CellRect& a = unit.goalArea;
+  return w.state.goals.digestAround({a.x, a.y, a.width + reach, a.height + reach});
+}
+
+}  // namespace
+
 bool FullGoalAreas::stillFull(const Refs& w, const Unit& unit, std::uint32_t component) const {
   if (unit.id.index >= seen_.size()) return false;
   const Seen& s = seen_[unit.id.index];
-  return s.full && s.board == w.state.goals.digest() &&
+  return s.full && s.board == goalBoardAround(w, unit) &&
          s.terrainChanges == w.state.terrain.applied && s.component == component &&
          s.area == unit.goalArea;
 }
 
 void FullGoalAreas::remember(const Refs& w, const Unit& unit, std::uint32_t component) {
   if (seen_.size() <= unit.id.index) seen_.resize(static_cast<std::size_t>(unit.id.index) + 1);
-  seen_[unit.id.index] = {w.state.goals.digest(), w.state.terrain.applied, component, unit.goalArea,
-                          true};
+  seen_[unit.id.index] = {goalBoardAround(w, unit), w.state.terrain.applied, component,
+                          unit.goalArea, true};
 }
 
 bool reassignGoal(Refs& w, Unit& unit, FullGoalAreas* full) {
