@@ -388,7 +388,8 @@ Result<Scenario> replayScenario(const Replay& replay) {
   // with vehicles' lanes ending at junctions, and walkers stepping aside on their side of a
   // vehicle, before lanes went on through junctions and walkers stepped to the side with room,
   // and with jammed units asking for their path again before detours, and stopped vehicles
-  // claiming no lane before they claimed theirs.
+  // claiming no lane before they claimed theirs, and units pushing on in a full goal area
+  // before they parked where they stood there.
   WorldSettings defaults;
   if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
   if (replay.version < kFirstCongestionReplayVersion) defaults.pathing.congestion = false;
@@ -406,6 +407,7 @@ Result<Scenario> replayScenario(const Replay& replay) {
   if (replay.version < kFirstJamDetoursReplayVersion) defaults.pathing.jamDetours = false;
   if (replay.version < kFirstStandingLanesReplayVersion)
     defaults.pathing.standingVehicleLanes = false;
+  if (replay.version < kFirstParkWhenFullReplayVersion) defaults.pathing.parkWhenAreaFull = false;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

@@ -341,7 +341,8 @@ Result<Scenario> loadRecordedChokepoint(const std::string& file, ReplaySource& s
 
 // The rules that formats after `format` brought, set back as files of `format` play back: the
 // kept-out rules (format 11), lanes through junctions and stepping aside to the side with room
-// (12), detours after a jam (13), lanes of stopped vehicles (14).
+// (12), detours after a jam (13), lanes of stopped vehicles (14), parking where one stands in a
+// full goal area (15).
 void useRulesOfFormat(Scenario& s, std::uint32_t format) {
   if (format < 11) {
     s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;
@@ -353,6 +354,7 @@ void useRulesOfFormat(Scenario& s, std::uint32_t format) {
   }
   if (format < 13) s.settings.pathing.jamDetours = false;
   if (format < 14) s.settings.pathing.standingVehicleLanes = false;
+  if (format < 15) s.settings.pathing.parkWhenAreaFull = false;
 }
 
 void expectVerifiesOnlyAsItsFormat(const Scenario& s, const ReplaySource& source,
@@ -514,6 +516,22 @@ TEST_F(Replays, AFormat13ReplayPlaysBackWithStoppedVehiclesClaimingNoLane) {
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format13.rpl", 13, 450);
 }
 
+// Format 14 was recorded when a cooperating unit whose goal area had no free cell left for it
+// pushed on into the parked crowd: a run plays back so, and such a file verifies; read as format
+// 15 (it parks where it stands) the same records do not. Of twelve walkers sent to a 3x3 area
+// the last three find it full within the run's 30 s.
+TEST_F(Replays, AFormat14ReplayPlaysBackWithUnitsPushingOnInAFullGoalArea) {
+  ReplaySource source;
+  Result<Scenario> loaded = loadRecordedScenario(
+      fs::path(WARPATH_SOURCE_DIR) / "tests/fixtures/full_goal_area.yaml", source);
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.parkWhenAreaFull);
+  useRulesOfFormat(s, 14);
+  source.seed = s.settings.seed;
+  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format14.rpl", 14, INT64_MAX);
+}
+
 TEST_F(Replays, AnotherVersionIsRefused) {
   const fs::path file = record(1);
   std::string bytes = slurp(file);
@@ -522,21 +540,21 @@ TEST_F(Replays, AnotherVersionIsRefused) {
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
                                  ": replay format version 1 is not supported (this build reads "
-                                 "versions 2 to 14); it was written before battles were recorded: "
+                                 "versions 2 to 15); it was written before battles were recorded: "
                                  "record it again with rts run --replay");
   RtsResult r = rts("replay verify " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(file.string() + ": replay format version 1 is not supported"),
             std::string::npos)
       << r.out;
-  bytes[8] = 15;
+  bytes[8] = 16;
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
-                                 ": replay format version 15 is not supported (this build reads "
-                                 "versions 2 to 14)");
+                                 ": replay format version 16 is not supported (this build reads "
+                                 "versions 2 to 15)");
   r = rts("replay info " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_NE(r.out.find("version 15 is not supported"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("version 16 is not supported"), std::string::npos) << r.out;
   EXPECT_EQ(rts("replay verify " + (dir_ / "none.rpl").string()).status, 2);
 }
 
@@ -645,7 +663,7 @@ TEST_F(Replays, ABattleRecordsAndVerifies) {
 
   const RtsResult info = rts("replay info " + file.string());
   EXPECT_EQ(info.status, 0) << info.out;
-  EXPECT_NE(info.out.find("format version: 14\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("format version: 15\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("orders: 4 (2 attack_move, 1 attack, 1 reinforce)\n"), std::string::npos)
       << info.out;
   const RtsResult verify = rts("replay verify " + file.string());

@@ -564,5 +564,31 @@ TEST(World, AUnitWhoseGoalAreaIsFullTakesACellOnceOneIsFreed) {
   EXPECT_EQ(world.find(c)->goalCell, (Cell{11, 3}));  // b's, not a's
 }
 
+// Those whose goal cell another parked on first, inside the area and with no other cell free
+// for them, park where they stand (replay format 15); before, with cooperation, they pushed into
+// the parked crowd to the end.
+TEST(World, UnitsInAFullGoalAreaParkWhereTheyStand) {
+  for (const bool park : {true, false}) {
+    SCOPED_TRACE(park ? "parking where they stand" : "format 14's rule");
+    Result<Scenario> loaded =
+        loadScenario(std::string(WARPATH_SOURCE_DIR) + "/tests/fixtures/full_goal_area.yaml");
+    ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+    Scenario s = std::move(loaded).value();
+    ASSERT_TRUE(s.settings.pathing.cooperative && s.settings.pathing.parkWhenAreaFull);
+    s.settings.pathing.parkWhenAreaFull = park;
+    ScenarioRun run(s);
+    while (!run.done())
+      run.step();
+    const auto parked = std::count_if(run.world().units().begin(), run.world().units().end(),
+                                      [](const Unit& u) { return u.state == UnitState::Parked; });
+    if (park) {
+      EXPECT_EQ(parked, 12);
+      for (const Unit& u : run.world().units())
+        EXPECT_TRUE(pathing::CellRect({14, 3, 3, 3}).contains(u.goalCell)) << u.id.index;
+    } else {
+      EXPECT_LT(parked, 12);  // the rest push on
+    }
+  }
+}
 }  // namespace
 }  // namespace warpath::engine

@@ -104,6 +104,10 @@ struct PathServiceSettings {
   // Not a scenario key: false plays back replays before format 14, when a vehicle stopped in
   // the traffic claimed no lane, whatever stopped it (docs/cooperative.md, "Lanes").
   bool standingVehicleLanes = true;
+  // Not a scenario key: false plays back replays before format 15, when a cooperating unit
+  // inside its goal area, whose goal cell another had parked on and whose area had no other
+  // free cell for it, went on pushing (docs/cooperative.md, "Full goal areas").
+  bool parkWhenAreaFull = true;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
 // [Unit: expansions] what sliced window searches may spend in a tick the spatial searches left

@@ -50,8 +50,11 @@ namespace warpath::engine {
 // (older files play back asking for its path again). 14: the same records and hashes; a vehicle
 // stopped in the traffic, but not by its own window or a passage's gate, claims its lane ahead,
 // which another team's walkers step out of (older files play back with stopped vehicles
-// claiming none). Version-1 files (move orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 14;
+// claiming none). 15: the same records and hashes; a cooperating unit inside its goal area
+// whose goal cell another parked on, and whose area has no other free cell for it, parks where
+// it stands (older files play back with it pushing on). Version-1 files (move orders only) are
+// refused with a message saying so.
+inline constexpr std::uint32_t kReplayVersion = 15;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -83,6 +86,10 @@ inline constexpr std::uint32_t kFirstJamDetoursReplayVersion = 13;
 // Formats before this one were recorded when a vehicle stopped in the traffic claimed no lane:
 // they play back so (PathServiceSettings::standingVehicleLanes off).
 inline constexpr std::uint32_t kFirstStandingLanesReplayVersion = 14;
+// Formats before this one were recorded when a cooperating unit whose goal area had no free cell
+// left for it pushed on into the parked crowd: they play back so
+// (PathServiceSettings::parkWhenAreaFull off).
+inline constexpr std::uint32_t kFirstParkWhenFullReplayVersion = 15;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

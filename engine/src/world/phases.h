@@ -340,6 +340,9 @@ struct SteeringScratch {
   std::vector<double> laneSide;
 };
 void steerAll(Refs& w, SteeringScratch& scratch);
+// Reached the end of its path (or window) at the goal: parks there, or, under an Attack order,
+// waits at the approach cell for the target.
+void arrive(Refs& w, Unit& unit, const units::UnitType& type);
 
 // --- Physics: Box2D steps, positions read back ---
 void stepPhysics(Refs& w);

@@ -25,11 +25,22 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor, FullGoalAreas& fullGoalArea
   // The goal cell was taken by a unit that parked there first: pick the nearest free one.
   const bool nearEnd = unit.next + static_cast<std::size_t>(type.size) + 2 >= path.size();
   if (movingToArea && nearEnd &&
-      !w.state.goals.freeFor(GoalLayer::Parked, unit.goalCell, type.size, unit.id) &&
-      reassignGoal(w, unit, &fullGoalAreas)) {
-    w.log(EventKind::Repath, unit, 2);
-    requestPath(w, unit);
-    return;
+      !w.state.goals.freeFor(GoalLayer::Parked, unit.goalCell, type.size, unit.id)) {
+    if (reassignGoal(w, unit, &fullGoalAreas)) {
+      w.log(EventKind::Repath, unit, 2);
+      requestPath(w, unit);
+      return;
+    }
+    // None is free for it. With cooperation it would not park on the other's cell (steering)
+    // and would push into the parked crowd for good; inside its area it parks where it stands.
+    if (w.settings.pathing.cooperative && w.settings.pathing.parkWhenAreaFull &&
+        unit.goalArea.contains(anchor)) {
+      w.state.goals.release(GoalLayer::Claimed, unit.goalCell, type.size, unit.id);
+      unit.goalCell = nearestStandable(w, unit);
+      w.state.goals.take(GoalLayer::Claimed, unit.goalCell, type.size, unit.id);
+      arrive(w, unit, type);
+      return;
+    }
   }
   // A unit keeping to a timed window re-plans the window instead (traffic.cpp), and asks for a
   // new path when it leaves its corridor; otherwise it follows its path like any unit.

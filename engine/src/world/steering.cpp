@@ -15,10 +15,6 @@ namespace warpath::engine::world {
 using pathing::Cell;
 using units::Vec2;
 
-namespace {
-
-// Reached the end of its path (or window) at the goal: parks there, or, under an Attack order,
-// waits at the approach cell for the target.
 void arrive(Refs& w, Unit& unit, const units::UnitType& type) {
   if (unit.order == OrderKind::Attack) {
     unit.state = UnitState::Idle;
@@ -28,6 +24,8 @@ void arrive(Refs& w, Unit& unit, const units::UnitType& type) {
   w.state.goals.overwrite(GoalLayer::Parked, unit.goalCell, type.size, unit.id);
   w.log(EventKind::Parked, unit);
 }
+
+namespace {
 
 // [Unit: rad] How far from its course a vehicle veers to pass a slower unit going its way.
 constexpr double kOvertakeRadians = 0.5;
