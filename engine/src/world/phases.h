@@ -75,9 +75,9 @@ std::int64_t freeFlowTicks(const Refs& w, const Unit& unit, const PathDelivery& 
 // Units whose goal area reassignGoal last found without a free cell for them, and what that
 // answer depended on: the goal board around the area (its digest there), the terrain (changes
 // applied), the unit's component and its area. Until one of those changes the answer stays the
-// same, so the rules do not scan the area again every tick (stress_2000: about 40 units a tick near
-// the end, up to 1,600 cells each, most of the rules' time). Scratch, not state: it only skips
-// work.
+// same, so the rules do not scan the area again every tick (stress_2000 with the rules of replay
+// format 14: about 40 units a tick near the end, up to 1,600 cells each, most of the rules'
+// time). Scratch, not state: it only skips work.
 class FullGoalAreas {
  public:
   bool stillFull(const Refs& w, const Unit& unit, std::uint32_t component) const;
