@@ -91,8 +91,7 @@ std::optional<std::uint32_t> ReservationTable::blocker(Cell anchor, int size, Ti
                                                        std::uint32_t self) const {
   std::optional<std::uint32_t> found;
   forEachCell(anchor, size, [&](std::size_t cell) {
-    if (occupied_[cell] == 0) return;
-    for (const Interval& i : cells_[cell]) {
+    for (const Interval& i : heldAt(cell)) {
       if (!(i.from < to)) break;  // the rest begin later still
       if (i.owner == self || !(from < i.to)) continue;
       if (!found || i.owner < *found) found = i.owner;
@@ -106,8 +105,7 @@ bool ReservationTable::freeBut(Cell anchor, int size, Tick from, Tick to, std::u
                                Ignored&& ignored) const {
   // Stops at the first interval in the way: most asks in a crowd are answered no.
   return !anyCell(anchor, size, [&](std::size_t cell) {
-    if (occupied_[cell] == 0) return false;
-    for (const Interval& i : cells_[cell]) {
+    for (const Interval& i : heldAt(cell)) {
       if (!(i.from < to)) break;  // the rest begin later still
       if (i.owner != self && from < i.to && !ignored(i.owner)) return true;
     }
@@ -133,8 +131,7 @@ std::vector<std::uint32_t> ReservationTable::holders(Cell anchor, int size, Tick
                                                      std::uint32_t self) const {
   std::vector<std::uint32_t> out;
   forEachCell(anchor, size, [&](std::size_t cell) {
-    if (occupied_[cell] == 0) return;
-    for (const Interval& i : cells_[cell]) {
+    for (const Interval& i : heldAt(cell)) {
       if (!(i.from < to)) break;  // the rest begin later still
       if (i.owner != self && from < i.to) out.push_back(i.owner);
     }

@@ -95,6 +95,11 @@ class ReservationTable {
   bool anyCell(Cell anchor, int size, F&& f) const;
   template <class F>
   void forEachCell(Cell anchor, int size, F&& f) const;
+  // A cell's intervals, by `from`; read through occupied_ first (below).
+  std::span<const Interval> heldAt(std::size_t cell) const {
+    if (occupied_[cell] == 0) return {};
+    return cells_[cell];
+  }
   // Free for `self` when every other holder during part of [from, to) is ignored(owner).
   template <class Ignored>
   bool freeBut(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
