@@ -429,10 +429,15 @@ bool reassignGoal(Refs& w, Unit& unit, FullGoalAreas* full) {
   }
   if (!best && full != nullptr) full->remember(w, unit, component);
   if (!best || *best == unit.goalCell) return false;
-  w.state.goals.release(GoalLayer::Claimed, unit.goalCell, type.size, unit.id);
-  unit.goalCell = *best;
-  w.state.goals.take(GoalLayer::Claimed, unit.goalCell, type.size, unit.id);
+  moveGoalCell(w, unit, *best);
   return true;
+}
+
+void moveGoalCell(Refs& w, Unit& unit, Cell cell) {
+  const int size = w.typeOf(unit).size;
+  w.state.goals.release(GoalLayer::Claimed, unit.goalCell, size, unit.id);
+  unit.goalCell = cell;
+  w.state.goals.take(GoalLayer::Claimed, unit.goalCell, size, unit.id);
 }
 
 void kill(Refs& w, Unit& unit, UnitId killer) {

@@ -96,6 +96,8 @@ class FullGoalAreas {
 // Moves the unit to the nearest free goal cell of its area; false when there is none other.
 // With `full`, an area it remembers as full for the unit is not scanned again.
 bool reassignGoal(Refs& w, Unit& unit, FullGoalAreas* full = nullptr);
+// The unit's goal claim moves from its goal cell to `cell`, which becomes its goal cell.
+void moveGoalCell(Refs& w, Unit& unit, pathing::Cell cell);
 // hp reached 0: the unit leaves its order, the path service and (after its wreck) physics.
 void kill(Refs& w, Unit& unit, UnitId killer);
 

@@ -35,9 +35,7 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor, FullGoalAreas& fullGoalArea
     // and would push into the parked crowd for good; inside its area it parks where it stands.
     if (w.settings.pathing.cooperative && w.settings.pathing.parkWhenAreaFull &&
         unit.goalArea.contains(anchor)) {
-      w.state.goals.release(GoalLayer::Claimed, unit.goalCell, type.size, unit.id);
-      unit.goalCell = nearestStandable(w, unit);
-      w.state.goals.take(GoalLayer::Claimed, unit.goalCell, type.size, unit.id);
+      moveGoalCell(w, unit, nearestStandable(w, unit));
       arrive(w, unit, type);
       return;
     }
