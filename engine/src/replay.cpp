@@ -389,7 +389,8 @@ Result<Scenario> replayScenario(const Replay& replay) {
   // vehicle, before lanes went on through junctions and walkers stepped to the side with room,
   // and with jammed units asking for their path again before detours, and stopped vehicles
   // claiming no lane before they claimed theirs, and units pushing on in a full goal area
-  // before they parked where they stood there.
+  // before they parked where they stood there, and passages used one way letting 8 through at
+  // a time, walkers in windows, before any number went through, walkers without windows.
   WorldSettings defaults;
   if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
   if (replay.version < kFirstCongestionReplayVersion) defaults.pathing.congestion = false;
@@ -408,6 +409,7 @@ Result<Scenario> replayScenario(const Replay& replay) {
   if (replay.version < kFirstStandingLanesReplayVersion)
     defaults.pathing.standingVehicleLanes = false;
   if (replay.version < kFirstParkWhenFullReplayVersion) defaults.pathing.parkWhenAreaFull = false;
+  if (replay.version < kFirstOneWayPassagesReplayVersion) defaults.pathing.oneWayPassages = false;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

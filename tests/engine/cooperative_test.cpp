@@ -178,6 +178,29 @@ TEST(Cooperative, ThoseKeptOutNearestTheDoorGoFirst) {
   EXPECT_LT(p90[1], p90[0]);
 }
 
+// A passage used one way only (replay format 16): its gate lets any number through, and walkers
+// cross it without timed windows. Thirty walkers through a 1-cell door pressed in at its sides
+// in windows, some flagged stuck there; thirty jeeps through a gap their width, 8 let through at
+// a time, stalled among those kept out. Seeds 1-4: all pass, and fewer without the rule.
+TEST(Cooperative, OneWayPassagesLetTheWholeCrowdThrough) {
+  for (const char* fixture : {"one_way_door.yaml", "one_way_gap.yaml"}) {
+    SCOPED_TRACE(fixture);
+    Result<Scenario> loaded =
+        loadScenario(std::string(WARPATH_SOURCE_DIR) + "/tests/fixtures/" + fixture);
+    ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+    Scenario s = std::move(loaded).value();
+    ASSERT_TRUE(s.settings.pathing.oneWayPassages);  // the default
+    int passed[2] = {0, 0};
+    for (const bool oneWay : {true, false}) {
+      s.settings.pathing.oneWayPassages = oneWay;
+      for (std::uint64_t seed = 1; seed <= 4; ++seed)
+        passed[oneWay ? 1 : 0] += runToEnd(s, seed).passed() ? 1 : 0;
+    }
+    EXPECT_EQ(passed[1], 4);
+    EXPECT_LT(passed[0], passed[1]);
+  }
+}
+
 // Three tanks a side cross a river both ways on a bridge six cells wide: room for two tanks
 // side by side. With cooperation each keeps to its lane (the right half) and all arrive near
 // free flow at every seed; without it both streams take the one shortest line and meet on the

@@ -108,6 +108,10 @@ struct PathServiceSettings {
   // inside its goal area, whose goal cell another had parked on and whose area had no other
   // free cell for it, went on pushing (docs/cooperative.md, "Full goal areas").
   bool parkWhenAreaFull = true;
+  // Not a scenario key: false plays back replays before format 16, when a passage's gate let at
+  // most 8 units through at a time and walkers crossed it in timed windows even while nobody
+  // came the other way (docs/cooperative.md, "One-way passages").
+  bool oneWayPassages = true;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
 // [Unit: expansions] what sliced window searches may spend in a tick the spatial searches left

@@ -52,9 +52,11 @@ namespace warpath::engine {
 // which another team's walkers step out of (older files play back with stopped vehicles
 // claiming none). 15: the same records and hashes; a cooperating unit inside its goal area
 // whose goal cell another parked on, and whose area has no other free cell for it, parks where
-// it stands (older files play back with it pushing on). Version-1 files (move orders only) are
-// refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 15;
+// it stands (older files play back with it pushing on). 16: the same records and hashes; the
+// gate of a passage used one way only lets any number through, and walkers cross it without
+// timed windows (older files play back with at most 8 through at a time, in windows). Version-1
+// files (move orders only) are refused with a message saying so.
+inline constexpr std::uint32_t kReplayVersion = 16;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -90,6 +92,10 @@ inline constexpr std::uint32_t kFirstStandingLanesReplayVersion = 14;
 // left for it pushed on into the parked crowd: they play back so
 // (PathServiceSettings::parkWhenAreaFull off).
 inline constexpr std::uint32_t kFirstParkWhenFullReplayVersion = 15;
+// Formats before this one were recorded when a passage's gate let at most 8 through at a time
+// and walkers crossed it in timed windows even while nobody came the other way: they play back
+// so (PathServiceSettings::oneWayPassages off).
+inline constexpr std::uint32_t kFirstOneWayPassagesReplayVersion = 16;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

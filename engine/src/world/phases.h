@@ -210,6 +210,7 @@ class Traffic {
     bool turning = false;        // one kept out has waited its turn: nobody new is let through
     std::uint32_t inFlight = 0;  // let through and not past it yet
     std::uint32_t keptOut = 0;   // waiting the other way
+    bool oneWay = false;         // used one way only (updateGates): no limit in flight
   };
 
   // Sorts units (indices) into the order they plan in this tick: the priority rule.
@@ -243,6 +244,12 @@ class Traffic {
   bool chokepointAhead(const Refs& w, const Unit& unit);
   // chokepointAhead, scanned once a tick: nothing it reads changes within Traffic::plan.
   bool chokepointAheadNow(const Refs& w, const Unit& unit);
+  // The passage ahead of a walker (a size-1 unit) when it is used one way only, the walker's
+  // way; -1 for none.
+  std::int32_t walksThroughOneWay(const Refs& w, const Unit& unit);
+  // Marks the unit as let through the one-way passage `gate` and cruising: it follows its path,
+  // holding nothing.
+  void cruiseThrough(Refs& w, Unit& unit, std::int32_t gate);
   // Marks a unit with no chokepoint ahead as cruising: it follows its path, holding nothing.
   void cruise(Refs& w, Unit& unit);
   bool needsWindow(const Refs& w, const Unit& unit);

@@ -36,6 +36,10 @@ constexpr std::uint32_t kInFlight = 8;
 // [Unit: s] Once one kept out of a passage has waited this long, nobody new is let through the
 // other way: the passage drains and turns.
 constexpr double kGreenSeconds = 15.0;
+// [Unit: s] A passage counts as used one way (updateGates) once its holder has held it this long:
+// paths delivered over several ticks (the sliced service) make a two-way door look one-way for a
+// moment at the start.
+constexpr double kOneWaySettleSeconds = 2.0;
 
 Cell cellAt(const GridMap& map, std::uint32_t index) {
   const auto width = static_cast<std::uint32_t>(map.width());
@@ -257,10 +261,32 @@ bool Traffic::chokepointAheadNow(const Refs& w, const Unit& unit) {
 }
 
 void Traffic::cruise(Refs& w, Unit& unit) {
-  if (unit.plan && unit.plan->cruising) return;
+  if (unit.plan && unit.plan->cruising && unit.plan->gate < 0) return;
   releaseReservations(w, unit);
   unit.plan = std::make_shared<const TimedPlan>(timedPlan(
       {{nearestStandable(w, unit), w.state.tick}}, CooperativeStatus::Windowed, false, true));
+}
+
+std::int32_t Traffic::walksThroughOneWay(const Refs& w, const Unit& unit) {
+  if (w.typeOf(unit).size > 1) return -1;
+  const std::int32_t p = aheadOf(w, unit);
+  if (p < 0) return -1;
+  const Gate& gate = gates_[static_cast<std::size_t>(p)];
+  return gate.oneWay && sameWay(headings_[unit.id.index], headings_[gate.holder]) ? p : -1;
+}
+
+void Traffic::cruiseThrough(Refs& w, Unit& unit, std::int32_t gate) {
+  if (unit.plan && unit.plan->cruising && unit.plan->gate == gate) return;
+  const Tick since = unit.plan && unit.plan->gate == gate && unit.plan->admitted
+                         ? unit.plan->gateSince
+                         : w.state.tick;
+  releaseReservations(w, unit);
+  TimedPlan plan = timedPlan({{nearestStandable(w, unit), w.state.tick}},
+                             CooperativeStatus::Windowed, false, true);
+  plan.gate = gate;
+  plan.admitted = true;
+  plan.gateSince = since;
+  unit.plan = std::make_shared<const TimedPlan>(std::move(plan));
 }
 
 bool Traffic::needsWindow(const Refs& w, const Unit& unit) {
@@ -603,6 +629,22 @@ void Traffic::updateGates(const Refs& w) {
         !sameWay(headings_[unit.id.index], headings_[gate.holder]))
       gate.turning = true;
   }
+  // A passage used one way only: its gate lets any number through (nobody waits to come the
+  // other way; the limit crowded stress_2000's jeeps at a gap, those let through stuck among
+  // those kept out), and walkers cross it without windows (plan). One way once its holder has
+  // held it kOneWaySettleSeconds and nobody following a path through it goes the other way.
+  if (!w.settings.pathing.oneWayPassages) return;
+  const auto settle = static_cast<Tick>(std::llround(kOneWaySettleSeconds * w.settings.tickRate));
+  for (Gate& gate : gates_)
+    gate.oneWay = gate.holder != kNone && now - gate.holderSince >= settle;
+  for (const Unit& unit : w.state.units) {
+    if (!following(unit)) continue;
+    const std::int32_t p = aheadOf(w, unit);
+    if (p < 0) continue;
+    Gate& gate = gates_[static_cast<std::size_t>(p)];
+    if (gate.oneWay && !sameWay(headings_[unit.id.index], headings_[gate.holder]))
+      gate.oneWay = false;
+  }
 }
 
 void Traffic::addStream(const Refs& w, const Unit& unit, std::vector<std::uint32_t>& stream) {
@@ -634,7 +676,7 @@ void Traffic::addStream(const Refs& w, const Unit& unit, std::vector<std::uint32
 
 bool Traffic::admits(std::int32_t p, const Unit& unit) const {
   const Gate& gate = gates_[static_cast<std::size_t>(p)];
-  return gate.holder == kNone || (!gate.turning && gate.inFlight < kInFlight &&
+  return gate.holder == kNone || (!gate.turning && (gate.inFlight < kInFlight || gate.oneWay) &&
                                   sameWay(headings_[unit.id.index], headings_[gate.holder]));
 }
 
@@ -799,6 +841,15 @@ Traffic::TickWork Traffic::plan(Refs& w, std::uint64_t budget) {
     if (following(unit) && (!unit.plan || !unit.plan->timed) && !chokepointAheadNow(w, unit)) {
       if (pending_ && pending_->unit == unit.id.index) pending_.reset();  // needs none now
       cruise(w, unit);
+      unit.waitSince = -1;
+      continue;
+    }
+    // Nor does a walker through a passage used one way only: a crowd of walkers presses
+    // through a door as without cooperation (windows made some wait at its sides for good). It
+    // counts as let through, so that whoever comes the other way is kept out until it has passed.
+    if (const std::int32_t p = following(unit) ? walksThroughOneWay(w, unit) : -1; p >= 0) {
+      if (pending_ && pending_->unit == unit.id.index) pending_.reset();
+      cruiseThrough(w, unit, p);
       unit.waitSince = -1;
       continue;
     }
