@@ -59,6 +59,45 @@ TEST(ReservationTable, KeepsOnlyTrackedCells) {
   EXPECT_TRUE(table.isFree({1, 0}, 1, 0, 10, 2));
 }
 
+// tracks() of a footprint (read from a per-size map) says whether any of its cells on the map is
+// tracked, anchors on the edges and off the map included, and follows later track() calls.
+TEST(ReservationTable, AFootprintIsTrackedWhenACellOfItIs) {
+  constexpr int kWidth = 13;
+  constexpr int kHeight = 9;
+  SplitMix64 rng(12);
+  ReservationTable table = ReservationTable::trackingNothing(kWidth, kHeight);
+  std::vector<std::uint8_t> tracked(kWidth * kHeight, 0);
+  for (int round = 0; round < 4; ++round) {
+    std::vector<std::uint8_t> more(tracked.size(), 0);
+    for (int k = 0; k < 3; ++k)
+      more[static_cast<std::size_t>(rng.between(0, kWidth * kHeight - 1))] = 1;
+    if (round == 2) {  // the last column and row, where footprints are clipped
+      more[kWidth - 1] = 1;
+      more[static_cast<std::size_t>((kHeight - 1) * kWidth + 4)] = 1;
+    }
+    for (std::size_t i = 0; i < more.size(); ++i)
+      tracked[i] = static_cast<std::uint8_t>(tracked[i] | more[i]);
+    table.track(more);
+    for (int size = 1; size <= 4; ++size) {
+      for (int y = -size; y < kHeight + 1; ++y) {
+        for (int x = -size; x < kWidth + 1; ++x) {
+          bool any = false;
+          for (int dy = 0; dy < size; ++dy) {
+            for (int dx = 0; dx < size; ++dx) {
+              const int cx = x + dx;
+              const int cy = y + dy;
+              if (cx >= 0 && cy >= 0 && cx < kWidth && cy < kHeight)
+                any = any || tracked[static_cast<std::size_t>(cy * kWidth + cx)] != 0;
+            }
+          }
+          EXPECT_EQ(table.tracks({x, y}, size), any)
+              << "round " << round << " size " << size << " at " << x << "," << y;
+        }
+      }
+    }
+  }
+}
+
 // Each step is a wait or one legal move lasting what its terrain says.
 void expectLegal(const AnnotatedGrid& grid, const CooperativeRequest& r,
                  const std::vector<TimedCell>& steps) {

@@ -292,13 +292,20 @@ class Traffic {
   // Scratch, and caches that are pure functions of the map and the units' paths.
   std::optional<pathing::CooperativeSearch> search_;
   std::map<pathing::Agent, std::vector<std::uint8_t>> passing_;
+  pathing::Agent lastPassingAgent_;                     // passingRoom's last answer, for
+  const std::vector<std::uint8_t>* lastPassing_ = nullptr;  // this agent (into passing_)
   std::vector<Field> fields_;  // per unit index
-  // Per unit index: the cells of `path` before `clearUntil` are not tracked.
+  // Per unit index: the cells of `path` before `clearUntil` are not tracked, and the first
+  // passage along the path from waypoint `passageFrom` on is `passage` (passageAhead).
   struct Lookahead {
     SharedPath path;
     std::size_t clearUntil = 0;
     std::uint64_t trackChanges = 0;
+    std::size_t passageFrom = SIZE_MAX;
+    std::int32_t passage = -1;
   };
+  // The unit's Lookahead, begun anew when its path or the tracked cells changed.
+  Lookahead& lookaheadOf(const Refs& w, const Unit& unit);
   std::vector<Lookahead> lookahead_;
   std::uint64_t passageTracks_ = ~std::uint64_t{0};  // trackChanges() the passages were found at
   std::vector<std::int32_t> passageOf_;              // per cell: its passage, -1 for none

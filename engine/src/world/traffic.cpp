@@ -186,13 +186,19 @@ CooperativeRequest Traffic::requestFor(const Refs& w, const Unit& unit, Cell sta
 void Traffic::terrainChanged() {
   pending_.reset();  // its search read the old terrain (and its field goes)
   passing_.clear();
+  lastPassing_ = nullptr;
   fields_.clear();
   lookahead_.clear();
 }
 
 const std::vector<std::uint8_t>& Traffic::passingRoom(const Refs& w, Agent agent) {
+  // Units are asked about in id order, and a group's ids run together: the last field asked
+  // for is nearly always the one asked for again.
+  if (lastPassing_ != nullptr && lastPassingAgent_ == agent) return *lastPassing_;
   auto it = passing_.find(agent);
   if (it == passing_.end()) it = passing_.emplace(agent, pathing::passingRoom(w.grid, agent)).first;
+  lastPassingAgent_ = agent;
+  lastPassing_ = &it->second;
   return it->second;
 }
 
@@ -235,11 +241,7 @@ bool Traffic::chokepointAhead(const Refs& w, const Unit& unit) {
   const ReservationTable& table = *w.state.reservations;
   if (table.tracks(units::centreToAnchor(unit.position, size), size)) return true;
   // The path cells found untracked are remembered: a unit scans about a cell a tick.
-  if (lookahead_.size() < w.state.units.size()) lookahead_.resize(w.state.units.size());
-  Lookahead& known = lookahead_[unit.id.index];
-  if (known.path != unit.path || known.trackChanges != table.trackChanges()) {
-    known = {unit.path, 0, table.trackChanges()};
-  }
+  Lookahead& known = lookaheadOf(w, unit);
   const std::vector<Cell>& cells = unit.path->cells;
   const std::size_t from = unit.next > 0 ? unit.next - 1 : 0;
   const std::size_t reach = static_cast<std::size_t>(w.settings.pathing.window + size + 2);
@@ -252,6 +254,14 @@ bool Traffic::chokepointAhead(const Refs& w, const Unit& unit) {
   }
   known.clearUntil = std::max(known.clearUntil, to);
   return false;
+}
+
+Traffic::Lookahead& Traffic::lookaheadOf(const Refs& w, const Unit& unit) {
+  if (lookahead_.size() < w.state.units.size()) lookahead_.resize(w.state.units.size());
+  Lookahead& known = lookahead_[unit.id.index];
+  const std::uint64_t tracks = w.state.reservations->trackChanges();
+  if (known.path != unit.path || known.trackChanges != tracks) known = {unit.path, 0, tracks};
+  return known;
 }
 
 bool Traffic::chokepointAheadNow(const Refs& w, const Unit& unit) {
@@ -306,10 +316,16 @@ bool Traffic::needsWindow(const Refs& w, const Unit& unit) {
       // Inside a passage a unit keeps the window that commits it to the far side (a new one
       // could lose its turn to whoever planned since), unless that window is nearly used up.
       const Tick step = cardinalTicks(w, type);
+      const Tick left = end - now;
+      const Tick inPassage = 2 * step;
+      const Tick elsewhere = step * w.settings.pathing.window / 2;
+      // Where the unit stands is looked up only when the answer depends on it.
+      if (left <= std::min(inPassage, elsewhere)) return true;
+      if (left > std::max(inPassage, elsewhere)) break;
       const Cell here = nearestStandable(w, unit);
       const bool narrow =
           w.map().contains(here) && passingRoom(w, type.agent())[w.map().indexOf(here)] == 0;
-      if (end - now <= (narrow ? 2 * step : step * w.settings.pathing.window / 2)) return true;
+      if (left <= (narrow ? inPassage : elsewhere)) return true;
       break;
     }
     default:  // Blocked: try again once its safe prefix runs out
@@ -568,13 +584,19 @@ std::int32_t Traffic::passageAhead(const Refs& w, const Unit& unit) {
           passageAt(map, passing, units::centreToAnchor(unit.position, type.size));
       here >= 0)
     return here;
-  const std::vector<Cell>& cells = unit.path->cells;
+  // The scan along the path changes with its first waypoint only (the passages are found again
+  // only when the tracked cells change, which begins the Lookahead anew).
+  Lookahead& known = lookaheadOf(w, unit);
   const std::size_t from = unit.next > 0 ? unit.next - 1 : 0;
+  if (known.passageFrom == from) return known.passage;
+  const std::vector<Cell>& cells = unit.path->cells;
   const std::size_t reach = static_cast<std::size_t>(w.settings.pathing.window + type.size + 2);
-  for (std::size_t i = from; i < std::min(cells.size(), from + reach); ++i) {
-    if (const std::int32_t p = passageAt(map, passing, cells[i]); p >= 0) return p;
-  }
-  return -1;
+  std::int32_t found = -1;
+  for (std::size_t i = from; i < std::min(cells.size(), from + reach) && found < 0; ++i)
+    found = passageAt(map, passing, cells[i]);
+  known.passageFrom = from;
+  known.passage = found;
+  return found;
 }
 
 units::Vec2 Traffic::passageHeading(const Refs& w, const Unit& unit, std::int32_t p) {
