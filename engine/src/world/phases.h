@@ -292,8 +292,9 @@ class Traffic {
   // Scratch, and caches that are pure functions of the map and the units' paths.
   std::optional<pathing::CooperativeSearch> search_;
   std::map<pathing::Agent, std::vector<std::uint8_t>> passing_;
-  pathing::Agent lastPassingAgent_;                     // passingRoom's last answer, for
-  const std::vector<std::uint8_t>* lastPassing_ = nullptr;  // this agent (into passing_)
+  // passingRoom's last answer (into passing_) and the agent it was for.
+  pathing::Agent lastPassingAgent_;
+  const std::vector<std::uint8_t>* lastPassing_ = nullptr;
   std::vector<Field> fields_;  // per unit index
   // Per unit index: the cells of `path` before `clearUntil` are not tracked, and the first
   // passage along the path from waypoint `passageFrom` on is `passage` (passageAhead).
