@@ -173,12 +173,16 @@ CooperativeRequest Traffic::requestFor(const Refs& w, const Unit& unit, Cell sta
                          : std::min<std::uint64_t>(settings.expansionBudget, kWindowExpansionLimit);
   // Units heading the same way share reservations: they queue behind one another as in the
   // open, and the table arbitrates only between flows that meet head on or cross.
+  // (sameWay over every unit, written without a branch so that the loop vectorises: it runs for
+  // every window, over all units.)
   sharing_.assign(w.state.units.size(), 0);
   const units::Vec2 mine = headings_[unit.id.index];
-  for (std::size_t other = 0; other < headings_.size(); ++other) {
-    const units::Vec2 theirs = headings_[other];
-    if (other != unit.id.index && sameWay(mine, theirs)) sharing_[other] = 1;
-  }
+  const std::size_t others = std::min(sharing_.size(), headings_.size());
+  const units::Vec2* const theirs = headings_.data();
+  std::uint8_t* const shares = sharing_.data();
+  for (std::size_t other = 0; other < others; ++other)
+    shares[other] = mine.dot(theirs[other]) > kSameWay ? 1 : 0;
+  if (unit.id.index < others) shares[unit.id.index] = 0;
   r.sharing = &sharing_;
   return r;
 }
