@@ -173,15 +173,15 @@ CooperativeRequest Traffic::requestFor(const Refs& w, const Unit& unit, Cell sta
                          : std::min<std::uint64_t>(settings.expansionBudget, kWindowExpansionLimit);
   // Units heading the same way share reservations: they queue behind one another as in the
   // open, and the table arbitrates only between flows that meet head on or cross.
-  // (sameWay over every unit, written without a branch so that the loop vectorises: it runs for
-  // every window, over all units.)
+  // (Written without a branch: it runs for every window, over all units, and the branch on each
+  // heading was mispredicted often.)
   sharing_.assign(w.state.units.size(), 0);
   const units::Vec2 mine = headings_[unit.id.index];
   const std::size_t others = std::min(sharing_.size(), headings_.size());
   const units::Vec2* const theirs = headings_.data();
   std::uint8_t* const shares = sharing_.data();
   for (std::size_t other = 0; other < others; ++other)
-    shares[other] = mine.dot(theirs[other]) > kSameWay ? 1 : 0;
+    shares[other] = sameWay(mine, theirs[other]) ? 1 : 0;
   if (unit.id.index < others) shares[unit.id.index] = 0;
   r.sharing = &sharing_;
   return r;
