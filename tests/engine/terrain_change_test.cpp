@@ -222,10 +222,19 @@ TEST_F(TerrainReplay, RecordsTheChangeAndVerifies) {
 
 // Replays of formats <= 5 play back without wrecks blocking planning (ReplayPlayback::open turns
 // it off): river_ambush, whose tank wrecks change the battle, then runs exactly as it did before
-// the rule — its golden hash as format 3 laid the state out, pinned before terrain changes.
+// the rule — its golden hash as format 3 laid the state out, pinned before terrain changes. (Its
+// southern red riflemen as they stood then, a row further into the woods.)
 TEST(WreckRule, OffItRunsRiverAmbushAsBefore) {
-  Result<Scenario> s =
-      loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/river_ambush.yaml");
+  const std::filesystem::path file =
+      std::filesystem::path(WARPATH_SOURCE_DIR) / "scenarios/river_ambush.yaml";
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string then = text.str();
+  const std::size_t south = then.find("x: 55, y: 29,");
+  ASSERT_NE(south, std::string::npos);
+  then.replace(south, 13, "x: 55, y: 30,");
+  Result<Scenario> s = parseScenario(then, file);
   ASSERT_TRUE(s.ok()) << s.error().describe();
   s.value().settings.combat.wrecksBlock = false;
   s.value().settings.pathing.cooperative = false;  // off by default before format 7
