@@ -410,6 +410,7 @@ Result<Scenario> replayScenario(const Replay& replay) {
     defaults.pathing.standingVehicleLanes = false;
   if (replay.version < kFirstParkWhenFullReplayVersion) defaults.pathing.parkWhenAreaFull = false;
   if (replay.version < kFirstOneWayPassagesReplayVersion) defaults.pathing.oneWayPassages = false;
+  if (replay.version < kFirstOpenDentsReplayVersion) defaults.pathing.openDents = false;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

@@ -122,7 +122,8 @@ UnitId World::spawn(int type, int team, int group, Cell anchor) {
   if (settings_.pathing.cooperative && !phases_->contestedTracked[static_cast<std::size_t>(type)]) {
     // The first of its kind: the chokepoints it cannot pass others in are tracked from now on.
     const Agent agent = kind.agent();
-    state_.reservations->track(contestedCells(*grid_, std::span<const Agent>(&agent, 1)));
+    state_.reservations->track(
+        contestedCells(*grid_, std::span<const Agent>(&agent, 1), settings_.pathing.dents()));
     phases_->contestedTracked[static_cast<std::size_t>(type)] = true;
   }
   Unit unit;
@@ -196,7 +197,8 @@ void World::applyTerrain() {
     for (std::size_t t = 0; t < catalogue_.size(); ++t) {
       if (phases_->contestedTracked[t]) tracked.push_back(catalogue_[t].agent());
     }
-    if (!tracked.empty()) state_.reservations->track(contestedCells(*grid_, tracked));
+    if (!tracked.empty())
+      state_.reservations->track(contestedCells(*grid_, tracked, settings_.pathing.dents()));
     phases_->traffic.terrainChanged();
     const bool set = edit.kind == TerrainEditKind::SetTerrain;
     world::afterTerrainChange(

@@ -223,7 +223,106 @@ double CorridorDistance::settled(Cell c) const {
 
 // --- Passing room ---
 
-std::vector<std::uint8_t> passingRoom(const AnnotatedGrid& grid, Agent agent) {
+namespace {
+
+// Gives passing room to the dents among the anchors without it (Dents::Open): 8-connected sets
+// of such anchors at most 2s + 1 across whose bordering anchors with room are joined through
+// anchors with room close by (the set's bounding box grown by 2s + 1 cells). A notch in a
+// forest's ragged edge is one, and so is a gap between a rock and a swamp: a unit standing
+// there blocks nobody, as the others go by just outside. A door is not (its two sides meet only
+// through it, or far away), nor a corridor or a bridge (longer than that as well).
+void openDents(const AnnotatedGrid& grid, Agent agent, std::vector<std::uint8_t>& room) {
+  const GridMap& map = grid.map();
+  const int w = map.width();
+  const int h = map.height();
+  const std::span<const std::uint8_t> moves = grid.layer(agent).moveMasks();
+  const auto index = [w](Cell c) {
+    return static_cast<std::size_t>(c.y) * static_cast<std::size_t>(w) +
+           static_cast<std::size_t>(c.x);
+  };
+  const auto withRoom = [&](Cell c) { return room[index(c)] != 0 && grid.canStand(agent, c); };
+  const auto narrow = [&](Cell c) { return room[index(c)] == 0 && grid.canStand(agent, c); };
+  const auto forNeighbours = [&](Cell c, auto&& f) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        const Cell n{c.x + dx, c.y + dy};
+        if ((dx != 0 || dy != 0) && map.contains(n)) f(n);
+      }
+    }
+  };
+  // The last visit per anchor: a set's members keep its stamp, so each set is found once.
+  std::vector<std::uint32_t> stamp(room.size(), 0);
+  std::uint32_t visit = 0;
+  std::vector<Cell> members;
+  std::vector<Cell> border;
+  std::vector<Cell> stack;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (!narrow({x, y}) || stamp[index({x, y})] != 0) continue;
+      const std::uint32_t set = ++visit;
+      members.clear();
+      stack.assign(1, {x, y});
+      stamp[index({x, y})] = set;
+      Cell low{x, y};
+      Cell high{x, y};
+      while (!stack.empty()) {
+        const Cell c = stack.back();
+        stack.pop_back();
+        members.push_back(c);
+        low = {std::min(low.x, c.x), std::min(low.y, c.y)};
+        high = {std::max(high.x, c.x), std::max(high.y, c.y)};
+        forNeighbours(c, [&](Cell n) {
+          if (!narrow(n) || stamp[index(n)] == set) return;
+          stamp[index(n)] = set;
+          stack.push_back(n);
+        });
+      }
+      const int span = 2 * std::max(1, agent.size) + 1;
+      if (high.x - low.x >= span || high.y - low.y >= span) continue;
+      // Its border.
+      const std::uint32_t bordering = ++visit;
+      border.clear();
+      for (const Cell& c : members) {
+        forNeighbours(c, [&](Cell n) {
+          if (!withRoom(n) || stamp[index(n)] == bordering) return;
+          stamp[index(n)] = bordering;
+          border.push_back(n);
+        });
+      }
+      if (border.empty()) continue;
+      // Round it: from one bordering anchor, by the agent's moves through anchors with room.
+      const int margin = span;
+      const Cell boxLow{std::max(0, low.x - margin), std::max(0, low.y - margin)};
+      const Cell boxHigh{std::min(w - 1, high.x + margin), std::min(h - 1, high.y + margin)};
+      const std::uint32_t round = ++visit;
+      stack.assign(1, border.front());
+      stamp[index(border.front())] = round;
+      while (!stack.empty()) {
+        const Cell c = stack.back();
+        stack.pop_back();
+        const std::uint8_t mask = moves[index(c)];
+        for (int d = 0; d < kDirectionCount; ++d) {
+          if ((mask & (1u << d)) == 0) continue;
+          const Direction& dir = kDirections[static_cast<std::size_t>(d)];
+          const Cell n{c.x + dir.dx, c.y + dir.dy};
+          if (n.x < boxLow.x || n.x > boxHigh.x || n.y < boxLow.y || n.y > boxHigh.y) continue;
+          if (stamp[index(n)] == round || !withRoom(n)) continue;
+          stamp[index(n)] = round;
+          stack.push_back(n);
+        }
+      }
+      if (!std::all_of(border.begin(), border.end(),
+                       [&](Cell b) { return stamp[index(b)] == round; }))
+        continue;
+      for (const Cell& c : members)
+        room[index(c)] = 1;
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> passingRoom(const AnnotatedGrid& grid, Agent agent, Dents dents) {
   const GridMap& map = grid.map();
   const int w = map.width();
   const int h = map.height();
@@ -253,16 +352,18 @@ std::vector<std::uint8_t> passingRoom(const AnnotatedGrid& grid, Agent agent) {
            static_cast<std::size_t>(x)] = n > 0 ? 1 : 0;
     }
   }
+  if (dents == Dents::Open) openDents(grid, agent, room);
   return room;
 }
 
-std::vector<std::uint8_t> contestedCells(const AnnotatedGrid& grid, std::span<const Agent> agents) {
+std::vector<std::uint8_t> contestedCells(const AnnotatedGrid& grid, std::span<const Agent> agents,
+                                         Dents dents) {
   const GridMap& map = grid.map();
   const int w = map.width();
   const int h = map.height();
   std::vector<std::uint8_t> contested(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
   for (const Agent& agent : agents) {
-    const std::vector<std::uint8_t> room = passingRoom(grid, agent);
+    const std::vector<std::uint8_t> room = passingRoom(grid, agent, dents);
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) {
         const std::size_t i =

@@ -201,6 +201,28 @@ TEST(Cooperative, OneWayPassagesLetTheWholeCrowdThrough) {
   }
 }
 
+// Jeeps driving along a rock band with a notch in its edge every 8 cells: a notch is no
+// chokepoint (traffic goes by just below it), so since replay format 17 nobody plans timed
+// windows there; before, every jeep near the edge did, and all arrived just the same.
+TEST(Cooperative, NotchesInAnEdgeAreNoChokepoints) {
+  Result<Scenario> loaded =
+      loadScenario(std::string(WARPATH_SOURCE_DIR) + "/tests/fixtures/notched_edge.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.openDents);  // the default
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    SCOPED_TRACE(seed);
+    const Report open = runToEnd(s, seed);
+    EXPECT_TRUE(open.passed());
+    EXPECT_EQ(open.movement.counters.windows, 0);
+    Scenario narrow = s;
+    narrow.settings.pathing.openDents = false;
+    const Report before = runToEnd(narrow, seed);
+    EXPECT_TRUE(before.passed());
+    EXPECT_GT(before.movement.counters.windows, 0);
+  }
+}
+
 // Three tanks a side cross a river both ways on a bridge six cells wide: room for two tanks
 // side by side. With cooperation each keeps to its lane (the right half) and all arrive near
 // free flow at every seed; without it both streams take the one shortest line and meet on the

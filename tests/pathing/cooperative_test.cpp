@@ -484,5 +484,82 @@ TEST(CooperativeSearch, ContestedCellsAreThePassages) {
   EXPECT_EQ(contested[0], 0);          // open ground
 }
 
+// A notch in a wall's edge blocks nobody: traffic goes by just below it. A door does (its sides
+// meet only through it), and so does a corridor longer than 2s + 1 (3 here) though open ground
+// runs round it close by.
+TEST(CooperativeSearch, DentsHavePassingRoomDoorsAndCorridorsDoNot) {
+  const AnnotatedGrid grid(
+      mapFromRows("type octile\nheight 13\nwidth 16\nmap\n"
+                  "@@@@@@@@@@@@@@@@\n"
+                  "@@@@@.@@@@@@@@@@\n"
+                  "................\n"
+                  "................\n"
+                  "...@@@@@@@@@@...\n"
+                  "................\n"
+                  "...@@@@@@@@@@...\n"
+                  "................\n"
+                  "................\n"
+                  "@@@@@@@.@@@@@@@@\n"
+                  "................\n"
+                  "................\n"
+                  "................\n"));
+  const Agent agent{1, kGround};
+  const auto at = [](const std::vector<std::uint8_t>& cells, int x, int y) {
+    return cells[static_cast<std::size_t>(y * 16 + x)];
+  };
+  const std::vector<std::uint8_t> open = passingRoom(grid, agent, Dents::Open);
+  const std::vector<std::uint8_t> narrow = passingRoom(grid, agent, Dents::Narrow);
+  EXPECT_EQ(at(narrow, 5, 1), 0);  // the notch: no 2x2 square holds it
+  EXPECT_EQ(at(open, 5, 1), 1);    // ... but it is a dent
+  for (int x = 3; x <= 12; ++x) {
+    EXPECT_EQ(at(narrow, x, 5), 0) << x;
+    EXPECT_EQ(at(open, x, 5), 0) << x;  // the corridor, 10 long
+  }
+  EXPECT_EQ(at(open, 7, 9), 0);  // the door
+  EXPECT_EQ(at(narrow, 7, 9), 0);
+  for (std::size_t i = 0; i < open.size(); ++i) {
+    if (i != 1 * 16 + 5) {
+      EXPECT_EQ(open[i], narrow[i]) << i;  // only the dent changed
+    }
+  }
+  const std::vector<std::uint8_t> contested =
+      contestedCells(grid, std::span<const Agent>(&agent, 1), Dents::Open);
+  EXPECT_EQ(at(contested, 5, 1), 0);
+  EXPECT_EQ(at(contested, 7, 5), 1);
+  EXPECT_EQ(at(contested, 7, 9), 1);
+  EXPECT_EQ(at(contestedCells(grid, std::span<const Agent>(&agent, 1), Dents::Narrow), 5, 1), 1);
+}
+
+// A size-2 agent between a small rock and a pond, 3 cells apart: it cannot pass another there,
+// but others go round the rock close by; between two walls 3 cells apart it is a passage.
+TEST(CooperativeSearch, AGapRoundASmallRockIsADentAndAGapInAWallIsNot) {
+  const AnnotatedGrid grid(
+      mapFromRows("type octile\nheight 14\nwidth 14\nmap\n"
+                  "..............\n"
+                  "..............\n"
+                  "..............\n"
+                  "..............\n"
+                  "....@@...WWWWW\n"
+                  "....@@...WWWWW\n"
+                  "..............\n"
+                  "..............\n"
+                  "..............\n"
+                  "..............\n"
+                  "@@@@@@...@@@@@\n"
+                  "..............\n"
+                  "..............\n"
+                  "..............\n"));
+  const Agent agent{2, kGround};
+  const std::vector<std::uint8_t> open = passingRoom(grid, agent, Dents::Open);
+  const std::vector<std::uint8_t> narrow = passingRoom(grid, agent, Dents::Narrow);
+  const auto at = [](const std::vector<std::uint8_t>& cells, int x, int y) {
+    return cells[static_cast<std::size_t>(y * 14 + x)];
+  };
+  EXPECT_EQ(at(narrow, 6, 4), 0);  // between the rock and the pond
+  EXPECT_EQ(at(open, 6, 4), 1);
+  EXPECT_EQ(at(narrow, 6, 10), 0);  // the gap in the wall
+  EXPECT_EQ(at(open, 6, 10), 0);
+}
+
 }  // namespace
 }  // namespace warpath::pathing

@@ -112,6 +112,10 @@ struct PathServiceSettings {
   // most 8 units through at a time and walkers crossed it in timed windows even while nobody
   // came the other way (docs/cooperative.md, "One-way passages").
   bool oneWayPassages = true;
+  // Not a scenario key: false plays back replays before format 17, when a notch in a ragged
+  // edge (a dent, pathing::Dents) was a chokepoint like a door (docs/cooperative.md, "Dents").
+  bool openDents = true;
+  pathing::Dents dents() const { return openDents ? pathing::Dents::Open : pathing::Dents::Narrow; }
 };
 inline constexpr int kMaxCooperativeWindow = 256;
 // [Unit: expansions] what sliced window searches may spend in a tick the spatial searches left

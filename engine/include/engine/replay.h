@@ -56,7 +56,7 @@ namespace warpath::engine {
 // gate of a passage used one way only lets any number through, and walkers cross it without
 // timed windows (older files play back with at most 8 through at a time, in windows). Version-1
 // files (move orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 16;
+inline constexpr std::uint32_t kReplayVersion = 17;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -96,6 +96,9 @@ inline constexpr std::uint32_t kFirstParkWhenFullReplayVersion = 15;
 // and walkers crossed it in timed windows even while nobody came the other way: they play back
 // so (PathServiceSettings::oneWayPassages off).
 inline constexpr std::uint32_t kFirstOneWayPassagesReplayVersion = 16;
+// Formats before this one were recorded when a notch in a ragged edge was a chokepoint like a
+// door: they play back so (PathServiceSettings::openDents off).
+inline constexpr std::uint32_t kFirstOpenDentsReplayVersion = 17;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

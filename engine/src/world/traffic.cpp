@@ -200,7 +200,9 @@ const std::vector<std::uint8_t>& Traffic::passingRoom(const Refs& w, Agent agent
   // for is nearly always the one asked for again.
   if (lastPassing_ != nullptr && lastPassingAgent_ == agent) return *lastPassing_;
   auto it = passing_.find(agent);
-  if (it == passing_.end()) it = passing_.emplace(agent, pathing::passingRoom(w.grid, agent)).first;
+  if (it == passing_.end())
+    it = passing_.emplace(agent, pathing::passingRoom(w.grid, agent, w.settings.pathing.dents()))
+             .first;
   lastPassingAgent_ = agent;
   lastPassing_ = &it->second;
   return it->second;

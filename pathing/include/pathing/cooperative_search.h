@@ -127,15 +127,28 @@ class CorridorDistance final : public DistanceField {
   TwoCostOpenList open_;
 };
 
+// Which anchors without a 2s×2s square round their footprint have passing room all the same.
+enum class Dents : std::uint8_t {
+  // None: a notch in a ragged forest edge is a chokepoint like a door (replay formats up to 16).
+  Narrow,
+  // Dents: 8-connected sets of such anchors at most 2s + 1 across that traffic goes round close
+  // by (their bordering anchors with room meet through anchors with room within 2s + 1 cells of
+  // them): a notch in a ragged edge, a gap between a rock and a swamp. Units there block nobody.
+  Open,
+};
+
 // One byte per cell: 1 where two agents of this kind could stand side by side around an
-// anchor (some 2s×2s square of the capability's terrains contains its footprint), 0 where they
-// could not pass each other (a corridor, a door, a bridge narrower than two of them).
-std::vector<std::uint8_t> passingRoom(const AnnotatedGrid& grid, Agent agent);
+// anchor (some 2s×2s square of the capability's terrains contains its footprint, or it is in a
+// dent: `dents`), 0 where they could not pass each other (a corridor, a door, a bridge narrower
+// than two of them).
+std::vector<std::uint8_t> passingRoom(const AnnotatedGrid& grid, Agent agent,
+                                      Dents dents = Dents::Open);
 
 // One byte per cell: 1 on every cell some footprint covers where an agent of one of these
 // kinds stands without passing room — the chokepoints, where units must take turns. Open ground
 // is 0: there local avoidance lets units slide past each other.
-std::vector<std::uint8_t> contestedCells(const AnnotatedGrid& grid, std::span<const Agent> agents);
+std::vector<std::uint8_t> contestedCells(const AnnotatedGrid& grid, std::span<const Agent> agents,
+                                         Dents dents = Dents::Open);
 
 // The anchor reaches `cell` at `tick` (and stays until the next entry's tick).
 struct TimedCell {
