@@ -351,7 +351,8 @@ struct SteeringScratch {
   std::vector<std::uint32_t> walkers;      // walking units' indices, bucket by bucket
   std::vector<std::uint32_t> bucketStart;  // per bucket: its first entry in walkers; one past
   std::vector<std::uint32_t> bucketFill;
-  std::vector<double> giveWayWithin;  // per unit index: [cells] stop within this, or +inf
+  std::vector<std::uint32_t> bucketOfUnit;  // per unit index: a walking unit's bucket, or kNone
+  std::vector<double> giveWayWithin;        // per unit index: [cells] stop within this, or +inf
   // Per unit index: the lane to step out of, walking into it toward its vehicle; side 0: none.
   std::vector<units::Vec2> laneHeading;
   std::vector<double> laneSide;

@@ -200,18 +200,22 @@ void findVehicleLanes(const Refs& w, double lightest, SteeringScratch& s) {
   // count in the nearest bucket.
   const int columns = std::max(1, (w.map().width() + kWalkerBucket - 1) / kWalkerBucket);
   const int rows = std::max(1, (w.map().height() + kWalkerBucket - 1) / kWalkerBucket);
+  // (Truncation is floor here: the value is not negative.)
   const auto bucketAt = [](double v, int count) {
-    return std::clamp(static_cast<int>(std::floor(std::max(0.0, v) / kWalkerBucket)), 0, count - 1);
+    return std::min(static_cast<int>(std::max(0.0, v) / kWalkerBucket), count - 1);
   };
   const auto bucketOf = [&](Vec2 p) {
     return static_cast<std::size_t>(bucketAt(p.y, rows)) * static_cast<std::size_t>(columns) +
            static_cast<std::size_t>(bucketAt(p.x, columns));
   };
   s.bucketStart.assign(static_cast<std::size_t>(rows) * static_cast<std::size_t>(columns) + 1, 0);
+  s.bucketOfUnit.assign(all.size(), SteeringScratch::kNone);
   std::size_t walking = 0;
-  for (const Unit& unit : all) {
-    if (!walks(unit)) continue;
-    ++s.bucketStart[bucketOf(unit.position) + 1];
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (!walks(all[i])) continue;
+    const std::size_t bucket = bucketOf(all[i].position);
+    s.bucketOfUnit[i] = static_cast<std::uint32_t>(bucket);
+    ++s.bucketStart[bucket + 1];
     ++walking;
   }
   if (walking == 0) return;
@@ -219,15 +223,17 @@ void findVehicleLanes(const Refs& w, double lightest, SteeringScratch& s) {
     s.bucketStart[b] += s.bucketStart[b - 1];
   s.walkers.resize(walking);
   s.bucketFill.assign(s.bucketStart.begin(), s.bucketStart.end() - 1);
-  for (const Unit& unit : all) {
-    if (walks(unit)) s.walkers[s.bucketFill[bucketOf(unit.position)]++] = unit.id.index;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (s.bucketOfUnit[i] != SteeringScratch::kNone)
+      s.walkers[s.bucketFill[s.bucketOfUnit[i]]++] = all[i].id.index;
   }
   // Calls visit(walker index) for the walkers in the buckets that cover [x0, x1] × [y0, y1],
   // until it returns false; false when it did.
   const auto forWalkersIn = [&](double x0, double x1, double y0, double y1, auto visit) {
     const int bx0 = bucketAt(x0, columns);
     const int bx1 = bucketAt(x1, columns);
-    for (int by = bucketAt(y0, rows); by <= bucketAt(y1, rows); ++by) {
+    const int by1 = bucketAt(y1, rows);
+    for (int by = bucketAt(y0, rows); by <= by1; ++by) {
       const std::size_t row = static_cast<std::size_t>(by) * static_cast<std::size_t>(columns);
       for (std::uint32_t i = s.bucketStart[row + static_cast<std::size_t>(bx0)];
            i < s.bucketStart[row + static_cast<std::size_t>(bx1) + 1]; ++i) {
@@ -410,9 +416,11 @@ void steerAll(Refs& w, SteeringScratch& scratch) {
       }
     }
     if (cooperative) {
-      const double speed = desired.length();
-      const double turnCap = units::turnLimitedSpeed(unit.velocity, toward, type.turnRate);
-      if (speed > turnCap) desired = desired * (turnCap / speed);
+      // (The cap, never negative, limits only a unit that wants to move.)
+      if (const double speed = desired.length(); speed > 0.0) {
+        const double turnCap = units::turnLimitedSpeed(unit.velocity, toward, type.turnRate);
+        if (speed > turnCap) desired = desired * (turnCap / speed);
+      }
       // Mass grows with area: only a unit heavier than the lightest kind can drive another.
       const std::size_t i = unit.id.index;
       if (type.radius > lightest) {
