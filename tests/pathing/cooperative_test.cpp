@@ -531,10 +531,11 @@ TEST(CooperativeSearch, DentsHavePassingRoomDoorsAndCorridorsDoNot) {
 }
 
 // A size-2 agent between a small rock and a pond, 3 cells apart: it cannot pass another there,
-// but others go round the rock close by; between two walls 3 cells apart it is a passage.
+// but others go round the rock close by; in a gap 3 cells wide in a wall across the map (open
+// ground on both sides) it is a passage.
 TEST(CooperativeSearch, AGapRoundASmallRockIsADentAndAGapInAWallIsNot) {
   const AnnotatedGrid grid(
-      mapFromRows("type octile\nheight 14\nwidth 14\nmap\n"
+      mapFromRows("type octile\nheight 16\nwidth 14\nmap\n"
                   "..............\n"
                   "..............\n"
                   "..............\n"
@@ -546,6 +547,8 @@ TEST(CooperativeSearch, AGapRoundASmallRockIsADentAndAGapInAWallIsNot) {
                   "..............\n"
                   "..............\n"
                   "@@@@@@...@@@@@\n"
+                  "..............\n"
+                  "..............\n"
                   "..............\n"
                   "..............\n"
                   "..............\n"));
