@@ -254,6 +254,7 @@ void openDents(const AnnotatedGrid& grid, Agent agent, std::vector<std::uint8_t>
   std::vector<std::uint32_t> stamp(room.size(), 0);
   std::uint32_t visit = 0;
   std::vector<Cell> members;
+  std::vector<Cell> dents;  // opened once all are found: a set is judged by the room of before
   std::vector<Cell> border;
   std::vector<Cell> stack;
   for (int y = 0; y < h; ++y) {
@@ -314,10 +315,11 @@ void openDents(const AnnotatedGrid& grid, Agent agent, std::vector<std::uint8_t>
       if (!std::all_of(border.begin(), border.end(),
                        [&](Cell b) { return stamp[index(b)] == round; }))
         continue;
-      for (const Cell& c : members)
-        room[index(c)] = 1;
+      dents.insert(dents.end(), members.begin(), members.end());
     }
   }
+  for (const Cell& c : dents)
+    room[index(c)] = 1;
 }
 
 }  // namespace
