@@ -411,6 +411,7 @@ Result<Scenario> replayScenario(const Replay& replay) {
   if (replay.version < kFirstParkWhenFullReplayVersion) defaults.pathing.parkWhenAreaFull = false;
   if (replay.version < kFirstOneWayPassagesReplayVersion) defaults.pathing.oneWayPassages = false;
   if (replay.version < kFirstOpenDentsReplayVersion) defaults.pathing.openDents = false;
+  if (replay.version < kFirstLaneApproachesReplayVersion) defaults.pathing.laneApproaches = false;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

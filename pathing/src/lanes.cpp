@@ -124,10 +124,45 @@ void keepLaneThroughJunctions(const ClearanceField& clearance, int size, std::sp
   }
 }
 
+// Beyond each end of a lane run the lane holds its full shift for two footprints (where the
+// anchors up to it are standable, and before the taper of a cell a step): the approach and the
+// way out keep right too. Without the hold a lane ended at its passage's mouth, where a unit
+// coming off the bridge and one heading onto it met head on, on the one shortest line into the
+// mouth (bridge_two_way). `shift` and `right` are the lanes' shifts and sides.
+void holdBeyondLanes(const ClearanceField& clearance, int size, std::span<const Cell> path,
+                     std::vector<Cell>& right, std::vector<int>& shift) {
+  const std::size_t n = path.size();
+  const int reach = 2 * size;
+  std::vector<int> held = shift;
+  std::vector<Cell> heldRight = right;
+  for (const bool forward : {true, false}) {
+    int lane = 0;  // the shift of the last lane cell passed, held for `left` more cells
+    int left = 0;
+    Cell side{0, 0};
+    for (std::size_t k = 1; k + 1 < n; ++k) {
+      const std::size_t i = forward ? k : n - 1 - k;
+      if (shift[i] > 0) {
+        lane = shift[i];
+        left = reach;
+        side = right[i];
+      } else if (left > 0 && lane > held[i] &&
+                 standableUpTo(clearance, size, path[i], side, lane)) {
+        held[i] = lane;
+        heldRight[i] = side;
+        --left;
+      } else {
+        left = 0;
+      }
+    }
+  }
+  shift = std::move(held);
+  right = std::move(heldRight);
+}
+
 }  // namespace
 
 std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<const Cell> path,
-                            bool throughJunctions) {
+                            bool throughJunctions, bool holdBeyond) {
   std::vector<Cell> unchanged(path.begin(), path.end());
   const std::size_t n = path.size();
   if (n < 3 || agent.size < 1) return unchanged;
@@ -156,6 +191,7 @@ std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<co
     i = end;
   }
   if (throughJunctions) keepLaneThroughJunctions(clearance, agent.size, path, found, right, shift);
+  if (holdBeyond) holdBeyondLanes(clearance, agent.size, path, right, shift);
   // A lane begins before its passage and ends after it: a shift carries over to the cells
   // around, a cell less each, where the anchors it crosses are standable.
   const auto carry = [&](std::size_t from, std::size_t to) {

@@ -355,15 +355,37 @@ TEST(Cooperative, InfantryGiveWayToVehiclesAtTheBridgeAndTheCrossroads) {
 // bridge the last blue tank stops at the bridge's west end as red's infantry stream comes onto
 // the bridge toward it: with the lane the riflemen step out of its way and it arrives at 27.5 s
 // (bound 34 s); claiming none while stopped (format 13) the stream engulfed it mid-bridge until
-// it had passed, and it arrived at 47.7 s.
+// it had passed, and it arrived at 47.7 s. Measured with lanes that end at the bridge's mouth
+// (format 17): with lanes held beyond it (format 18) that tank is not caught either way.
 TEST(Cooperative, AStoppedTankClaimsItsLaneThroughAnOncomingStream) {
   Result<Scenario> loaded = loadChokepoint("bridge_two_way.yaml");
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.standingVehicleLanes);  // the default
+  s.settings.pathing.laneApproaches = false;
   EXPECT_TRUE(runToEnd(s, 15).passed());
   s.settings.pathing.standingVehicleLanes = false;
   EXPECT_FALSE(runToEnd(s, 15).passed());
+}
+
+// A vehicle's lane holds its full shift for two footprints beyond the bridge (replay format
+// 18). With lanes that ended at the mouth, a side's tanks heading onto the bridge and the other
+// side's coming off it ran the one shortest line into the mouth head on, and the tanks coming
+// off pushed those waiting back into the box they park in: seeds 1-20 passed 15 times, 19 with
+// the hold (seeds 1-100: 65 against 97).
+TEST(Cooperative, LanesHeldBeyondTheBridgeKeepTheMouthsApart) {
+  Result<Scenario> loaded = loadChokepoint("bridge_two_way.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.laneApproaches);  // the default
+  int passed[2] = {0, 0};                          // ending at the mouth, held beyond it
+  for (const bool held : {false, true}) {
+    s.settings.pathing.laneApproaches = held;
+    for (std::uint64_t seed = 1; seed <= 20; ++seed)
+      passed[held ? 1 : 0] += runToEnd(s, seed).passed() ? 1 : 0;
+  }
+  EXPECT_GE(passed[1], 18);
+  EXPECT_LE(passed[0], 16);
 }
 
 // At the crossroads the paths of opposite arms cross over in the 8×8 crossing, toward goal
@@ -371,12 +393,15 @@ TEST(Cooperative, AStoppedTankClaimsItsLaneThroughAnOncomingStream) {
 // right half across it; with lanes ending there (before) the pairs met head on in the middle
 // and knotted with the pairs crossing them. Seeds 1-8: no tank later than its bound (46 s),
 // against 3 seeds with a late tank (with lanes through junctions alone, before stepping aside to
-// room: seed 8, against seeds 4, 7 and 8).
+// room: seed 8, against seeds 4, 7 and 8). Lanes held two footprints beyond their passage
+// (format 18) reach across the 8-cell crossing from both arms by themselves, so the rule is
+// measured with lanes that end at their passage, as in format 17.
 TEST(Cooperative, TanksKeepTheirLanesThroughTheCrossroads) {
   Result<Scenario> loaded = loadChokepoint("crossroads.yaml");
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.lanesThroughJunctions);  // the default
+  s.settings.pathing.laneApproaches = false;
   int late[2] = {0, 0};  // seeds with a tank later than its bound, without and with
   for (const bool through : {true, false}) {
     s.settings.pathing.lanesThroughJunctions = through;

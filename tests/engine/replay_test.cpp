@@ -357,6 +357,7 @@ void useRulesOfFormat(Scenario& s, std::uint32_t format) {
   if (format < 15) s.settings.pathing.parkWhenAreaFull = false;
   if (format < 16) s.settings.pathing.oneWayPassages = false;
   if (format < 17) s.settings.pathing.openDents = false;
+  if (format < 18) s.settings.pathing.laneApproaches = false;
 }
 
 void expectVerifiesOnlyAsItsFormat(const Scenario& s, const ReplaySource& source,
@@ -564,6 +565,21 @@ TEST_F(Replays, AFormat16ReplayPlaysBackWithNotchesAsChokepoints) {
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format16.rpl", 16, 600);
 }
 
+// Format 17 was recorded when a vehicle's lane ended at its passage's mouth: it plays back so,
+// and read as format 18 (lanes held two footprints beyond the bridge) the same records do not
+// verify.
+TEST_F(Replays, AFormat17ReplayPlaysBackWithLanesEndingAtTheMouth) {
+  ReplaySource source;
+  Result<Scenario> loaded = loadRecordedScenario(
+      fs::path(WARPATH_SOURCE_DIR) / "scenarios/chokepoints/bridge_two_way.yaml", source);
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.laneApproaches);
+  useRulesOfFormat(s, 17);
+  source.seed = s.settings.seed;
+  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format17.rpl", 17, 600);
+}
+
 TEST_F(Replays, AnotherVersionIsRefused) {
   const fs::path file = record(1);
   std::string bytes = slurp(file);
@@ -572,21 +588,21 @@ TEST_F(Replays, AnotherVersionIsRefused) {
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
                                  ": replay format version 1 is not supported (this build reads "
-                                 "versions 2 to 17); it was written before battles were recorded: "
+                                 "versions 2 to 18); it was written before battles were recorded: "
                                  "record it again with rts run --replay");
   RtsResult r = rts("replay verify " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(file.string() + ": replay format version 1 is not supported"),
             std::string::npos)
       << r.out;
-  bytes[8] = 18;
+  bytes[8] = 19;
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
-                                 ": replay format version 18 is not supported (this build reads "
-                                 "versions 2 to 17)");
+                                 ": replay format version 19 is not supported (this build reads "
+                                 "versions 2 to 18)");
   r = rts("replay info " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_NE(r.out.find("version 18 is not supported"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("version 19 is not supported"), std::string::npos) << r.out;
   EXPECT_EQ(rts("replay verify " + (dir_ / "none.rpl").string()).status, 2);
 }
 
@@ -695,7 +711,7 @@ TEST_F(Replays, ABattleRecordsAndVerifies) {
 
   const RtsResult info = rts("replay info " + file.string());
   EXPECT_EQ(info.status, 0) << info.out;
-  EXPECT_NE(info.out.find("format version: 17\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("format version: 18\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("orders: 4 (2 attack_move, 1 attack, 1 reinforce)\n"), std::string::npos)
       << info.out;
   const RtsResult verify = rts("replay verify " + file.string());

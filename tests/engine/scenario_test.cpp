@@ -175,9 +175,9 @@ TEST_P(GoldenHash, OfTheWholeRun) {
 INSTANTIATE_TEST_SUITE_P(
     BundledScenarios, GoldenHash,
     ::testing::Values(
-        Golden{"demo", "f3a6db9289ceeeeb", "94f004afe1cb75f5", "268efd7eedf339cb"},
-        Golden{"river_ambush", "cf4f0234f2315336", "04a782fbee634f61", "440f53b59841d600"},
-        Golden{"forest_battle", "cdd03a0bb6406255", "418269f9132f682d", "1e2811529b35473b"},
+        Golden{"demo", "f5a85844a1a78900", "94f004afe1cb75f5", "268efd7eedf339cb"},
+        Golden{"river_ambush", "bb270fbdc18c198a", "04a782fbee634f61", "440f53b59841d600"},
+        Golden{"forest_battle", "2889a009760e51eb", "418269f9132f682d", "1e2811529b35473b"},
         Golden{"amphibious_landing", "7853d0bbde071d6d", "a0c07a636b15d90d", "7bb81fc9f3a1784e"},
         Golden{"bridge_demolition", "745a0dc760c4c88e", "87e5a21810de3f77", "e92b92a84829b703"}),
     [](const auto& golden) { return std::string(golden.param.scenario); });

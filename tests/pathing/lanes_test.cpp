@@ -161,10 +161,37 @@ TEST(Lanes, ALaneGoesOnThroughAJunction) {
     EXPECT_EQ(y, row);
   // As lanes were before replay format 12: the lane ends at the junction, where the path comes
   // back north toward its own line.
-  const std::vector<Cell> ending = keepRight(grid, tank, east, false);
+  const std::vector<Cell> ending = keepRight(grid, tank, east, false, false);
   expectLegalBetween(grid, tank, ending, east);
   const std::vector<int> junctionBefore = rowsOver(ending, 26, 37);
   EXPECT_LT(*std::min_element(junctionBefore.begin(), junctionBefore.end()), row);
+}
+
+TEST(Lanes, ALaneHoldsTwoFootprintsBeyondItsBridge) {
+  // The bridge of the first test (columns 12..27, rows 7..12): a tank's footprint is on it from
+  // anchor column 10 to 27. Heading east its lane there is row 10 (the south half); its path
+  // from the west runs along row 8.
+  const AnnotatedGrid grid(riverMap(7, 6));
+  const Agent tank{3, kGround};
+  const std::vector<Cell> east = shortest(grid, tank, {2, 8}, {35, 8});
+  const std::vector<Cell> held = keepRight(grid, tank, east);
+  expectLegalBetween(grid, tank, held, east);
+  // The lane's row holds for two footprints (six columns) before and after the bridge, then
+  // tapers a row a cell.
+  for (const int y : rowsOver(held, 4, 33))
+    EXPECT_EQ(y, 10);
+  EXPECT_EQ(rowsOver(held, 3, 3), std::vector<int>{9});
+  EXPECT_EQ(rowsOver(held, 34, 34), std::vector<int>{9});
+  // Without the hold (replay formats before 18) the lane tapers from the bridge's ends.
+  const std::vector<Cell> ending = keepRight(grid, tank, east, true, false);
+  expectLegalBetween(grid, tank, ending, east);
+  for (const int y : rowsOver(ending, 10, 27))
+    EXPECT_EQ(y, 10);
+  EXPECT_EQ(rowsOver(ending, 9, 9), std::vector<int>{9});
+  EXPECT_EQ(rowsOver(ending, 8, 8), std::vector<int>{8});
+  EXPECT_EQ(rowsOver(ending, 29, 29), std::vector<int>{8});
+  // Held or not, the lane costs the same: the held stretch runs parallel to the path.
+  EXPECT_NEAR(pathCost(held), pathCost(ending), 1e-9);
 }
 
 TEST(Lanes, AlwaysLegalOnRandomMaps) {

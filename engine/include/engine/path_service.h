@@ -116,6 +116,9 @@ struct PathServiceSettings {
   // edge (a dent, pathing::Dents) was a chokepoint like a door (docs/cooperative.md, "Dents").
   bool openDents = true;
   pathing::Dents dents() const { return openDents ? pathing::Dents::Open : pathing::Dents::Narrow; }
+  // Not a scenario key: false plays back replays before format 18, when a vehicle's lane ended
+  // at its passage's mouth (pathing::keepRight's holdBeyond; docs/cooperative.md, "Lanes").
+  bool laneApproaches = true;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
 // [Unit: expansions] what sliced window searches may spend in a tick the spatial searches left

@@ -54,9 +54,12 @@ namespace warpath::engine {
 // whose goal cell another parked on, and whose area has no other free cell for it, parks where
 // it stands (older files play back with it pushing on). 16: the same records and hashes; the
 // gate of a passage used one way only lets any number through, and walkers cross it without
-// timed windows (older files play back with at most 8 through at a time, in windows). Version-1
-// files (move orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 17;
+// timed windows (older files play back with at most 8 through at a time, in windows). 17: the
+// same records and hashes; a notch in a ragged edge (a dent) has passing room (older files play
+// back with it a chokepoint). 18: the same records and hashes; a vehicle's lane holds its full
+// shift for two footprints beyond its passage (older files play back with lanes ending at the
+// mouth). Version-1 files (move orders only) are refused with a message saying so.
+inline constexpr std::uint32_t kReplayVersion = 18;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -99,6 +102,9 @@ inline constexpr std::uint32_t kFirstOneWayPassagesReplayVersion = 16;
 // Formats before this one were recorded when a notch in a ragged edge was a chokepoint like a
 // door: they play back so (PathServiceSettings::openDents off).
 inline constexpr std::uint32_t kFirstOpenDentsReplayVersion = 17;
+// Formats before this one were recorded when a vehicle's lane ended at its passage's mouth: they
+// play back so (PathServiceSettings::laneApproaches off).
+inline constexpr std::uint32_t kFirstLaneApproachesReplayVersion = 18;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

@@ -340,9 +340,9 @@ std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
       // Infantry (size 1) slip past each other: lanes only bent their paths, and at the bundled
       // bridge and crossroads they did no better with them (docs/cooperative.md).
       if (w.settings.pathing.cooperative && w.typeOf(unit).size >= 2) {
-        std::vector<Cell> lane =
-            pathing::keepRight(w.grid, w.typeOf(unit).agent(), unit.path->cells,
-                               w.settings.pathing.lanesThroughJunctions);
+        std::vector<Cell> lane = pathing::keepRight(
+            w.grid, w.typeOf(unit).agent(), unit.path->cells,
+            w.settings.pathing.lanesThroughJunctions, w.settings.pathing.laneApproaches);
         if (lane != unit.path->cells)
           unit.path = std::make_shared<const PlannedPath>(planned(std::move(lane)));
       }

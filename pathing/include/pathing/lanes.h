@@ -22,7 +22,9 @@ constexpr int laneWidth(int size) {
 // anchors to either side) is split in two halves of its cells, and a footprint in the left half
 // moves over to the nearest anchor whose footprint lies in the right half; where the passage is
 // narrower than two footprints or wider than laneWidth(), the path stays. A lane begins before
-// its passage and ends after it (a shift carries to the cells around, a cell less each). Shifts
+// its passage and ends after it: with `holdBeyond` its full shift holds for two footprints
+// beyond each end of the run, and then (or at once, without) a shift carries to the cells
+// around, a cell less each. Shifts
 // grow and shrink by at most a cell per step (so the start and the goal stay where they are) and
 // the shifted cells are joined by legal single moves; if they cannot be, the path comes back
 // unchanged. With `throughJunctions` a lane goes on through a junction, a stretch of at most
@@ -30,6 +32,6 @@ constexpr int laneWidth(int size) {
 // entered on (without, the path comes back to its own line there). The result is legal for the
 // agent and runs from path.front() to path.back().
 std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<const Cell> path,
-                            bool throughJunctions = true);
+                            bool throughJunctions = true, bool holdBeyond = true);
 
 }  // namespace warpath::pathing
