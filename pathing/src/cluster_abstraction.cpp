@@ -890,6 +890,8 @@ class AbstractionBuilder {
 ClusterAbstraction ClusterAbstraction::build(const AnnotatedGrid& grid, AbstractionSpec spec) {
   limits::require(problemWith(spec));
   ClusterAbstraction built = AbstractionBuilder(grid, std::move(spec)).build();
+  built.revisions_ = 1;
+  built.clusterRevision_.assign(static_cast<std::size_t>(built.clusterCount()), 1);
   built.buildLevelTwo(nullptr);
   built.stats_.buildMilliseconds += built.stats_.levelTwoMilliseconds;
   return built;
@@ -906,7 +908,11 @@ RepairStats ClusterAbstraction::repair(const TerrainChange& change) {
   for (std::size_t i = 0; i < effective_.size(); ++i)
     newTerrain = newTerrain || (spec_.capabilities[i].mask() & added & ~effective_[i].mask()) != 0;
   if (newTerrain) {
+    const std::uint64_t revisions = revisions_;
     *this = build(*grid_, spec_);
+    // Revisions go on from the old graph's: nothing derived from it is current.
+    revisions_ = revisions + 1;
+    std::fill(clusterRevision_.begin(), clusterRevision_.end(), revisions_);
     stats.rebuilt = true;
     stats.clusters = clusterCount();
     stats.expanded = stats_.buildExpanded;
@@ -914,6 +920,11 @@ RepairStats ClusterAbstraction::repair(const TerrainChange& change) {
     if (costs_) costs_->update(*grid_, change.area);
     std::vector<bool> redo;
     AbstractionBuilder(*this).repair(change.area, stats, redo);
+    ++revisions_;
+    for (int k = 0; k < clusterCount(); ++k) {
+      if (redo[static_cast<std::size_t>(k)])
+        clusterRevision_[static_cast<std::size_t>(k)] = revisions_;
+    }
     if (spec_.levels == 2) {
       // Level 2 again in every level-2 cluster holding a cluster whose level-1 edges changed.
       std::vector<bool> blocks(levelTwoPaths_.size(), false);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <limits>
 
 namespace warpath::pathing {
 
@@ -182,6 +183,15 @@ void ClusterDijkstra::appendSteps(Cell target, std::vector<std::uint8_t>* steps)
     index -= static_cast<std::size_t>(kDirections[d].dy * width + kDirections[d].dx);
   }
   std::reverse(steps->begin() + static_cast<std::ptrdiff_t>(first), steps->end());
+}
+
+void ClusterDijkstra::copyTree(std::span<float> costs, std::span<std::uint8_t> vias) const {
+  const std::uint32_t settled = settledStamp();
+  for (std::size_t i = 0; i < costs.size(); ++i) {
+    const bool reached = stamp_[i] == settled;
+    costs[i] = reached ? static_cast<float>(g_[i]) : std::numeric_limits<float>::infinity();
+    vias[i] = via_[i];
+  }
 }
 
 int ClusterDijkstra::smallestAlong(std::span<const std::uint8_t> steps,

@@ -67,6 +67,10 @@ class ClusterDijkstra {
   // [Limit: steps from appendSteps]
   int smallestAlong(std::span<const std::uint8_t> steps,
                     std::span<const std::uint8_t> values) const;
+  // The whole search tree, per cell of the region's arrays (regionIndex): the cost to each cell
+  // (infinity where not settled) and the direction of the move that reached it.
+  // [Limit: both spans as long as the region's arrays]
+  void copyTree(std::span<float> costs, std::span<std::uint8_t> vias) const;
   std::uint64_t expanded() const { return expanded_; }
   std::uint64_t generated() const { return generated_; }
 

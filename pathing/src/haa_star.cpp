@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "cluster_dijkstra.h"
+#include "insertion_tables.h"
 #include "limit_messages.h"
 #include "pathing/invariant.h"
 #include "pathing/moves.h"
@@ -43,6 +44,9 @@ struct HierarchicalAStar::Scratch {
 
   ClusterDijkstra startSearch;
   ClusterDijkstra goalSearch;
+  InsertionTables* tables = nullptr;  // the query's agent's, when insertion reads tables
+  std::vector<std::pair<std::uint32_t, double>> links;
+  std::uint64_t inserted = 0;  // expansions of the last insertion
   std::vector<Cell> clusterCells;
   std::vector<Cell> refined;
   std::vector<Cell> smoothed;
@@ -125,6 +129,27 @@ HierarchicalAStar::HierarchicalAStar(const ClusterAbstraction& abstraction, HaaO
 
 HierarchicalAStar::~HierarchicalAStar() = default;
 
+InsertionTables* HierarchicalAStar::tablesFor(Agent agent) {
+  if (options_.insertion != InsertionMode::Tables || abstraction_.costs() ||
+      !abstraction_.supports(agent))
+    return nullptr;
+  for (const auto& tables : tables_) {
+    if (tables->agent() == agent) return tables.get();
+  }
+  return tables_.emplace_back(std::make_unique<InsertionTables>(abstraction_, agent)).get();
+}
+
+void HierarchicalAStar::prepare(Agent agent) {
+  if (InsertionTables* tables = tablesFor(agent)) tables->prepareAll();
+}
+
+std::size_t HierarchicalAStar::insertionTableBytes() const {
+  std::size_t bytes = 0;
+  for (const auto& tables : tables_)
+    bytes += tables->bytes();
+  return bytes;
+}
+
 std::uint64_t HierarchicalAStar::expandedSoFar() const {
   return scratch_->expandedSoFar;
 }
@@ -134,6 +159,7 @@ std::uint64_t HierarchicalAStar::nextStepExpansions() const {
   if (s.result.status != PathStatus::Pending ||
       (s.phase != Phase::InsertStart && s.phase != Phase::InsertGoal))
     return 1;
+  if (s.tables) return s.tables->lookupExpansions(s.phase == Phase::InsertGoal ? s.goal : s.start);
   // The Dijkstra settles each cell of the cluster at most once.
   const CellRect bounds = abstraction_.clusterBounds(
       abstraction_.clusterOf(s.phase == Phase::InsertGoal ? s.goal : s.start));
@@ -359,6 +385,7 @@ PathStatus HierarchicalAStar::beginPath(Agent agent, Cell start, Cell goal,
   s.goal = goal;
   s.expandedSoFar = 0;
   s.refined.clear();
+  s.tables = nullptr;
   const AnnotatedGrid& grid = abstraction_.grid();
   if (const auto answer = screenEndpoints(grid, agent, start, goal)) {
     s.result.status = *answer;
@@ -371,6 +398,7 @@ PathStatus HierarchicalAStar::beginPath(Agent agent, Cell start, Cell goal,
     s.result.status = PathStatus::Found;
   } else {
     s.layer = &grid.layer(agent);
+    s.tables = tablesFor(agent);
     const int cluster = abstraction_.clusterOf(start);
     s.phase = Phase::InsertStart;
     if (cluster == abstraction_.clusterOf(goal)) {
@@ -449,11 +477,11 @@ std::uint64_t HierarchicalAStar::step(std::uint64_t budget) {
       s.begin(abstraction_.nodeCount());
       insertEndpoint(false);
       s.phase = Phase::InsertGoal;
-      return s.startSearch.expanded();
+      return s.inserted;
     case Phase::InsertGoal:
       insertEndpoint(true);
       beginAbstract();
-      return s.goalSearch.expanded();
+      return s.inserted;
     case Phase::Abstract:
       return searchAbstract(budget);
     case Phase::Refine:
@@ -487,6 +515,20 @@ void HierarchicalAStar::insertEndpoint(bool goalSide) {
   Scratch& s = *scratch_;
   const GridMap& map = abstraction_.grid().map();
   const Cell end = goalSide ? s.goal : s.start;
+  if (s.tables) {
+    s.inserted = s.tables->links(end, &s.links);
+    for (const auto& [n, cost] : s.links) {
+      if (goalSide) {
+        s.goalLinkStamp[n] = s.generation;
+        s.goalLinkCost[n] = cost;
+      } else {
+        s.startLinks.push_back({n, cost});
+      }
+    }
+    s.result.metrics.insertionExpanded += s.inserted;
+    s.result.metrics.generated += s.links.size();
+    return;
+  }
   const int cluster = abstraction_.clusterOf(end);
   ClusterDijkstra& search = goalSide ? s.goalSearch : s.startSearch;
   s.clusterCells.clear();
@@ -504,6 +546,7 @@ void HierarchicalAStar::insertEndpoint(bool goalSide) {
       s.startLinks.push_back({n, search.cost(c)});
     }
   }
+  s.inserted = search.expanded();
   s.result.metrics.insertionExpanded += search.expanded();
   s.result.metrics.generated += search.generated();
 }
@@ -656,7 +699,11 @@ std::uint64_t HierarchicalAStar::refine(std::uint64_t budget) {
     const std::uint32_t from = s.abstractPath[s.refineIndex - 1];
     const std::uint32_t to = s.abstractPath[s.refineIndex];
     const AbstractEdge* pathEdge = s.pathEdges[s.refineIndex];
-    if (from == startNode) {
+    if (from == startNode && s.tables) {
+      s.tables->appendWayToNode(s.start, to, &cells);
+    } else if (to == goalNode && s.tables) {
+      s.tables->appendWayFromNode(from, s.goal, &cells);
+    } else if (from == startNode) {
       s.steps.clear();
       s.startSearch.appendSteps(abstraction_.nodeCell(to), &s.steps);
       appendWalk(s.start, s.steps, &cells);
@@ -834,6 +881,7 @@ bool HybridPlanner::attemptsJumpPoints() const {
 
 void HybridPlanner::prepare(Agent agent) {
   if (attemptsJumpPoints()) jumps_.prepare(agent);
+  hierarchical_.prepare(agent);
 }
 
 PathStatus HybridPlanner::beginPath(Agent agent, Cell start, Cell goal,

@@ -119,6 +119,13 @@ std::uint64_t Planner::nextStepExpansions() const {
 void Planner::prepare(Agent agent) {
   if (auto* jps = std::get_if<JumpPointSearch>(&impl_)) jps->prepare(agent);
   if (auto* hybrid = std::get_if<HybridPlanner>(&impl_)) hybrid->prepare(agent);
+  if (auto* haa = std::get_if<HierarchicalAStar>(&impl_)) haa->prepare(agent);
+}
+
+std::size_t Planner::insertionTableBytes() const {
+  if (const auto* haa = std::get_if<HierarchicalAStar>(&impl_)) return haa->insertionTableBytes();
+  if (const auto* hybrid = std::get_if<HybridPlanner>(&impl_)) return hybrid->insertionTableBytes();
+  return 0;
 }
 
 std::vector<LayerBytes> Planner::layerBytes() const {

@@ -147,6 +147,52 @@ TEST(HaaStarTest, JumpPointGridSearchesKeepItComplete) {
   EXPECT_GT(gridQueries, 100u);
 }
 
+// Insertion by tables (HaaOptions::insertion): the same links as the Dijkstra from each end, so
+// with cached paths (where a refined path costs what its abstract path does) unsmoothed answers
+// cost what the insertion by search finds (the tables keep floats: within 1e-3); smoothed ones
+// stay complete, legal and never below the optimum, cached or not. (Uncached, an LQ edge is
+// refined by a search that may find a cheaper way than the edge's cost for a larger agent, so
+// two abstract paths of equal cost can refine to different costs, and which one is found
+// depends on the last bits of the links' costs.)
+TEST(HaaStarTest, InsertionTablesKeepItCompleteAndCostWhatTheSearchCosts) {
+  CompletenessTally tally;
+  std::uint64_t compared = 0;
+  for (int i = 0; i < kRandomMapCount; i += 2) {
+    const RandomMapCase m = randomMapCase(i);
+    const AnnotatedGrid grid(randomMap(m));
+    const std::vector<CompletenessCase> cases =
+        drawCompletenessCases(grid, testing::completenessAgents(), m.seed + 9, 6, 12, 2);
+    for (int clusterSize : {8, 16}) {
+      for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
+        const AbstractionSpec spec = catalogueSpec(clusterSize, quality, clusterSize == 16);
+        const ClusterAbstraction abstraction = ClusterAbstraction::build(grid, spec);
+        HierarchicalAStar tabled(abstraction, HaaOptions{.insertion = InsertionMode::Tables});
+        HierarchicalAStar rawTabled(
+            abstraction, HaaOptions{.smooth = false, .insertion = InsertionMode::Tables});
+        HierarchicalAStar rawSearched(abstraction, HaaOptions{.smooth = false});
+        checkCompleteness(grid, cases, tabled, label(m, spec, "insertion tables"), tally);
+        for (const CompletenessCase& c : cases) {
+          if (!spec.cachePaths) break;
+          const PathResult byTables =
+              rawTabled.findPath(c.agent, c.query.start, c.query.goal, nullptr);
+          const PathResult bySearch =
+              rawSearched.findPath(c.agent, c.query.start, c.query.goal, nullptr);
+          ASSERT_EQ(byTables.status, bySearch.status) << label(m, spec, "tables against search");
+          if (!bySearch.found()) continue;
+          EXPECT_NEAR(byTables.cost, bySearch.cost, 1e-3)
+              << label(m, spec, "tables against search");
+          ++compared;
+        }
+        EXPECT_GT(tabled.insertionTableBytes(), 0u);
+      }
+    }
+  }
+  EXPECT_EQ(tally.failures, 0);
+  EXPECT_GT(tally.found, 5000);
+  EXPECT_GT(tally.notFound, 1000);
+  EXPECT_GT(compared, 2000u);
+}
+
 // The completeness check itself must catch each kind of wrong answer.
 TEST(HaaStarTest, TheCheckCatchesWrongAnswers) {
   const AnnotatedGrid grid(GridMap(6, 4, Terrain::Ground));

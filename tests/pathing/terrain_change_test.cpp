@@ -183,6 +183,14 @@ TEST(TerrainChange, RepairedGraphsFindAPathExactlyWhenAStarDoes) {
       spec.cachePaths = seed != 2;
       ClusterAbstraction abstraction = ClusterAbstraction::build(grid, spec);
       HierarchicalAStar haa(abstraction);
+      // Insertion tables made before the changes must follow them (clusterRevision): unsmoothed,
+      // with cached paths, every answer costs what the insertion by search finds.
+      HierarchicalAStar tabled(abstraction, HaaOptions{.insertion = InsertionMode::Tables});
+      HierarchicalAStar rawTabled(abstraction,
+                                  HaaOptions{.smooth = false, .insertion = InsertionMode::Tables});
+      HierarchicalAStar rawSearched(abstraction, HaaOptions{.smooth = false});
+      for (const Agent& agent : completenessAgents())
+        tabled.prepare(agent);
       RandomChanges changes{SplitMix64(seed * 101), 10, {}};
       for (int step = 0; step < 12; ++step) {
         const TerrainChange change = changes.apply(grid);
@@ -197,6 +205,17 @@ TEST(TerrainChange, RepairedGraphsFindAPathExactlyWhenAStarDoes) {
               << step << " after " << change.area.width << "x" << change.area.height << " at "
               << cell({change.area.x, change.area.y});
         checkCompleteness(fresh, cases, haa, label.str(), tally);
+        checkCompleteness(fresh, cases, tabled, label.str() + ", insertion tables", tally);
+        for (const auto& c : cases) {
+          const PathResult byTables =
+              rawTabled.findPath(c.agent, c.query.start, c.query.goal, nullptr);
+          const PathResult bySearch =
+              rawSearched.findPath(c.agent, c.query.start, c.query.goal, nullptr);
+          ASSERT_EQ(byTables.status, bySearch.status) << label.str();
+          if (bySearch.found() && spec.cachePaths) {
+            EXPECT_NEAR(byTables.cost, bySearch.cost, 1e-3) << label.str();
+          }
+        }
         expectStatsCounted(abstraction, label.str());
       }
     }

@@ -133,6 +133,10 @@ int runScenBench(const ScenBenchOptions& options) {
       grid.cacheBytes() +
       (abstraction ? abstraction->stats().graphBytes + abstraction->stats().pathBytes : 0);
   writeAbstractionKeys(abstraction, out);
+  if (prepared.abstraction) {
+    out["insertion"] = options.planner.insertion;
+    out["insertion_table_bytes"] = planner.insertionTableBytes();
+  }
   // JPS and JPS+ keep per-layer bit maps (and tables), built at each layer's first query.
   if (const std::vector<LayerBytes> layers = planner.layerBytes(); !layers.empty()) {
     nlohmann::json perLayer = nlohmann::json::array();

@@ -85,6 +85,12 @@ void addPlannerOptions(CLI::App& cmd, PlannerChoice& choice) {
                  "queries, refinement without cached paths) and for agents the graph does not "
                  "serve: aa (AA*) or jps (jump points, uniform costs; as short, other cells)")
       ->capture_default_str();
+  cmd.add_option("--insertion", choice.insertion,
+                 "hierarchical algorithms: how a query links its start and goal to their "
+                 "clusters' nodes: search (a Dijkstra over each end's cluster) or tables (costs "
+                 "from every cell to its cluster's nodes, per agent kind, built before the timed "
+                 "queries and counted in preprocess_ms; uniform costs)")
+      ->capture_default_str();
   cmd.add_flag("--no-smooth", choice.noSmooth,
                "hierarchical algorithms: keep the refined path as it is, unsmoothed");
 }
@@ -129,6 +135,12 @@ PreparedPlanner prepare(Algorithm algorithm, const PlannerChoice& choice, Build&
   } else {
     throw BadInput{"--grid-search: unknown '" + choice.gridSearch + "' (choose " +
                    kGridSearchNames.list() + ")"};
+  }
+  if (const auto insertion = kInsertionModeNames.parse(choice.insertion)) {
+    prepared.haa.insertion = *insertion;
+  } else {
+    throw BadInput{"--insertion: unknown '" + choice.insertion + "' (choose " +
+                   kInsertionModeNames.list() + ")"};
   }
   const auto began = std::chrono::steady_clock::now();
   build(prepared);

@@ -43,6 +43,7 @@ struct PlannerChoice {
   std::string attempt{pathing::kHybridAttemptNames.name(pathing::HybridOptions{}.attempt)};
   bool noSmooth = false;
   std::string gridSearch{pathing::kGridSearchNames.name(pathing::HaaOptions{}.gridSearch)};
+  std::string insertion{pathing::kInsertionModeNames.name(pathing::HaaOptions{}.insertion)};
 };
 
 // Adds --algo, --cluster-size, --levels, --level-two-size, --grid-search, --tau, --attempt and

@@ -168,6 +168,13 @@ class ClusterAbstraction {
   }
   CellRect clusterBounds(int cluster) const;
 
+  // Changes whenever cluster `cluster`'s nodes or the moves of its cells may have changed (a
+  // repair redid the cluster, or built the graph again): what is derived from one cluster
+  // (HAA*'s insertion tables) is stale once this differs from what it was derived at.
+  std::uint64_t clusterRevision(int cluster) const {
+    return clusterRevision_[static_cast<std::size_t>(cluster)];
+  }
+
   // Node ids run below nodeCount(); after a repair some ids may be free (listed in no cluster,
   // with no edges) until a later repair reuses them.
   std::uint32_t nodeCount() const { return static_cast<std::uint32_t>(nodeCells_.size()); }
@@ -234,6 +241,8 @@ class ClusterAbstraction {
   std::vector<std::vector<std::uint32_t>> clusterNodes_;  // per cluster, by cell index
   std::vector<ClusterPaths> paths_;                       // per cluster
   std::vector<std::uint32_t> freeNodes_;                  // ids a repair left unused
+  std::vector<std::uint64_t> clusterRevision_;            // per cluster (clusterRevision)
+  std::uint64_t revisions_ = 0;                           // the last revision given
 
   // Level 2. A level-2 edge's path is the level-1 nodes it passes, source excluded, target
   // included, in the order from source to target; per level-2 cluster, so that a repair

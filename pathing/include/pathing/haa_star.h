@@ -16,6 +16,8 @@
 
 namespace warpath::pathing {
 
+class InsertionTables;
+
 // A surcharge on abstract edges, so that long routes can avoid congestion (the engine's
 // expected wait at a crowded bridge): the abstract search adds it to an edge's cost when it
 // relaxes the edge. The search stays exact for the surcharged costs as long as reaching an
@@ -49,6 +51,21 @@ inline constexpr EnumNames<GridSearch, 2> kGridSearchNames{{{
     {GridSearch::JumpPoints, "jps"},
 }}};
 
+// How HAA* links the start and the goal to the nodes of their clusters (insertion).
+enum class InsertionMode : std::uint8_t {
+  // "search": a Dijkstra over the cluster from each end, every query.
+  Search,
+  // "tables": the costs from every cell of a cluster to its nodes, and the ways there, kept
+  // per agent kind and cluster (built at a cluster's first query, or by prepare(); again after
+  // a repair changes the cluster): a query reads them. Uniform costs only (a weighted graph
+  // searches); about 5 bytes per node of a cluster and cell of it, per agent kind.
+  Tables,
+};
+inline constexpr EnumNames<InsertionMode, 2> kInsertionModeNames{{{
+    {InsertionMode::Search, "search"},
+    {InsertionMode::Tables, "tables"},
+}}};
+
 struct HaaOptions {
   // Shorten the refined path with straight, capability- and clearance-legal segments.
   bool smooth = true;
@@ -58,6 +75,7 @@ struct HaaOptions {
   // costs those searches stay AA*'s, except for agents the graph does not serve, which are
   // planned in the uniform model anyway.
   GridSearch gridSearch = GridSearch::AStar;
+  InsertionMode insertion = InsertionMode::Search;
 };
 
 // A query: (1) start and goal in the same cluster: AA* inside the cluster, done if found;
@@ -102,6 +120,11 @@ class HierarchicalAStar {
   std::uint64_t nextStepExpansions() const;
   // For a planner that runs this one's queries inside its own and times them (PhaseTiming).
   void stopTimingPhases() { timing_.stopTimingPhases(); }
+  // Builds now what queries for `agent` would build at first use (insertion tables), so that
+  // no timed query carries it; nothing for the other options.
+  void prepare(Agent agent);
+  // Memory the insertion tables hold (0 unless HaaOptions::insertion is Tables).
+  std::size_t insertionTableBytes() const;
 
  private:
   friend class HybridPlanner;
@@ -139,8 +162,13 @@ class HierarchicalAStar {
                              bool uniform = false);
   PathResult finalizeGridSearch(std::vector<Cell>* path);
 
+  // The insertion tables for `agent`, made at first ask; null when insertion searches (the
+  // option, or a weighted graph) or the graph does not serve the agent.
+  InsertionTables* tablesFor(Agent agent);
+
   const ClusterAbstraction& abstraction_;
   HaaOptions options_;
+  std::vector<std::unique_ptr<InsertionTables>> tables_;  // per agent kind asked for
   AnnotatedAStar gridSearch_;
   JumpPointSearch jumpSearch_;  // options_.gridSearch == JumpPoints (its scratch at first use)
   bool gridJumping_ = false;    // the grid search under way is jumpSearch_'s
@@ -182,8 +210,10 @@ class HybridPlanner {
   // Short queries answered by AA* carry no surcharge (HierarchicalAStar::findPath).
   PathResult findPath(Agent agent, Cell start, Cell goal, std::vector<Cell>* path,
                       const EdgeSurcharge* surcharge = nullptr);
-  // With the JPS+ attempt: builds `agent`'s jump table now (JumpPointSearch::prepare).
+  // Builds `agent`'s jump table now with the JPS+ attempt (JumpPointSearch::prepare), and
+  // HAA*'s insertion tables (HierarchicalAStar::prepare).
   void prepare(Agent agent);
+  std::size_t insertionTableBytes() const { return hierarchical_.insertionTableBytes(); }
   // The same query sliced (search.h): the short-query attempt, then HAA* when it runs out.
   PathStatus beginPath(Agent agent, Cell start, Cell goal,
                        const EdgeSurcharge* surcharge = nullptr);

@@ -73,11 +73,13 @@ class Planner {
   std::uint64_t expandedSoFar() const;
   std::uint64_t nextStepExpansions() const;
   // Builds now what the planner would build at `agent`'s first query (JPS+ jump tables, also
-  // the hybrid's with the JPS+ attempt), so that no timed query carries it; the others build
-  // nothing per agent.
+  // the hybrid's with the JPS+ attempt; HAA*'s insertion tables), so that no timed query
+  // carries it; the others build nothing per agent.
   void prepare(Agent agent);
   // JPS and JPS+: the memory their layers hold (bit maps, jump tables); empty for the others.
   std::vector<LayerBytes> layerBytes() const;
+  // HAA* and the hybrid: the memory their insertion tables hold (HaaOptions::insertion).
+  std::size_t insertionTableBytes() const;
 
  private:
   Algorithm algorithm_;
