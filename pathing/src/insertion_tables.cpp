@@ -43,10 +43,13 @@ std::uint64_t InsertionTables::build(int cluster) {
   if (c.nodes.empty()) return 0;
   moves_.load(map, layer_, bounds);
   std::uint64_t expanded = 0;
-  for (std::size_t slot = 0; slot < c.nodes.size(); ++slot) {
+  const std::size_t nodes = c.nodes.size();
+  nodeCosts_.resize(cells);
+  for (std::size_t slot = 0; slot < nodes; ++slot) {
     search_.run(moves_, graph_.nodeCell(c.nodes[slot]), {});
-    search_.copyTree(std::span<float>(c.costs).subspan(slot * cells, cells),
-                     std::span<std::uint8_t>(c.vias).subspan(slot * cells, cells));
+    search_.copyTree(nodeCosts_, std::span<std::uint8_t>(c.vias).subspan(slot * cells, cells));
+    for (std::size_t i = 0; i < cells; ++i)
+      c.costs[i * nodes + slot] = nodeCosts_[i];
     expanded += search_.expanded();
   }
   return expanded;
@@ -68,11 +71,11 @@ std::uint64_t InsertionTables::links(Cell cell,
   std::uint64_t expanded = current(cluster) ? 0 : build(cluster);
   const Cluster& c = clusters_[static_cast<std::size_t>(cluster)];
   const CellRect bounds = graph_.clusterBounds(cluster);
-  const std::size_t cells = static_cast<std::size_t>(bounds.width + 2) * (bounds.height + 2);
-  const std::size_t at = regionIndex(bounds, cell);
+  const std::size_t nodes = c.nodes.size();
+  const float* costs = c.costs.data() + regionIndex(bounds, cell) * nodes;
   out->clear();
-  for (std::size_t slot = 0; slot < c.nodes.size(); ++slot) {
-    const float cost = c.costs[slot * cells + at];
+  for (std::size_t slot = 0; slot < nodes; ++slot) {
+    const float cost = costs[slot];
     if (std::isfinite(cost)) out->emplace_back(c.nodes[slot], static_cast<double>(cost));
   }
   return expanded + std::max<std::size_t>(1, c.nodes.size());

@@ -44,8 +44,11 @@ class InsertionTables {
   struct Cluster {
     std::uint64_t revision = 0;        // the graph's clusterRevision when built; 0: never
     std::vector<std::uint32_t> nodes;  // those the agent can stand on, in the graph's order
-    std::vector<float> costs;          // per node, per cell of the region's arrays
-    std::vector<std::uint8_t> vias;    // the move that reached the cell, in the node's search
+    // Per cell of the region's arrays (regionIndex), per node: a lookup reads one run.
+    std::vector<float> costs;
+    // Per node, per cell: the move that reached the cell in the node's search (a walk reads
+    // one node's).
+    std::vector<std::uint8_t> vias;
   };
   bool current(int cluster) const;
   std::uint64_t build(int cluster);
@@ -59,6 +62,7 @@ class InsertionTables {
   std::vector<Cluster> clusters_;
   RegionMoves moves_;
   ClusterDijkstra search_;
+  std::vector<float> nodeCosts_;  // build(): one node's costs, before they are interleaved
 };
 
 }  // namespace warpath::pathing
