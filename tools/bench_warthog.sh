@@ -12,7 +12,8 @@
 # solves), and those cost it almost nothing. RUNS=N: run each N times and print the median of
 # the N medians (a single run of a map whose queries take a few microseconds moves by up to a
 # third). JUMP_ONLY=1: only the jump point columns (warthog's JPS2+, warpath's JPS+ and the
-# hybrid with the JPS+ attempt).
+# hybrid with the JPS+ attempt). HAA_ONLY=1: warthog's JPS2+ beside HAA*-HQ with insertion by
+# search and by tables (--insertion tables), at one level and with level 2 of 4x4 blocks.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 rts=build/tools/rts
@@ -30,17 +31,22 @@ fi
 median() { sort -n | awk '{v[NR]=$1} END {if (NR) printf "%.2f\n", (NR%2 ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2); else print "-"}'; }
 # The median of `runs` runs' medians of a command printing one query time a line.
 cell() { for ((r = 0; r < runs; ++r)); do "$@" | median; done | grep -v "^-$" | median | awk '{printf "%s", ($1 == "-" ? "-" : sprintf($1 < 10 ? "%.2f" : "%.1f", $1))}'; }
-if [[ -n "${JUMP_ONLY:-}" ]]; then
+if [[ -n "${HAA_ONLY:-}" ]]; then
+  printf '| map | queries (warthog solves) | warthog JPS2+ | HAA*-HQ | HAA*-HQ, tables | HAA*-HQ, level 2 | HAA*-HQ, level 2, tables |\n|---|---|---|---|---|---|---|\n'
+  warthog=("$WARTHOG_JPS/warthog-jps jps2+")
+  planners=("haa-hq" "haa-hq --insertion tables" "haa-hq --levels 2 --level-two-size 4"
+    "haa-hq --levels 2 --level-two-size 4 --insertion tables")
+elif [[ -n "${JUMP_ONLY:-}" ]]; then
   printf '| map | queries (warthog solves) | warthog JPS2+ | warpath JPS+ | warpath hybrid, JPS+ attempt |\n|---|---|---|---|---|\n'
   warthog=("$WARTHOG_JPS/warthog-jps jps2+")
   planners=("jps+" "hybrid --attempt jps+")
 else
-  printf '| map | queries (warthog solves) | warthog A* | warthog JPS | warthog JPS2+ | warpath AA* | warpath JPS | warpath JPS+ | warpath HAA*-HQ | warpath HAA*-HQ, level 2 | warpath hybrid | warpath hybrid, JPS+ attempt |\n'
-  printf '|---|---|---|---|---|---|---|---|---|---|---|---|\n'
+  printf '| map | queries (warthog solves) | warthog A* | warthog JPS | warthog JPS2+ | warpath AA* | warpath JPS | warpath JPS+ | warpath HAA*-HQ | warpath HAA*-HQ, level 2 | warpath HAA*-HQ, level 2, insertion tables | warpath hybrid | warpath hybrid, JPS+ attempt |\n'
+  printf '|---|---|---|---|---|---|---|---|---|---|---|---|---|\n'
   warthog=("$WARTHOG_JPS/extern/warthog-core/warthog astar" "$WARTHOG_JPS/warthog-jps jps"
     "$WARTHOG_JPS/warthog-jps jps2+")
-  planners=("aa" "jps" "jps+" "haa-hq" "haa-hq --levels 2 --level-two-size 4" "hybrid"
-    "hybrid --attempt jps+")
+  planners=("aa" "jps" "jps+" "haa-hq" "haa-hq --levels 2 --level-two-size 4"
+    "haa-hq --levels 2 --level-two-size 4 --insertion tables" "hybrid" "hybrid --attempt jps+")
 fi
 for m in "${maps[@]}"; do
   map="$data/maps/$m.map"
