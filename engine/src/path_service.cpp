@@ -92,7 +92,8 @@ PathService::PathService(const AnnotatedGrid& grid, const PathServiceSettings& s
   // Requests without a profile plan in the uniform model (by AA* when the algorithm needs a
   // graph and none was built).
   planner_.emplace(grid, abstraction_ || !quality ? settings.algorithm : Algorithm::AStar,
-                   abstraction_.get(), pathing::HybridOptions{}, pathing::HaaOptions{}, nullptr,
+                   abstraction_.get(), pathing::HybridOptions{},
+                   pathing::HaaOptions{.insertion = settings.insertion}, nullptr,
                    settings.jumpSuccessors);
   if (settings.cooperative && settings.congestion && quality)
     congestion_.emplace(grid, settings.clusterSize);

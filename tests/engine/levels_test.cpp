@@ -117,5 +117,34 @@ TEST(Levels, BundledScenariosPassWithLevelTwo) {
   EXPECT_LT(levelTwo, levelOne);
 }
 
+// `pathing: {insertion: tables}` (HAA* insertion by lookup, docs/haa.md): the key parses, and
+// bundled scenarios keep their expectations with it, terrain changes included
+// (bridge_demolition destroys a bridge; forest_battle leaves wrecks that block planning), stay
+// deterministic, and their searches expand fewer nodes.
+TEST(Levels, BundledScenariosPassWithInsertionTables) {
+  Result<Scenario> keyed = testing::parseOneUnitScenario("pathing: {insertion: tables}\n");
+  ASSERT_TRUE(keyed.ok()) << keyed.error().describe();
+  EXPECT_EQ(keyed.value().settings.pathing.insertion, pathing::InsertionMode::Tables);
+  EXPECT_EQ(testing::parseOneUnitScenario("").value().settings.pathing.insertion,
+            pathing::InsertionMode::Search);
+  std::uint64_t searched = 0;
+  std::uint64_t looked = 0;
+  for (const char* file : {"demo.yaml", "river_crossing.yaml", "swamp_detour.yaml",
+                           "bridge_demolition.yaml", "forest_battle.yaml"}) {
+    Result<Scenario> loaded = loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/" + file);
+    ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+    Scenario s = std::move(loaded).value();
+    s.settings.pathing.insertion = pathing::InsertionMode::Tables;
+    const Report a = testing::runToEnd(s, 1);
+    const Report b = testing::runToEnd(s, 1);
+    EXPECT_TRUE(a.passed()) << file;
+    EXPECT_EQ(a.stateHash, b.stateHash) << file;
+    s.settings.pathing.insertion = pathing::InsertionMode::Search;
+    searched += testing::runToEnd(s, 1).pathing.expanded;
+    looked += a.pathing.expanded;
+  }
+  EXPECT_LT(looked, searched);
+}
+
 }  // namespace
 }  // namespace warpath::engine

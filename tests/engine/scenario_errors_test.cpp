@@ -195,6 +195,9 @@ TEST(Errors, BadValuesAndExpectations) {
             std::string::npos);
   EXPECT_NE(errorOf(scenario("pathing: {algo: dijkstra}\n", kGroup)).message.find("unknown algo"),
             std::string::npos);
+  EXPECT_NE(errorOf(scenario("pathing: {insertion: cached}\n", kGroup))
+                .message.find("unknown insertion 'cached' (search, tables)"),
+            std::string::npos);
   EXPECT_NE(errorOf(scenario("expectations: [{arrivals: 3}]\n", kGroup))
                 .message.find("unknown expectation"),
             std::string::npos);

@@ -76,6 +76,12 @@ struct PathServiceSettings {
   // search that reaches it pauses and resumes next tick while its unit stands where it is, and
   // its plan is checked against the reservations when it ends (docs/cooperative.md).
   bool sliced = false;
+  // How HAA* links a query's ends to their clusters' nodes (`insertion`, pathing::InsertionMode):
+  // a Dijkstra per end (the default, as scenarios always have), or tables per unit kind and
+  // cluster, built at a cluster's first query and again after a terrain change redoes it
+  // (docs/haa.md "Insertion by tables"): fewer expansions a long query, other cells at times
+  // among equal-cost ways. Weighted graphs (`terrain_costs`) keep the Dijkstra.
+  pathing::InsertionMode insertion = pathing::InsertionMode::Search;
   // Not a scenario key: false plays back replays of format 8, whose sliced runs sliced only the
   // spatial searches (kFirstSlicedWindowsReplayVersion).
   bool slicedWindows = true;

@@ -361,10 +361,10 @@ raw::Timing timing(const Reader& r, const YAML::Node& root) {
 inline constexpr EnumNames<bool, 2> kCooperativeSearchNames{{{{true, "cpra"}, {false, "whca"}}}};
 
 raw::Pathing pathing(const Reader& r, const YAML::Node& node) {
-  r.checkKeys(
-      node, "pathing",
-      {"algo", "cluster_size", "levels", "level_two_size", "budget", "cache", "cooperative",
-       "window", "cooperative_search", "corridor", "congestion", "terrain_costs", "sliced"});
+  r.checkKeys(node, "pathing",
+              {"algo", "cluster_size", "levels", "level_two_size", "budget", "cache", "cooperative",
+               "window", "cooperative_search", "corridor", "congestion", "terrain_costs", "sliced",
+               "insertion"});
   raw::Pathing p;
   p.algorithm = r.maybe(node, "algo", [&](const YAML::Node& v) {
     return r.named(v, "algo", pathing::kAlgorithmNames, "algo", pathing::kAlgorithmNames.list());
@@ -384,6 +384,10 @@ raw::Pathing pathing(const Reader& r, const YAML::Node& node) {
   p.congestion = r.maybeBoolean(node, "congestion", "congestion");
   p.terrainCosts = r.maybeBoolean(node, "terrain_costs", "terrain_costs");
   p.sliced = r.maybeBoolean(node, "sliced", "sliced");
+  p.insertion = r.maybe(node, "insertion", [&](const YAML::Node& v) {
+    return r.named(v, "insertion", pathing::kInsertionModeNames, "insertion",
+                   pathing::kInsertionModeNames.list());
+  });
   return p;
 }
 

@@ -109,6 +109,7 @@ struct Pathing {
   Maybe<bool> congestion;
   Maybe<bool> terrainCosts;
   Maybe<bool> sliced;
+  Maybe<pathing::InsertionMode> insertion;
 };
 
 struct Stuck {

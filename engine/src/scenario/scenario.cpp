@@ -281,6 +281,7 @@ void applyPathing(const Checker& c, const raw::Pathing& in, PathServiceSettings&
   if (in.congestion) out.congestion = in.congestion->value;
   if (in.terrainCosts) out.terrainCosts = in.terrainCosts->value;
   if (in.sliced) out.sliced = in.sliced->value;
+  if (in.insertion) out.insertion = in.insertion->value;
 }
 
 void applyStuck(const Checker& c, const raw::Stuck& in, units::StuckRule& out) {
