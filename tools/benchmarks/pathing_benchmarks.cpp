@@ -201,6 +201,23 @@ void BM_HierarchicalAStar(benchmark::State& state) {
 }
 BENCHMARK(BM_HierarchicalAStar)->Arg(1)->Arg(3)->Unit(benchmark::kMicrosecond);
 
+// The same queries with insertion by tables (HaaOptions::insertion), built before the timing.
+void BM_HaaInsertionTables(benchmark::State& state) {
+  const int size = static_cast<int>(state.range(0));
+  const AnnotatedGrid grid(benchmarkMap(512));
+  const ClusterAbstraction graph =
+      ClusterAbstraction::build(grid, catalogueSpec(16, AbstractionQuality::High));
+  const Agent agent{size, kInfantry};
+  const std::vector<std::pair<Cell, Cell>> queries = standableQueries(grid, agent, 256);
+  HierarchicalAStar search(graph, HaaOptions{.insertion = InsertionMode::Tables});
+  search.prepare(agent);
+  timeQueries(state, queries, [&](Cell s, Cell g, std::vector<Cell>* path) {
+    return search.findPath(agent, s, g, path);
+  });
+  state.counters["table_bytes"] = static_cast<double>(search.insertionTableBytes());
+}
+BENCHMARK(BM_HaaInsertionTables)->Arg(1)->Arg(3)->Unit(benchmark::kMicrosecond);
+
 // The same queries without cached paths (each intra-edge refined by a search inside its
 // cluster) and short ones (endpoints 4-16 cells apart, many inside one cluster), with the grid
 // searches by AA* (0) or JPS (1): HaaOptions::gridSearch.
