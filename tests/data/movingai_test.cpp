@@ -4,8 +4,8 @@
 // - AA* reproduces the published optimal length of every query of every scen file.
 // - The HAA* completeness proof: for sizes 1-3 and the catalogue capabilities and MovingAI
 //   classes, seeded random queries (reachable and not) are answered by HAA* on the HQ and LQ
-//   graphs, smoothed and not, and by the hybrid planner; each finds a path exactly when AA*
-//   does, a legal one, never cheaper.
+//   graphs, smoothed and not, with insertion by search and by tables, and by the hybrid planner;
+//   each finds a path exactly when AA* does, a legal one, never cheaper.
 // - The same under terrain costs, on a weighted graph per agent (issue 13).
 // - The same after changes of terrain, on repaired graphs (issue 14).
 
@@ -126,6 +126,10 @@ TEST_P(MovingAiMap, HaaFindsAPathExactlyWhenAStarDoes) {
       HierarchicalAStar raw(abstraction, HaaOptions{.smooth = false});
       testing::checkCompleteness(grid, cases, smoothed, label + " smoothed", tally);
       testing::checkCompleteness(grid, cases, raw, label + " unsmoothed", tally);
+      if (clusterSize == 16) {
+        HierarchicalAStar tabled(abstraction, HaaOptions{.insertion = InsertionMode::Tables});
+        testing::checkCompleteness(grid, cases, tabled, label + " insertion tables", tally);
+      }
       if (quality == AbstractionQuality::High) {
         HybridPlanner hybrid(abstraction);
         testing::checkCompleteness(grid, cases, hybrid, label + " hybrid", tally);
@@ -147,10 +151,11 @@ TEST_P(MovingAiMap, HaaFindsAPathExactlyWhenAStarDoes) {
                               .levels = 2,
                               .levelTwoSize = 4});
     HierarchicalAStar haa(abstraction);
-    testing::checkCompleteness(grid, cases, haa,
-                               c.map.filename().string() + " level 2 " +
-                                   std::string(kAbstractionQualityNames.name(quality)),
-                               tally);
+    const std::string label = c.map.filename().string() + " level 2 " +
+                              std::string(kAbstractionQualityNames.name(quality));
+    testing::checkCompleteness(grid, cases, haa, label, tally);
+    HierarchicalAStar tabled(abstraction, HaaOptions{.insertion = InsertionMode::Tables});
+    testing::checkCompleteness(grid, cases, tabled, label + " insertion tables", tally);
   }
   EXPECT_EQ(tally.failures, 0) << "of " << cases.size() << " queries";
   // Every map has ground a size-1 unit can cross, so reachable pairs exist.
