@@ -390,7 +390,9 @@ Result<Scenario> replayScenario(const Replay& replay) {
   // and with jammed units asking for their path again before detours, and stopped vehicles
   // claiming no lane before they claimed theirs, and units pushing on in a full goal area
   // before they parked where they stood there, and passages used one way letting 8 through at
-  // a time, walkers in windows, before any number went through, walkers without windows.
+  // a time, walkers in windows, before any number went through, walkers without windows, and
+  // with every window without progress counted toward the stuck flag before queued units'
+  // were not.
   WorldSettings defaults;
   if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
   if (replay.version < kFirstCongestionReplayVersion) defaults.pathing.congestion = false;
@@ -412,6 +414,7 @@ Result<Scenario> replayScenario(const Replay& replay) {
   if (replay.version < kFirstOneWayPassagesReplayVersion) defaults.pathing.oneWayPassages = false;
   if (replay.version < kFirstOpenDentsReplayVersion) defaults.pathing.openDents = false;
   if (replay.version < kFirstLaneApproachesReplayVersion) defaults.pathing.laneApproaches = false;
+  if (replay.version < kFirstQueuesExcusedReplayVersion) defaults.pathing.queuesExcused = false;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

@@ -162,6 +162,8 @@ TEST(Cooperative, ThoseKeptOutNearestTheDoorGoFirst) {
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.nearestKeptOutFirst);  // the default
+  // Counted as when the rule came (format 11): those pushing through the crowd were flagged.
+  s.settings.pathing.queuesExcused = false;
   int passed[2] = {0, 0};
   double p90[2] = {0.0, 0.0};  // summed over the seeds and both sides
   for (const bool nearest : {true, false}) {
@@ -178,6 +180,29 @@ TEST(Cooperative, ThoseKeptOutNearestTheDoorGoFirst) {
   EXPECT_LT(p90[1], p90[0]);
 }
 
+// Replay format 19: a unit queued behind one going its way that made progress is waiting its
+// turn, not jammed. At the door (seeds 10 and 28) a rifleman at the back of its side's stream,
+// held up by the other side's crowd at the far mouth, was flagged; now nobody is, and since the
+// rule changes the count alone (a queued unit still looks for a way round), every unit moves
+// and arrives exactly as before.
+TEST(Cooperative, AQueueHeldUpIsNoJam) {
+  Result<Scenario> loaded = loadChokepoint("door_30v30.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  s.duration = 45.0;
+  ASSERT_TRUE(s.settings.pathing.queuesExcused);  // the default
+  for (const std::uint64_t seed : {std::uint64_t{10}, std::uint64_t{28}}) {
+    const Report excused = runToEnd(s, seed);
+    s.settings.pathing.queuesExcused = false;
+    const Report counted = runToEnd(s, seed);
+    s.settings.pathing.queuesExcused = true;
+    EXPECT_TRUE(excused.stuckUnits.empty()) << "seed " << seed;
+    EXPECT_FALSE(counted.stuckUnits.empty()) << "seed " << seed;
+    EXPECT_EQ(excused.arrivals, counted.arrivals) << "seed " << seed;
+    EXPECT_EQ(excused.movement, counted.movement) << "seed " << seed;
+  }
+}
+
 // A passage used one way only (replay format 16): its gate lets any number through, and walkers
 // cross it without timed windows. Thirty walkers through a 1-cell door pressed in at its sides
 // in windows, some flagged stuck there; thirty jeeps through a gap their width, 8 let through at
@@ -190,6 +215,9 @@ TEST(Cooperative, OneWayPassagesLetTheWholeCrowdThrough) {
     ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
     Scenario s = std::move(loaded).value();
     ASSERT_TRUE(s.settings.pathing.oneWayPassages);  // the default
+    // Counted as when the rule came (format 16): walkers pressed in at the door's sides were
+    // flagged.
+    s.settings.pathing.queuesExcused = false;
     int passed[2] = {0, 0};
     for (const bool oneWay : {true, false}) {
       s.settings.pathing.oneWayPassages = oneWay;

@@ -132,6 +132,26 @@ TEST(Stuck, FiresAfterAWindowWithoutProgress) {
   EXPECT_EQ(m.stuckWindows(), 0);
 }
 
+TEST(Stuck, AnExcusedWindowDoesNotCountTowardTheFlag) {
+  StuckRule rule;
+  rule.windowSeconds = 1.0;
+  ProgressMonitor m;
+  m.reset({0, 0}, 0);
+  EXPECT_TRUE(m.update({0, 0}, 10, 10.0, rule));
+  EXPECT_EQ(m.stuckWindows(), 1);
+  // Queued: the window still closes without progress (the engine may look for a way round),
+  // but the count stays where it was.
+  EXPECT_TRUE(m.update({0, 0}, 20, 10.0, rule));
+  m.excuseWindow();
+  EXPECT_EQ(m.stuckWindows(), 1);
+  EXPECT_TRUE(m.update({0, 0}, 30, 10.0, rule));
+  EXPECT_EQ(m.stuckWindows(), 2);
+  // Nothing to excuse after progress.
+  EXPECT_FALSE(m.update({1.0, 0}, 31, 10.0, rule));
+  m.excuseWindow();
+  EXPECT_EQ(m.stuckWindows(), 0);
+}
+
 TEST(Stuck, MovingUnitsAreNeverStuck) {
   StuckRule rule;
   ProgressMonitor m;

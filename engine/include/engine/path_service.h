@@ -125,6 +125,10 @@ struct PathServiceSettings {
   // Not a scenario key: false plays back replays before format 18, when a vehicle's lane ended
   // at its passage's mouth (pathing::keepRight's holdBeyond; docs/cooperative.md, "Lanes").
   bool laneApproaches = true;
+  // Not a scenario key: false plays back replays before format 19, when a cooperating unit
+  // queued behind one going its way counted its windows without progress toward the stuck flag
+  // like a unit jammed (docs/cooperative.md, "Queues are not jams").
+  bool queuesExcused = true;
 };
 inline constexpr int kMaxCooperativeWindow = 256;
 // [Unit: expansions] what sliced window searches may spend in a tick the spatial searches left

@@ -58,8 +58,11 @@ namespace warpath::engine {
 // same records and hashes; a notch in a ragged edge (a dent) has passing room (older files play
 // back with it a chokepoint). 18: the same records and hashes; a vehicle's lane holds its full
 // shift for two footprints beyond its passage (older files play back with lanes ending at the
-// mouth). Version-1 files (move orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 18;
+// mouth). 19: a cooperating unit's window without progress spent queued behind a unit going its
+// way that made progress in its own last window does not count toward the stuck flag (the
+// state hash covers the count; older files play back counting it). Version-1 files (move
+// orders only) are refused with a message saying so.
+inline constexpr std::uint32_t kReplayVersion = 19;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -105,6 +108,10 @@ inline constexpr std::uint32_t kFirstOpenDentsReplayVersion = 17;
 // Formats before this one were recorded when a vehicle's lane ended at its passage's mouth: they
 // play back so (PathServiceSettings::laneApproaches off).
 inline constexpr std::uint32_t kFirstLaneApproachesReplayVersion = 18;
+// Formats before this one were recorded when a cooperating unit queued behind another counted
+// its windows without progress toward the stuck flag: they play back so
+// (PathServiceSettings::queuesExcused off).
+inline constexpr std::uint32_t kFirstQueuesExcusedReplayVersion = 19;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

@@ -17,6 +17,34 @@ double remainingAlong(const Unit& unit, int size) {
          path.remaining[unit.next];
 }
 
+// The unit stands right behind another going its way whose last progress window made progress
+// (or was a wait its plan held it to): it is in a queue, not in a jam. A jam at the queue's head
+// still counts there, and from the next window on behind it too. Asked only when a window closes
+// without progress, so a scan of every unit costs little.
+bool queuedBehindMover(const Refs& w, const Unit& unit, int size) {
+  const units::Vec2 toNext =
+      units::anchorToCentre(unit.path->cells[unit.next], size) - unit.position;
+  const double toNextLength = toNext.length();
+  if (toNextLength <= 0.0) return false;
+  // Within 60 degrees of the way the unit wants to go.
+  const auto alongWay = [&](units::Vec2 v) {
+    return toNext.dot(v) >= 0.5 * toNextLength * v.length();
+  };
+  for (const Unit& other : w.state.units) {
+    if (other.id == unit.id || !other.alive() || other.state != UnitState::Moving || !other.path ||
+        other.progress.stuckWindows() > 0)
+      continue;
+    const int otherSize = w.typeOf(other).size;
+    const units::Vec2 gap = other.position - unit.position;
+    // Bodies touching, or nearly: half a cell apart at most.
+    if (gap.length() > 0.5 * (size + otherSize) + 0.5 || !alongWay(gap)) continue;
+    const units::Vec2 otherToNext =
+        units::anchorToCentre(other.path->cells[other.next], otherSize) - other.position;
+    if (otherToNext.length() > 0.0 && alongWay(otherToNext)) return true;
+  }
+  return false;
+}
+
 // A moving unit's checks, in order; at most one repath a tick.
 void checkProgress(Refs& w, Unit& unit, Cell anchor, FullGoalAreas& fullGoalAreas) {
   const units::UnitType& type = w.typeOf(unit);
@@ -65,6 +93,10 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor, FullGoalAreas& fullGoalArea
   } else {
     stuck = unit.progress.updateAlong(unit.position, remainingAlong(unit, type.size), w.state.tick,
                                       settings.tickRate, settings.stuck);
+    // Queued: not flagged for it, but it still looks for a way round below (measured: holding
+    // queued units to their paths instead left more of `demo`'s infantry late).
+    if (stuck && settings.pathing.queuesExcused && queuedBehindMover(w, unit, type.size))
+      unit.progress.excuseWindow();
   }
   if (stuck) {
     ++unit.repaths;

@@ -40,6 +40,13 @@ struct ProgressMonitor {
   bool updateAlong(Vec2 position, double remaining, std::int64_t tick, double ticksPerSecond,
                    const StuckRule& rule);
 
+  // The window that update/updateAlong just closed without progress was spent queued behind a
+  // unit that is making progress: it does not count toward the flag (the queue's head answers
+  // for a jam), though the engine may still look for a way round.
+  void excuseWindow() {
+    if (stuckInARow > 0) --stuckInARow;
+  }
+
   int stuckWindows() const { return stuckInARow; }
 
   // A restarted window has no distance yet: the first updateAlong counts as progress and
