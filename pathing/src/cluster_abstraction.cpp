@@ -479,7 +479,7 @@ class AbstractionBuilder {
       for (std::size_t ci = 0; ci < fields_.size(); ++ci) {
         const Capability capability = capabilities_[ci];
         // The cluster's truncated clearances, indexed as the searches index cells.
-        cv.assign(static_cast<std::size_t>(region.width + 2) * (region.height + 2), 0);
+        cv.assign(regionCells(region), 0);
         for (int y = region.y; y < region.y + region.height; ++y) {
           for (int x = region.x; x < region.x + region.width; ++x)
             cv[regionIndex(region, {x, y})] = static_cast<std::uint8_t>(truncated(ci, {x, y}));

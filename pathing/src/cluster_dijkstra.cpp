@@ -28,7 +28,7 @@ constexpr std::array<std::uint8_t, 16> kInsideMasks = [] {
 
 void RegionMoves::load(const GridMap& map, const AgentLayer& layer, CellRect region) {
   region_ = region;
-  masks_.assign(static_cast<std::size_t>(region.width + 2) * (region.height + 2), 0);
+  masks_.assign(regionCells(region), 0);
   const std::uint8_t* all = layer.moveMasks().data();
   for (int ly = 0; ly < region.height; ++ly) {
     const std::uint8_t* row = all + map.indexOf({region.x, region.y + ly});

@@ -24,6 +24,10 @@ inline std::size_t regionIndex(CellRect r, Cell c) {
   return static_cast<std::size_t>(c.y - r.y + 1) * static_cast<std::size_t>(r.width + 2) +
          static_cast<std::size_t>(c.x - r.x + 1);
 }
+// How many entries the arrays over block `r` and its frame hold (regionIndex's range).
+inline std::size_t regionCells(CellRect r) {
+  return static_cast<std::size_t>(r.width + 2) * static_cast<std::size_t>(r.height + 2);
+}
 
 // The moves of one agent kind inside one block of cells, copied once into an array over the
 // block and its frame (bit d set when the move in direction d is legal and stays inside the

@@ -35,7 +35,7 @@ std::uint64_t InsertionTables::build(int cluster) {
   for (const std::uint32_t n : graph_.nodesInCluster(cluster)) {
     if (graph_.grid().canStand(agent_, graph_.nodeCell(n))) c.nodes.push_back(n);
   }
-  const std::size_t cells = static_cast<std::size_t>(bounds.width + 2) * (bounds.height + 2);
+  const std::size_t cells = regionCells(bounds);
   c.costs.resize(c.nodes.size() * cells);
   c.vias.resize(c.nodes.size() * cells);
   c.costs.shrink_to_fit();
@@ -91,7 +91,7 @@ std::size_t InsertionTables::slotOf(int cluster, std::uint32_t node) const {
 void InsertionTables::walk(int cluster, std::size_t slot, Cell cell, std::vector<Cell>* out) const {
   const Cluster& c = clusters_[static_cast<std::size_t>(cluster)];
   const CellRect bounds = graph_.clusterBounds(cluster);
-  const std::size_t cells = static_cast<std::size_t>(bounds.width + 2) * (bounds.height + 2);
+  const std::size_t cells = regionCells(bounds);
   const std::uint8_t* vias = c.vias.data() + slot * cells;
   const Cell node = graph_.nodeCell(c.nodes[slot]);
   // Each cell's via is the move that reached it from its parent in the node's search: back
