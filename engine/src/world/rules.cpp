@@ -9,12 +9,15 @@ using pathing::Cell;
 
 namespace {
 
+// [Unit: cells] From the unit's body to waypoint `next` of its path.
+units::Vec2 toNextWaypoint(const Unit& unit, int size) {
+  return units::anchorToCentre(unit.path->cells[unit.next], size) - unit.position;
+}
+
 // [Unit: cells] What is left of the unit's path: from its body to waypoint `next`, then along
 // the path.
 double remainingAlong(const Unit& unit, int size) {
-  const PlannedPath& path = *unit.path;
-  return (units::anchorToCentre(path.cells[unit.next], size) - unit.position).length() +
-         path.remaining[unit.next];
+  return toNextWaypoint(unit, size).length() + unit.path->remaining[unit.next];
 }
 
 // The unit stands right behind another going its way whose last progress window made progress
@@ -22,8 +25,7 @@ double remainingAlong(const Unit& unit, int size) {
 // still counts there, and from the next window on behind it too. Asked only when a window closes
 // without progress, so a scan of every unit costs little.
 bool queuedBehindMover(const Refs& w, const Unit& unit, int size) {
-  const units::Vec2 toNext =
-      units::anchorToCentre(unit.path->cells[unit.next], size) - unit.position;
+  const units::Vec2 toNext = toNextWaypoint(unit, size);
   const double toNextLength = toNext.length();
   if (toNextLength <= 0.0) return false;
   // Within 60 degrees of the way the unit wants to go.
@@ -38,8 +40,7 @@ bool queuedBehindMover(const Refs& w, const Unit& unit, int size) {
     const units::Vec2 gap = other.position - unit.position;
     // Bodies touching, or nearly: half a cell apart at most.
     if (gap.length() > 0.5 * (size + otherSize) + 0.5 || !alongWay(gap)) continue;
-    const units::Vec2 otherToNext =
-        units::anchorToCentre(other.path->cells[other.next], otherSize) - other.position;
+    const units::Vec2 otherToNext = toNextWaypoint(other, otherSize);
     if (otherToNext.length() > 0.0 && alongWay(otherToNext)) return true;
   }
   return false;
