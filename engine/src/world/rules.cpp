@@ -38,7 +38,7 @@ bool queuedBehindMover(const Refs& w, const Unit& unit, int size) {
       continue;
     const int otherSize = w.typeOf(other).size;
     const units::Vec2 gap = other.position - unit.position;
-    // Bodies touching, or nearly: half a cell apart at most.
+    // Footprints (size by size) touching, or within half a cell of it.
     if (gap.length() > 0.5 * (size + otherSize) + 0.5 || !alongWay(gap)) continue;
     const units::Vec2 otherToNext = toNextWaypoint(other, otherSize);
     if (otherToNext.length() > 0.0 && alongWay(otherToNext)) return true;
