@@ -2,7 +2,8 @@
 """Writes the chokepoint maps of issue 12 under assets/maps/ (MovingAI .map format): corridors,
 a door, bridges, a crossroads, a U-shaped trap and a gap, for the scenarios
 scenarios/chokepoints/{corridor_tanks_4,corridor_tanks_5,door_30v30,bridge_two_way,crossroads,u_trap,
-gap_200,bridge_2000,two_bridges}.yaml. Deterministic (no randomness): run it again and the files come out
+gap_200,bridge_2000,two_bridges}.yaml, and the shapes of scenarios/chokepoints/variations/ (other
+widths, an L, a passing bay, a wider crossroads, a bridge 16 wide). Deterministic (no randomness): run it again and the files come out
 byte for byte the same. Standard library only. Usage: tools/generate_chokepoint_maps.py
 
 Coordinates below are cells, x the column and y the row from the top-left; rect() fills
@@ -83,10 +84,68 @@ def bridge512():
     return g
 
 
+def door2():
+    # 49x33: the door map with a door of two cells (rows 15-16).
+    g = door()
+    rect(g, 24, 15, 25, 17, ".")
+    return g
+
+
+def l_corridor():
+    # 56x56: a corridor 4 cells wide that turns once, from a room at the top left (1-14, 1-14)
+    # along rows 5-8 to column 44, then down columns 41-44 to a room at the bottom right
+    # (columns 35-54, rows 41-54).
+    g = blank(56, 56, "@")
+    rect(g, 1, 1, 15, 15, ".")
+    rect(g, 15, 5, 45, 9, ".")
+    rect(g, 41, 5, 45, 41, ".")
+    rect(g, 35, 41, 55, 55, ".")
+    return g
+
+
+def long_corridor6():
+    # 80x34: open ground at both ends (columns 1-20 and 59-78) joined by a corridor 38 cells
+    # long and 6 wide (rows 14-19).
+    g = blank(80, 34)
+    rect(g, 21, 0, 59, 34, "@")
+    rect(g, 21, 14, 59, 20, ".")
+    return g
+
+
+def bay():
+    # 60x21: rooms at both ends (columns 1-12 and 47-58) joined by a corridor one cell wide (row
+    # 10, columns 13-46) with a bay of 3x3 cells on its north side (columns 29-31, rows 7-9).
+    g = blank(60, 21)
+    rect(g, 13, 0, 47, 21, "@")
+    rect(g, 13, 10, 47, 11, ".")
+    rect(g, 29, 7, 32, 10, ".")
+    return g
+
+
+def crossroads6():
+    # 64x64: two roads 6 cells wide, rows 29-34 and columns 29-34, crossing in the middle.
+    g = blank(64, 64, "@")
+    rect(g, 1, 29, 63, 35, ".")
+    rect(g, 29, 1, 35, 63, ".")
+    return g
+
+
+def bridge16():
+    # 128x96: a river 16 cells wide (columns 56-71) with one bridge 16 cells wide (rows 40-55).
+    g = blank(128, 96)
+    rect(g, 56, 0, 72, 96, "W")
+    rect(g, 56, 40, 72, 56, ".")
+    return g
+
+
 if __name__ == "__main__":
     for name, make in [("corridor4.map", lambda: corridor(4)),
                        ("corridor5.map", lambda: corridor(5)), ("door.map", door),
                        ("bridge.map", bridge), ("crossroads.map", crossroads),
                        ("u_trap.map", u_trap), ("gap.map", gap), ("bridge512.map", bridge512),
-                       ("two_bridges.map", two_bridges)]:
+                       ("two_bridges.map", two_bridges), ("corridor2.map", lambda: corridor(2)),
+                       ("corridor3.map", lambda: corridor(3)), ("door2.map", door2),
+                       ("l_corridor.map", l_corridor), ("corridor6_long.map", long_corridor6),
+                       ("bay.map", bay), ("crossroads6.map", crossroads6),
+                       ("bridge16.map", bridge16)]:
         save(name, make())
