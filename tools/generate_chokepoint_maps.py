@@ -3,7 +3,8 @@
 a door, bridges, a crossroads, a U-shaped trap and a gap, for the scenarios
 scenarios/chokepoints/{corridor_tanks_4,corridor_tanks_5,door_30v30,bridge_two_way,crossroads,u_trap,
 gap_200,bridge_2000,two_bridges}.yaml, and the shapes of scenarios/chokepoints/variations/ (other
-widths, an L, a passing bay, a wider crossroads, a bridge 16 wide). Deterministic (no randomness): run it again and the files come out
+widths, an L, a passing bay, a wider crossroads, a bridge 16 wide) and of
+scenarios/chokepoints/scale/ (larger crowds on a bridge 16 wide). Deterministic (no randomness): run it again and the files come out
 byte for byte the same. Standard library only. Usage: tools/generate_chokepoint_maps.py
 
 Coordinates below are cells, x the column and y the row from the top-left; rect() fills
@@ -138,6 +139,15 @@ def bridge16():
     return g
 
 
+def bridge192():
+    # 192x128: a river 16 cells wide (columns 88-103) with one bridge 16 cells wide (rows 56-71),
+    # for the crowds of scenarios/chokepoints/scale/.
+    g = blank(192, 128)
+    rect(g, 88, 0, 104, 128, "W")
+    rect(g, 88, 56, 104, 72, ".")
+    return g
+
+
 if __name__ == "__main__":
     for name, make in [("corridor4.map", lambda: corridor(4)),
                        ("corridor5.map", lambda: corridor(5)), ("door.map", door),
@@ -147,5 +157,5 @@ if __name__ == "__main__":
                        ("corridor3.map", lambda: corridor(3)), ("door2.map", door2),
                        ("l_corridor.map", l_corridor), ("corridor6_long.map", long_corridor6),
                        ("bay.map", bay), ("crossroads6.map", crossroads6),
-                       ("bridge16.map", bridge16)]:
+                       ("bridge16.map", bridge16), ("bridge192.map", bridge192)]:
         save(name, make())

@@ -415,6 +415,8 @@ Result<Scenario> replayScenario(const Replay& replay) {
   if (replay.version < kFirstOpenDentsReplayVersion) defaults.pathing.openDents = false;
   if (replay.version < kFirstLaneApproachesReplayVersion) defaults.pathing.laneApproaches = false;
   if (replay.version < kFirstQueuesExcusedReplayVersion) defaults.pathing.queuesExcused = false;
+  if (replay.version < kFirstWiderLaneApproachesReplayVersion)
+    defaults.pathing.widerLaneApproaches = false;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

@@ -39,8 +39,9 @@ constexpr int kTooWide = -2;
 
 // How many cells along `right` the footprint at `c` moves to lie in the right half of the
 // passage across it (0 when it does already); kTooWide, or -1 when the passage is too narrow
-// or the path runs diagonally.
-int laneShift(const ClearanceField& clearance, int size, Cell c, Cell right) {
+// or the path runs diagonally. `across` gets the passage's width in cells, as far as it was
+// measured (up to laneWidth() + 1), or stays as it was where the path runs diagonally.
+int laneShift(const ClearanceField& clearance, int size, Cell c, Cell right, int& across) {
   if (right == Cell{0, 0}) return -1;
   const auto standable = [&](int k) {
     return clearance.at({c.x + k * right.x, c.y + k * right.y}) >= size;
@@ -53,6 +54,7 @@ int laneShift(const ClearanceField& clearance, int size, Cell c, Cell right) {
   while (toLeft + toRight + size <= widest && standable(toRight + 1))
     ++toRight;
   const int width = toLeft + toRight + size;  // cells across, footprint included
+  across = width;
   if (width > widest) return kTooWide;
   if (width < 2 * size) return -1;
   const int rightHalf = (width + 1) / 2;  // its first cell, counted from the left edge
@@ -124,15 +126,27 @@ void keepLaneThroughJunctions(const ClearanceField& clearance, int size, std::sp
   }
 }
 
-// Beyond each end of a lane run the lane holds its full shift for two footprints (where the
+// [Unit: footprints] How far beyond each end of a lane run its full shift holds; how far where
+// the passage is at least kWideFootprints across.
+constexpr int kHoldFootprints = 2;
+constexpr int kWideHoldFootprints = 5;
+constexpr int kWideFootprints = 5;
+
+// Beyond each end of a lane run the lane holds its full shift for kHoldFootprints (where the
 // anchors up to it are standable, and before the taper of a cell a step): the approach and the
 // way out keep right too. Without the hold a lane ended at its passage's mouth, where a unit
 // coming off the bridge and one heading onto it met head on, on the one shortest line into the
-// mouth (bridge_two_way). `shift` and `right` are the lanes' shifts and sides.
+// mouth (bridge_two_way). With `fartherWhereWide`, kWideHoldFootprints where the passage is at
+// least kWideFootprints across (room for two each way and more): a crowd queueing at the mouth
+// of a bridge 16 wide stood in the half the other way comes out of, where its paths turned into
+// their own half within two footprints of the mouth. At four footprints across (river_ambush's
+// bridge for jeeps) the ambush there lost its kills at a third of the seeds (docs/cooperative.md,
+// "Lanes held farther"). `shift`, `right` and `width` are the lanes' shifts, sides and passage
+// widths.
 void holdBeyondLanes(const ClearanceField& clearance, int size, std::span<const Cell> path,
-                     std::vector<Cell>& right, std::vector<int>& shift) {
+                     const std::vector<int>& width, bool fartherWhereWide, std::vector<Cell>& right,
+                     std::vector<int>& shift) {
   const std::size_t n = path.size();
-  const int reach = 2 * size;
   std::vector<int> held = shift;
   std::vector<Cell> heldRight = right;
   for (const bool forward : {true, false}) {
@@ -143,7 +157,8 @@ void holdBeyondLanes(const ClearanceField& clearance, int size, std::span<const 
       const std::size_t i = forward ? k : n - 1 - k;
       if (shift[i] > 0) {
         lane = shift[i];
-        left = reach;
+        const bool wide = fartherWhereWide && width[i] >= kWideFootprints * size;
+        left = (wide ? kWideHoldFootprints : kHoldFootprints) * size;
         side = right[i];
       } else if (left > 0 && lane > held[i] &&
                  standableUpTo(clearance, size, path[i], side, lane)) {
@@ -162,7 +177,7 @@ void holdBeyondLanes(const ClearanceField& clearance, int size, std::span<const 
 }  // namespace
 
 std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<const Cell> path,
-                            bool throughJunctions, bool holdBeyond) {
+                            LaneRules rules) {
   std::vector<Cell> unchanged(path.begin(), path.end());
   const std::size_t n = path.size();
   if (n < 3 || agent.size < 1) return unchanged;
@@ -171,9 +186,10 @@ std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<co
   const GridMap& map = grid.map();
   std::vector<Cell> right(n);
   std::vector<int> shift(n, 0);
+  std::vector<int> width(n, 0);
   for (std::size_t i = 1; i + 1 < n; ++i) {
     right[i] = rightOf(path, i);
-    shift[i] = laneShift(clearance, agent.size, path[i], right[i]);
+    shift[i] = laneShift(clearance, agent.size, path[i], right[i], width[i]);
   }
   const std::vector<int> found = shift;
   // Only a passage the path runs along for kMinLaneRun cells gets lanes: through a shorter one
@@ -190,8 +206,10 @@ std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<co
     if (end - i < kMinLaneRun) std::fill(shift.begin() + i, shift.begin() + end, 0);
     i = end;
   }
-  if (throughJunctions) keepLaneThroughJunctions(clearance, agent.size, path, found, right, shift);
-  if (holdBeyond) holdBeyondLanes(clearance, agent.size, path, right, shift);
+  if (rules.throughJunctions)
+    keepLaneThroughJunctions(clearance, agent.size, path, found, right, shift);
+  if (rules.holdBeyond)
+    holdBeyondLanes(clearance, agent.size, path, width, rules.holdFartherWhereWide, right, shift);
   // A lane begins before its passage and ends after it: a shift carries over to the cells
   // around, a cell less each, where the anchors it crosses are standable.
   const auto carry = [&](std::size_t from, std::size_t to) {

@@ -343,7 +343,8 @@ Result<Scenario> loadRecordedChokepoint(const std::string& file, ReplaySource& s
 // kept-out rules (format 11), lanes through junctions and stepping aside to the side with room
 // (12), detours after a jam (13), lanes of stopped vehicles (14), parking where one stands in a
 // full goal area (15), one-way passages (16), notches with passing room (17), lanes held beyond
-// the mouth (18), queued windows not counted toward the stuck flag (19).
+// the mouth (18), queued windows not counted toward the stuck flag (19), lanes held farther
+// beyond wide passages (20).
 void useRulesOfFormat(Scenario& s, std::uint32_t format) {
   if (format < 11) {
     s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;
@@ -360,6 +361,7 @@ void useRulesOfFormat(Scenario& s, std::uint32_t format) {
   if (format < 17) s.settings.pathing.openDents = false;
   if (format < 18) s.settings.pathing.laneApproaches = false;
   if (format < 19) s.settings.pathing.queuesExcused = false;
+  if (format < 20) s.settings.pathing.widerLaneApproaches = false;
 }
 
 void expectVerifiesOnlyAsItsFormat(const Scenario& s, const ReplaySource& source,
@@ -582,6 +584,20 @@ TEST_F(Replays, AFormat17ReplayPlaysBackWithLanesEndingAtTheMouth) {
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format17.rpl", 17, 600);
 }
 
+// Format 19 was recorded when a vehicle's lane held two footprints beyond its passage however
+// wide: it plays back so, and read as format 20 (five footprints beyond a bridge with room for
+// two tanks each way) the same records do not verify. 20 tanks a side on a bridge 16 wide.
+TEST_F(Replays, AFormat19ReplayPlaysBackWithLanesHeldTwoFootprintsBeyondAWideBridge) {
+  ReplaySource source;
+  Result<Scenario> loaded = loadRecordedChokepoint("variations/bridge16_tanks.yaml", source);
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.widerLaneApproaches);
+  useRulesOfFormat(s, 19);
+  source.seed = s.settings.seed;
+  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format19.rpl", 19, 600);
+}
+
 // Format 18 was recorded when a unit queued behind another going its way counted its windows
 // without progress toward the stuck flag (a count the state hash covers): it plays back so, and
 // read as format 19 the same records do not verify. The door's two crowds at seed 10, where a
@@ -606,21 +622,21 @@ TEST_F(Replays, AnotherVersionIsRefused) {
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
                                  ": replay format version 1 is not supported (this build reads "
-                                 "versions 2 to 19); it was written before battles were recorded: "
+                                 "versions 2 to 20); it was written before battles were recorded: "
                                  "record it again with rts run --replay");
   RtsResult r = rts("replay verify " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(file.string() + ": replay format version 1 is not supported"),
             std::string::npos)
       << r.out;
-  bytes[8] = 20;
+  bytes[8] = 21;
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
-                                 ": replay format version 20 is not supported (this build reads "
-                                 "versions 2 to 19)");
+                                 ": replay format version 21 is not supported (this build reads "
+                                 "versions 2 to 20)");
   r = rts("replay info " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_NE(r.out.find("version 20 is not supported"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("version 21 is not supported"), std::string::npos) << r.out;
   EXPECT_EQ(rts("replay verify " + (dir_ / "none.rpl").string()).status, 2);
 }
 
@@ -729,7 +745,7 @@ TEST_F(Replays, ABattleRecordsAndVerifies) {
 
   const RtsResult info = rts("replay info " + file.string());
   EXPECT_EQ(info.status, 0) << info.out;
-  EXPECT_NE(info.out.find("format version: 19\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("format version: 20\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("orders: 4 (2 attack_move, 1 attack, 1 reinforce)\n"), std::string::npos)
       << info.out;
   const RtsResult verify = rts("replay verify " + file.string());

@@ -161,7 +161,8 @@ TEST(Lanes, ALaneGoesOnThroughAJunction) {
     EXPECT_EQ(y, row);
   // As lanes were before replay format 12: the lane ends at the junction, where the path comes
   // back north toward its own line.
-  const std::vector<Cell> ending = keepRight(grid, tank, east, false, false);
+  const std::vector<Cell> ending =
+      keepRight(grid, tank, east, {.throughJunctions = false, .holdBeyond = false});
   expectLegalBetween(grid, tank, ending, east);
   const std::vector<int> junctionBefore = rowsOver(ending, 26, 37);
   EXPECT_LT(*std::min_element(junctionBefore.begin(), junctionBefore.end()), row);
@@ -183,7 +184,7 @@ TEST(Lanes, ALaneHoldsTwoFootprintsBeyondItsBridge) {
   EXPECT_EQ(rowsOver(held, 3, 3), std::vector<int>{9});
   EXPECT_EQ(rowsOver(held, 34, 34), std::vector<int>{9});
   // Without the hold (replay formats before 18) the lane tapers from the bridge's ends.
-  const std::vector<Cell> ending = keepRight(grid, tank, east, true, false);
+  const std::vector<Cell> ending = keepRight(grid, tank, east, {.holdBeyond = false});
   expectLegalBetween(grid, tank, ending, east);
   for (const int y : rowsOver(ending, 10, 27))
     EXPECT_EQ(y, 10);
@@ -192,6 +193,43 @@ TEST(Lanes, ALaneHoldsTwoFootprintsBeyondItsBridge) {
   EXPECT_EQ(rowsOver(ending, 29, 29), std::vector<int>{8});
   // Held or not, the lane costs the same: the held stretch runs parallel to the path.
   EXPECT_NEAR(pathCost(held), pathCost(ending), 1e-9);
+}
+
+TEST(Lanes, ALaneHoldsFiveFootprintsBeyondABridgeFiveFootprintsWide) {
+  // 80×24 ground; a river over columns 32..47 crossed by a bridge 15 cells wide (rows 4..18):
+  // five tank footprints across. A tank's footprint is on the bridge from anchor column 30 to
+  // 47. Heading east from row 5 its lane there is row 12 (the south half).
+  GridMap map(80, 24);
+  for (int y = 0; y < 24; ++y) {
+    for (int x = 32; x <= 47; ++x) {
+      if (y < 4 || y > 18) map.set({x, y}, Terrain::Water);
+    }
+  }
+  const AnnotatedGrid grid(map);
+  const Agent tank{3, kGround};
+  const std::vector<Cell> east = shortest(grid, tank, {2, 5}, {75, 5});
+  const std::vector<Cell> held = keepRight(grid, tank, east);
+  expectLegalBetween(grid, tank, held, east);
+  // Five footprints (15 columns) before and after the bridge, then a row a cell.
+  for (const int y : rowsOver(held, 15, 62))
+    EXPECT_EQ(y, 12);
+  EXPECT_EQ(rowsOver(held, 14, 14), std::vector<int>{11});
+  EXPECT_EQ(rowsOver(held, 63, 63), std::vector<int>{11});
+  // Two footprints, as on narrower passages (the six-wide bridge above) and in replay formats
+  // before 20.
+  const std::vector<Cell> near = keepRight(grid, tank, east, {.holdFartherWhereWide = false});
+  expectLegalBetween(grid, tank, near, east);
+  for (const int y : rowsOver(near, 24, 53))
+    EXPECT_EQ(y, 12);
+  EXPECT_EQ(rowsOver(near, 23, 23), std::vector<int>{11});
+  EXPECT_EQ(rowsOver(near, 54, 54), std::vector<int>{11});
+  EXPECT_NEAR(pathCost(held), pathCost(near), 1e-9);
+  // A bridge one row narrower (four footprints) holds two footprints only.
+  for (int x = 32; x <= 47; ++x)
+    map.set({x, 18}, Terrain::Water);
+  const AnnotatedGrid narrower(map);
+  EXPECT_EQ(keepRight(narrower, tank, east),
+            keepRight(narrower, tank, east, {.holdFartherWhereWide = false}));
 }
 
 TEST(Lanes, AlwaysLegalOnRandomMaps) {

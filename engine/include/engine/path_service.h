@@ -22,6 +22,7 @@
 #include "pathing/annotated_grid.h"
 #include "pathing/cluster_abstraction.h"
 #include "pathing/cooperative_search.h"
+#include "pathing/lanes.h"
 #include "pathing/planner.h"
 #include "pathing/terrain_costs.h"
 
@@ -129,6 +130,13 @@ struct PathServiceSettings {
   // queued behind one going its way counted its windows without progress toward the stuck flag
   // like a unit jammed (docs/cooperative.md, "Queues are not jams").
   bool queuesExcused = true;
+  // Not a scenario key: false plays back replays before format 20, when a vehicle's lane held
+  // two footprints beyond its passage however wide the passage was (pathing::LaneRules;
+  // docs/cooperative.md, "Lanes held farther").
+  bool widerLaneApproaches = true;
+  pathing::LaneRules laneRules() const {
+    return {lanesThroughJunctions, laneApproaches, widerLaneApproaches};
+  }
 };
 inline constexpr int kMaxCooperativeWindow = 256;
 // [Unit: expansions] what sliced window searches may spend in a tick the spatial searches left

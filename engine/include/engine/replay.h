@@ -60,9 +60,11 @@ namespace warpath::engine {
 // shift for two footprints beyond its passage (older files play back with lanes ending at the
 // mouth). 19: a cooperating unit's window without progress spent queued behind a unit going its
 // way that made progress in its own last window does not count toward the stuck flag (the
-// state hash covers the count; older files play back counting it). Version-1 files (move
-// orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 19;
+// state hash covers the count; older files play back counting it). 20: the same records and
+// hashes; a vehicle's lane holds for five footprints beyond a passage at least four footprints
+// across (older files play back with two). Version-1 files (move orders only) are refused with
+// a message saying so.
+inline constexpr std::uint32_t kReplayVersion = 20;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -112,6 +114,9 @@ inline constexpr std::uint32_t kFirstLaneApproachesReplayVersion = 18;
 // its windows without progress toward the stuck flag: they play back so
 // (PathServiceSettings::queuesExcused off).
 inline constexpr std::uint32_t kFirstQueuesExcusedReplayVersion = 19;
+// Formats before this one were recorded when a vehicle's lane held two footprints beyond its
+// passage however wide: they play back so (PathServiceSettings::widerLaneApproaches off).
+inline constexpr std::uint32_t kFirstWiderLaneApproachesReplayVersion = 20;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

@@ -341,8 +341,7 @@ std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
       // bridge and crossroads they did no better with them (docs/cooperative.md).
       if (w.settings.pathing.cooperative && w.typeOf(unit).size >= 2) {
         std::vector<Cell> lane = pathing::keepRight(
-            w.grid, w.typeOf(unit).agent(), unit.path->cells,
-            w.settings.pathing.lanesThroughJunctions, w.settings.pathing.laneApproaches);
+            w.grid, w.typeOf(unit).agent(), unit.path->cells, w.settings.pathing.laneRules());
         if (lane != unit.path->cells)
           unit.path = std::make_shared<const PlannedPath>(planned(std::move(lane)));
       }

@@ -17,21 +17,32 @@ constexpr int laneWidth(int size) {
   return size * 4 > 16 ? size * 4 : 16;
 }
 
+// Which of keepRight's rules apply. Each came with a replay format of the engine, whose older
+// files play back without it.
+struct LaneRules {
+  // A lane goes on through a junction, a stretch of at most laneWidth() cells too wide for
+  // lanes between two lane runs of one direction, along the line it entered on; without, the
+  // path comes back to its own line there.
+  bool throughJunctions = true;
+  // A lane's full shift holds for two footprints beyond each end of its run, so that the
+  // approach and the way out keep right too; without, the shift tapers from the run's ends.
+  bool holdBeyond = true;
+  // With holdBeyond: five footprints where the passage is at least five footprints across, room
+  // for two each way and more, where crowds queue at the mouths.
+  bool holdFartherWhereWide = true;
+};
+
 // `path` (legal single moves for the agent, start to goal) kept to the right: where the path
 // runs along a row or a column, the passage across the direction of travel (the standable
 // anchors to either side) is split in two halves of its cells, and a footprint in the left half
 // moves over to the nearest anchor whose footprint lies in the right half; where the passage is
 // narrower than two footprints or wider than laneWidth(), the path stays. A lane begins before
-// its passage and ends after it: with `holdBeyond` its full shift holds for two footprints
-// beyond each end of the run, and then (or at once, without) a shift carries to the cells
-// around, a cell less each. Shifts
-// grow and shrink by at most a cell per step (so the start and the goal stay where they are) and
-// the shifted cells are joined by legal single moves; if they cannot be, the path comes back
-// unchanged. With `throughJunctions` a lane goes on through a junction, a stretch of at most
-// laneWidth() cells too wide for lanes between two lane runs of one direction, along the line it
-// entered on (without, the path comes back to its own line there). The result is legal for the
-// agent and runs from path.front() to path.back().
+// its passage and ends after it (`rules`), then a shift carries to the cells around, a cell less
+// each. Shifts grow and shrink by at most a cell per step (so the start and the goal stay where
+// they are) and the shifted cells are joined by legal single moves; if they cannot be, the path
+// comes back unchanged. The result is legal for the agent and runs from path.front() to
+// path.back().
 std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<const Cell> path,
-                            bool throughJunctions = true, bool holdBeyond = true);
+                            LaneRules rules = {});
 
 }  // namespace warpath::pathing
