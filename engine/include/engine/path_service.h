@@ -132,7 +132,7 @@ struct PathServiceSettings {
   bool queuesExcused = true;
   // Not a scenario key: false plays back replays before format 20, when a vehicle's lane held
   // two footprints beyond its passage however wide the passage was (pathing::LaneRules;
-  // docs/cooperative.md, "Lanes held farther").
+  // docs/cooperative.md, "Lanes held farther beyond wide passages").
   bool widerLaneApproaches = true;
   pathing::LaneRules laneRules() const {
     return {lanesThroughJunctions, laneApproaches, widerLaneApproaches};

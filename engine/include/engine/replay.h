@@ -61,7 +61,7 @@ namespace warpath::engine {
 // mouth). 19: a cooperating unit's window without progress spent queued behind a unit going its
 // way that made progress in its own last window does not count toward the stuck flag (the
 // state hash covers the count; older files play back counting it). 20: the same records and
-// hashes; a vehicle's lane holds for five footprints beyond a passage at least four footprints
+// hashes; a vehicle's lane holds for five footprints beyond a passage at least five footprints
 // across (older files play back with two). Version-1 files (move orders only) are refused with
 // a message saying so.
 inline constexpr std::uint32_t kReplayVersion = 20;
