@@ -30,13 +30,19 @@ def door():
     return g
 
 
+def river_with_bridge(w, h, x0, x1, y0, y1):
+    # w x h open ground cut by a river over columns [x0, x1), crossed by one bridge of ground over
+    # rows [y0, y1).
+    g = blank(w, h)
+    rect(g, x0, 0, x1, h, "W")
+    rect(g, x0, y0, x1, y1, ".")
+    return g
+
+
 def bridge():
     # 64x48: a river 8 cells wide (columns 28-35) with one bridge 6 cells wide (rows 21-26);
     # infantry, jeeps and tanks cannot enter water. Symmetric under a half turn about the centre.
-    g = blank(64, 48)
-    rect(g, 28, 0, 36, 48, "W")
-    rect(g, 28, 21, 36, 27, ".")
-    return g
+    return river_with_bridge(64, 48, 28, 36, 21, 27)
 
 
 def crossroads():
@@ -79,10 +85,7 @@ def two_bridges():
 def bridge512():
     # 512x512 open ground cut by a river 16 cells wide (columns 248-263) with one bridge 16
     # cells wide (rows 248-263). Symmetric under a half turn about the centre.
-    g = blank(512, 512)
-    rect(g, 248, 0, 264, 512, "W")
-    rect(g, 248, 248, 264, 264, ".")
-    return g
+    return river_with_bridge(512, 512, 248, 264, 248, 264)
 
 
 def door2():
@@ -133,19 +136,13 @@ def crossroads6():
 
 def bridge16():
     # 128x96: a river 16 cells wide (columns 56-71) with one bridge 16 cells wide (rows 40-55).
-    g = blank(128, 96)
-    rect(g, 56, 0, 72, 96, "W")
-    rect(g, 56, 40, 72, 56, ".")
-    return g
+    return river_with_bridge(128, 96, 56, 72, 40, 56)
 
 
 def bridge192():
     # 192x128: a river 16 cells wide (columns 88-103) with one bridge 16 cells wide (rows 56-71),
     # for the crowds of scenarios/chokepoints/scale/.
-    g = blank(192, 128)
-    rect(g, 88, 0, 104, 128, "W")
-    rect(g, 88, 56, 104, 72, ".")
-    return g
+    return river_with_bridge(192, 128, 88, 104, 56, 72)
 
 
 if __name__ == "__main__":
