@@ -7,6 +7,7 @@
 #include <string>
 
 #include "engine/scenario.h"
+#include "support/scenario_files.h"
 #include "units/combat.h"
 
 namespace warpath::engine {
@@ -16,7 +17,8 @@ using units::ArmourClass;
 using units::DamageKind;
 using units::TargetMask;
 
-const std::string kFile = std::string(WARPATH_SOURCE_DIR) + "/scenarios/battle_input.yaml";
+const std::string kBattleInputFile =
+    std::string(WARPATH_SOURCE_DIR) + "/scenarios/battle_input.yaml";
 
 // 1-based line of the first occurrence of `needle` in `text` (0 when absent).
 int lineOf(const std::string& text, const std::string& needle) {
@@ -75,25 +77,22 @@ std::string battle(const std::string& extra, const std::string& unitTypes = "") 
          extra;
 }
 
-Scenario load(const std::string& text) {
-  Result<Scenario> r = parseScenario(text, kFile);
-  EXPECT_TRUE(r.ok()) << r.error().describe() << "\n" << text;
-  return r.ok() ? std::move(r).value() : Scenario{};
+Scenario loadBattle(const std::string& text) {
+  return testing::parsedScenario(text, kBattleInputFile);
 }
 
-Error errorOf(const std::string& text) {
-  const Result<Scenario> r = parseScenario(text, kFile);
-  EXPECT_FALSE(r.ok()) << text;
-  return r.ok() ? Error{} : r.error();
+Error battleErrorOf(const std::string& text) {
+  return testing::scenarioError(text, kBattleInputFile);
 }
 
 // The error names the problem (`part` is in the message) at the line holding `where`.
 void expectError(const std::string& text, const std::string& part, const std::string& where) {
-  const Error e = errorOf(text);
+  const Error e = battleErrorOf(text);
   EXPECT_NE(e.message.find(part), std::string::npos) << "message: " << e.message;
   EXPECT_EQ(e.line, lineOf(text, where)) << e.describe();
   EXPECT_GT(e.column, 0);
-  EXPECT_EQ(e.describe().rfind(kFile + ":" + std::to_string(e.line) + ":", 0), 0u) << e.describe();
+  EXPECT_EQ(e.describe().rfind(kBattleInputFile + ":" + std::to_string(e.line) + ":", 0), 0u)
+      << e.describe();
 }
 
 const units::UnitType& typeNamed(const Scenario& s, const std::string& name) {
@@ -131,22 +130,22 @@ TEST(BattleParse, BundledCatalogueHasTheDefaultArmourAndWeapons) {
 }
 
 TEST(BattleParse, NewTypesWeaponDefaultsAndArmour) {
-  const Scenario s = load(battle("",
-                                 "  tank: {size: 2, capability: [ground], speed: 1}\n"
-                                 "  sniper:\n"
-                                 "    size: 1\n"
-                                 "    capability: [ground]\n"
-                                 "    speed: 1\n"
-                                 "    armour: light\n"
-                                 "    weapon:\n"
-                                 "      name: long_rifle\n"
-                                 "      kind: rifle\n"
-                                 "      damage: 40\n"
-                                 "      range: 12.5\n"
-                                 "      cooldown: 4\n"
-                                 "      projectile_speed: 30\n"
-                                 "      targets: [infantry, light]\n"
-                                 "      priority: {light: 0, infantry: 3}\n"));
+  const Scenario s = loadBattle(battle("",
+                                       "  tank: {size: 2, capability: [ground], speed: 1}\n"
+                                       "  sniper:\n"
+                                       "    size: 1\n"
+                                       "    capability: [ground]\n"
+                                       "    speed: 1\n"
+                                       "    armour: light\n"
+                                       "    weapon:\n"
+                                       "      name: long_rifle\n"
+                                       "      kind: rifle\n"
+                                       "      damage: 40\n"
+                                       "      range: 12.5\n"
+                                       "      cooldown: 4\n"
+                                       "      projectile_speed: 30\n"
+                                       "      targets: [infantry, light]\n"
+                                       "      priority: {light: 0, infantry: 3}\n"));
   // A weapon on a new type: name from the kind, instant, every class, all ranks equal.
   const units::UnitType& soldier = typeNamed(s, "soldier");
   EXPECT_EQ(soldier.armour, ArmourClass::Infantry);  // no default for the name: infantry
@@ -190,7 +189,7 @@ TEST(BattleParse, OverridingACatalogueWeaponChangesOnlyTheFieldsGiven) {
       "duration: 10\n"
       "teams: [blue]\n"
       "groups: []\n";
-  const Scenario s = load(text);
+  const Scenario s = loadBattle(text);
   units::Weapon tankGun = *units::defaultWeaponFor("tank");
   tankGun.damage = 200;
   tankGun.priority[static_cast<std::size_t>(ArmourClass::Infantry)] = 5;
@@ -239,7 +238,7 @@ TEST(BattleParse, WeaponAndArmourErrors) {
 // ---- combat settings ----------------------------------------------------------------------
 
 TEST(BattleParse, CombatSettings) {
-  const Scenario defaults = load(battle(""));
+  const Scenario defaults = loadBattle(battle(""));
   const CombatSettings d;
   EXPECT_TRUE(defaults.settings.combat.enabled);
   EXPECT_EQ(defaults.settings.combat.wreckSeconds, d.wreckSeconds);
@@ -247,13 +246,13 @@ TEST(BattleParse, CombatSettings) {
   EXPECT_EQ(defaults.settings.combat.scanEveryTicks, d.scanEveryTicks);
   EXPECT_EQ(defaults.settings.combat.armour, units::defaultArmourTable());
 
-  const Scenario s =
-      load(battle("combat:\n"
-                  "  enabled: false\n"
-                  "  wreck_seconds: 0\n"
-                  "  sight_through_trees: -1\n"
-                  "  scan_every: 3\n"
-                  "  armour: {cannon: {infantry: 10, heavy: 120}, rifle: {amphibious: 0}}\n"));
+  const Scenario s = loadBattle(
+      battle("combat:\n"
+             "  enabled: false\n"
+             "  wreck_seconds: 0\n"
+             "  sight_through_trees: -1\n"
+             "  scan_every: 3\n"
+             "  armour: {cannon: {infantry: 10, heavy: 120}, rifle: {amphibious: 0}}\n"));
   const CombatSettings& c = s.settings.combat;
   EXPECT_FALSE(c.enabled);
   EXPECT_EQ(c.wreckSeconds, 0.0);
@@ -297,7 +296,7 @@ TEST(BattleParse, TravelScenariosHaveCombatOff) {
 // ---- groups and orders ---------------------------------------------------------------------
 
 TEST(BattleParse, ReinforcementGroups) {
-  const Scenario s = load(battle(""));
+  const Scenario s = loadBattle(battle(""));
   ASSERT_EQ(s.groups.size(), 4u);
   EXPECT_FALSE(s.groups[0].reinforcement);
   EXPECT_TRUE(s.groups[3].reinforcement);
@@ -314,7 +313,7 @@ TEST(BattleParse, ReinforcementGroups) {
 }
 
 TEST(BattleParse, OrdersOfEveryKind) {
-  const Scenario s = load(battle(
+  const Scenario s = loadBattle(battle(
       "orders:\n"
       "  - {at: 1, group: b1, move_to: {x: 10, y: 0, w: 2, h: 2}}\n"
       "  - {at: 2, group: [b1, b2], order: attack_move, move_to: {x: 12, y: 0, w: 4, h: 4}}\n"
@@ -355,7 +354,7 @@ TEST(BattleParse, OrderErrors) {
       battle("orders:\n  - {at: 1, group: b1, order: attack, target: [r1, b2]}\n");
   expectError(own, "attack target 'b2' is on team 'blue', the team of ordered group 'b1'",
               "target: [r1, b2]");
-  EXPECT_EQ(errorOf(own).column, columnOf(own, "b2]"));  // at `b2` in the list
+  EXPECT_EQ(battleErrorOf(own).column, columnOf(own, "b2]"));  // at `b2` in the list
   expectError(battle("orders:\n  - {at: 1, group: [b1, r1], order: attack, target: r2}\n"),
               "attack target 'r2' is on team 'red', the team of ordered group 'r1'", "target: r2");
   expectError(battle("orders:\n  - {at: 1, group: b1, order: charge, move_to: {x: 1, y: 1, w: 1, "
@@ -383,24 +382,24 @@ TEST(BattleParse, OrderErrors) {
 // ---- triggers ------------------------------------------------------------------------------
 
 TEST(BattleParse, TriggersOfEveryKind) {
-  const Scenario s =
-      load(battle("orders:\n"
-                  "  - {at: 0, group: b1, order: attack_move, move_to: {x: 14, y: 0, w: 4, h: 4}}\n"
-                  "triggers:\n"
-                  "  - name: red calls for help\n"
-                  "    when: {team_below: {team: red, count: 3}}\n"
-                  "    do:\n"
-                  "      - {reinforce: r2}\n"
-                  "      - {order: attack, group: r2, target: [b1, b2]}\n"
-                  "  - when: {at: 30}\n"
-                  "    do: [{order: hold, group: [b1, b2]}]\n"
-                  "  - when: {arrived: {group: b1, fraction: 0.75}}\n"
-                  "    do: [{order: move, group: b2, move_to: {x: 10, y: 8, w: 2, h: 2}}]\n"
-                  "  - when: {enters: {group: b1, area: {x: 14, y: 0, w: 6, h: 10}, count: 2}}\n"
-                  "    do: [{end_battle: blue}]\n"
-                  "  - name: last stand\n"
-                  "    when: {dies: {group: r1}}\n"
-                  "    do: [{order: stop, group: r1}, {end_battle: none}]\n"));
+  const Scenario s = loadBattle(
+      battle("orders:\n"
+             "  - {at: 0, group: b1, order: attack_move, move_to: {x: 14, y: 0, w: 4, h: 4}}\n"
+             "triggers:\n"
+             "  - name: red calls for help\n"
+             "    when: {team_below: {team: red, count: 3}}\n"
+             "    do:\n"
+             "      - {reinforce: r2}\n"
+             "      - {order: attack, group: r2, target: [b1, b2]}\n"
+             "  - when: {at: 30}\n"
+             "    do: [{order: hold, group: [b1, b2]}]\n"
+             "  - when: {arrived: {group: b1, fraction: 0.75}}\n"
+             "    do: [{order: move, group: b2, move_to: {x: 10, y: 8, w: 2, h: 2}}]\n"
+             "  - when: {enters: {group: b1, area: {x: 14, y: 0, w: 6, h: 10}, count: 2}}\n"
+             "    do: [{end_battle: blue}]\n"
+             "  - name: last stand\n"
+             "    when: {dies: {group: r1}}\n"
+             "    do: [{order: stop, group: r1}, {end_battle: none}]\n"));
   ASSERT_EQ(s.triggers.size(), 6u);
   EXPECT_EQ(s.triggers[0].name, "order 1");  // orders come first
   const TriggerSpec& help = s.triggers[1];
@@ -503,18 +502,18 @@ TEST(BattleParse, TriggerErrors) {
 // ---- terrain that changes ------------------------------------------------------------------
 
 TEST(BattleParse, SetTerrainActions) {
-  const Scenario plain = load(battle(""));
+  const Scenario plain = loadBattle(battle(""));
   EXPECT_FALSE(plain.settings.terrainChanges);  // runs share the scenario's grid
   EXPECT_TRUE(plain.settings.combat.wrecksBlock);
   const Scenario s =
-      load(battle("combat: {wrecks_block: false}\n"
-                  "triggers:\n"
-                  "  - when: {at: 5}\n"
-                  "    do:\n"
-                  "      - {set_terrain: {area: {x: 8, y: 4, w: 2, h: 2}, "
-                  "terrain: ground}}\n"
-                  "      - {set_terrain: {area: {x: 0, y: 9, w: 20, h: 1}, "
-                  "terrain: blocked}}\n"));
+      loadBattle(battle("combat: {wrecks_block: false}\n"
+                        "triggers:\n"
+                        "  - when: {at: 5}\n"
+                        "    do:\n"
+                        "      - {set_terrain: {area: {x: 8, y: 4, w: 2, h: 2}, "
+                        "terrain: ground}}\n"
+                        "      - {set_terrain: {area: {x: 0, y: 9, w: 20, h: 1}, "
+                        "terrain: blocked}}\n"));
   EXPECT_FALSE(s.settings.combat.wrecksBlock);
   EXPECT_TRUE(s.settings.terrainChanges);  // each run gets a grid of its own
   ASSERT_EQ(s.triggers.size(), 1u);
@@ -559,10 +558,10 @@ TEST(BattleParse, SetTerrainErrors) {
 
 TEST(BattleParse, VictoryConditions) {
   const Scenario s =
-      load(battle("victory:\n"
-                  "  - eliminate: blue\n"
-                  "  - hold: {team: red, area: {x: 8, y: 2, w: 4, h: 4}, seconds: 30}\n"
-                  "  - exit: {team: red, area: {x: 0, y: 0, w: 2, h: 10}, count: 5}\n"));
+      loadBattle(battle("victory:\n"
+                        "  - eliminate: blue\n"
+                        "  - hold: {team: red, area: {x: 8, y: 2, w: 4, h: 4}, seconds: 30}\n"
+                        "  - exit: {team: red, area: {x: 0, y: 0, w: 2, h: 10}, count: 5}\n"));
   ASSERT_EQ(s.victory.size(), 3u);
   EXPECT_EQ(s.victory[0].kind, VictoryKind::Eliminate);
   EXPECT_EQ(s.victory[0].team, 0);
@@ -592,16 +591,16 @@ TEST(BattleParse, VictoryErrors) {
 
 TEST(BattleParse, OutcomeExpectations) {
   const Scenario s =
-      load(battle("expectations:\n"
-                  "  - winner: blue\n"
-                  "  - winner: none\n"
-                  "  - losses: {team: blue, type: soldier, at_most: 3}\n"
-                  "  - kills: {team: red, at_least: 2}\n"
-                  "  - damage_dealt: {at_least: 100}\n"
-                  "  - damage_taken: {type: truck, at_most: 50}\n"
-                  "  - shots_fired: {team: blue, at_least: 1}\n"
-                  "  - alive: {team: red, type: truck, at_most: 0}\n"
-                  "  - arrival_rate: {team: blue, type: soldier, at_least: 0.5, by: 40}\n"));
+      loadBattle(battle("expectations:\n"
+                        "  - winner: blue\n"
+                        "  - winner: none\n"
+                        "  - losses: {team: blue, type: soldier, at_most: 3}\n"
+                        "  - kills: {team: red, at_least: 2}\n"
+                        "  - damage_dealt: {at_least: 100}\n"
+                        "  - damage_taken: {type: truck, at_most: 50}\n"
+                        "  - shots_fired: {team: blue, at_least: 1}\n"
+                        "  - alive: {team: red, type: truck, at_most: 0}\n"
+                        "  - arrival_rate: {team: blue, type: soldier, at_least: 0.5, by: 40}\n"));
   ASSERT_EQ(s.expectations.size(), 9u);
   EXPECT_EQ(s.expectations[0].kind, ExpectationKind::Winner);
   EXPECT_EQ(s.expectations[0].team, 0);

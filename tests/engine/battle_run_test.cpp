@@ -13,11 +13,13 @@
 #include "engine/scenario_run.h"
 #include "support/battle_field.h"
 #include "support/run_out.h"
+#include "support/scenario_files.h"
 
 namespace warpath::engine {
 namespace {
 
-const std::string kFile = std::string(WARPATH_SOURCE_DIR) + "/scenarios/battle_run_test.yaml";
+const std::string kBattleRunFile =
+    std::string(WARPATH_SOURCE_DIR) + "/scenarios/battle_run_test.yaml";
 
 // The open field with the riflemen and an unarmed `truck`; `rest` holds the groups onwards.
 std::string field(const std::string& rest, double duration = 20) {
@@ -27,10 +29,8 @@ std::string field(const std::string& rest, double duration = 20) {
          std::to_string(duration) + "\nteams: [blue, red]\n" + rest;
 }
 
-Scenario load(const std::string& text) {
-  Result<Scenario> r = parseScenario(text, kFile);
-  EXPECT_TRUE(r.ok()) << r.error().describe() << "\n" << text;
-  return r.ok() ? std::move(r).value() : Scenario{};
+Scenario loadBattleRun(const std::string& text) {
+  return testing::parsedScenario(text, kBattleRunFile);
 }
 
 using testing::runOut;
@@ -91,7 +91,7 @@ const std::string kDuelGroups =
 // and the recruit's third still hits the vet (40 - 30 = 10 hp left).
 TEST(BattleRun, DuelStatisticsAndEliminationVictory) {
   const Scenario s =
-      load(field(kDuelGroups + "victory:\n  - eliminate: blue\n  - eliminate: red\n"));
+      loadBattleRun(field(kDuelGroups + "victory:\n  - eliminate: blue\n  - eliminate: red\n"));
   ScenarioRun run(s);
   runOut(run);
   const Report r = run.report();
@@ -124,20 +124,20 @@ TEST(BattleRun, DuelStatisticsAndEliminationVictory) {
 }
 
 TEST(BattleRun, WinnerAndStatExpectationsPassAndFail) {
-  const Scenario s =
-      load(field(kDuelGroups + "victory:\n  - eliminate: blue\n"
-                               "expectations:\n"
-                               "  - winner: blue\n"
-                               "  - winner: red\n"
-                               "  - winner: none\n"
-                               "  - kills: {team: blue, at_least: 1}\n"
-                               "  - losses: {team: red, at_most: 0}\n"
-                               "  - shots_fired: {at_most: 6}\n"
-                               "  - shots_fired: {team: blue, at_most: 2}\n"
-                               "  - damage_dealt: {team: red, type: recruit, at_least: 30}\n"
-                               "  - damage_taken: {type: vet, at_most: 29}\n"
-                               "  - alive: {team: red, at_most: 0}\n"
-                               "  - alive: {team: blue, at_least: 2}\n"));
+  const Scenario s = loadBattleRun(
+      field(kDuelGroups + "victory:\n  - eliminate: blue\n"
+                          "expectations:\n"
+                          "  - winner: blue\n"
+                          "  - winner: red\n"
+                          "  - winner: none\n"
+                          "  - kills: {team: blue, at_least: 1}\n"
+                          "  - losses: {team: red, at_most: 0}\n"
+                          "  - shots_fired: {at_most: 6}\n"
+                          "  - shots_fired: {team: blue, at_most: 2}\n"
+                          "  - damage_dealt: {team: red, type: recruit, at_least: 30}\n"
+                          "  - damage_taken: {type: vet, at_most: 29}\n"
+                          "  - alive: {team: red, at_most: 0}\n"
+                          "  - alive: {team: blue, at_least: 2}\n"));
   ScenarioRun run(s);
   runOut(run);
   const Report r = run.report();
@@ -154,7 +154,7 @@ TEST(BattleRun, WinnerAndStatExpectationsPassAndFail) {
 
 TEST(BattleRun, NoWinnerWhenTimeRunsOut) {
   // Out of range of each other (gap 15 > 5): nobody fires, nobody wins.
-  const Scenario s = load(
+  const Scenario s = loadBattleRun(
       field("groups:\n"
             "  - {name: b, team: blue, type: vet, count: 1, spawn: {x: 1, y: 5, w: 1, h: 1}}\n"
             "  - {name: r, team: red, type: recruit, count: 1, spawn: {x: 17, y: 5, w: 1, h: 1}}\n"
@@ -180,16 +180,16 @@ TEST(BattleRun, NoWinnerWhenTimeRunsOut) {
 // an order names only the living; end_battle ends the run with its winner, whatever happened.
 TEST(BattleRun, DeathTriggersOrdersAndEndBattle) {
   const Scenario s =
-      load(field(kDuelGroups + "triggers:\n"
-                               "  - name: red broken\n"
-                               "    when: {team_below: {team: red, count: 1}}\n"
-                               "    do: [{order: hold, group: [b, r]}]\n"
-                               "  - name: recruit down\n"
-                               "    when: {dies: {group: r}}\n"
-                               "    do: [{end_battle: red}, {order: stop, group: b}]\n"
-                               "  - name: never\n"
-                               "    when: {at: 1000}\n"
-                               "    do: [{end_battle: none}]\n"));
+      loadBattleRun(field(kDuelGroups + "triggers:\n"
+                                        "  - name: red broken\n"
+                                        "    when: {team_below: {team: red, count: 1}}\n"
+                                        "    do: [{order: hold, group: [b, r]}]\n"
+                                        "  - name: recruit down\n"
+                                        "    when: {dies: {group: r}}\n"
+                                        "    do: [{end_battle: red}, {order: stop, group: b}]\n"
+                                        "  - name: never\n"
+                                        "    when: {at: 1000}\n"
+                                        "    do: [{end_battle: none}]\n"));
   ScenarioRun run(s);
   runOut(run);
   const Report r = run.report();
@@ -209,11 +209,11 @@ TEST(BattleRun, DeathTriggersOrdersAndEndBattle) {
 
 // A victory judged on the same state comes before the triggers.
 TEST(BattleRun, AVictoryComesBeforeAnEndBattleOnTheSameTick) {
-  const Scenario s =
-      load(field(kDuelGroups + "triggers:\n"
-                               "  - {name: down, when: {dies: {group: r}}, do: [{end_battle: "
-                               "red}]}\n"
-                               "victory:\n  - eliminate: blue\n"));
+  const Scenario s = loadBattleRun(
+      field(kDuelGroups + "triggers:\n"
+                          "  - {name: down, when: {dies: {group: r}}, do: [{end_battle: "
+                          "red}]}\n"
+                          "victory:\n  - eliminate: blue\n"));
   ScenarioRun run(s);
   runOut(run);
   const Report r = run.report();
@@ -223,11 +223,11 @@ TEST(BattleRun, AVictoryComesBeforeAnEndBattleOnTheSameTick) {
 }
 
 TEST(BattleRun, AttackOrdersNameTheLivingTargets) {
-  const Scenario s =
-      load(field(kDuelGroups + "orders:\n"
-                               "  - {at: 0, group: b, order: attack, target: r}\n"
-                               "  - {at: 0, group: r, order: attack_move, move_to: {x: 0, y: 0, "
-                               "w: 3, h: 3}}\n"));
+  const Scenario s = loadBattleRun(
+      field(kDuelGroups + "orders:\n"
+                          "  - {at: 0, group: b, order: attack, target: r}\n"
+                          "  - {at: 0, group: r, order: attack_move, move_to: {x: 0, y: 0, "
+                          "w: 3, h: 3}}\n"));
   ScenarioRun run(s);  // tick-0 triggers fire at construction
   const std::vector<IssuedOrder>& issued = run.issued();
   ASSERT_EQ(issued.size(), 2u);
@@ -250,10 +250,10 @@ const std::string kConvoy =
     "     goal: {x: 0, y: 10, w: 4, h: 2}, reinforcement: true}\n";
 
 TEST(BattleRun, TimedReinforcementSpawnsAndMoves) {
-  const Scenario s =
-      load(field(kConvoy + "triggers:\n"
-                           "  - {name: help, when: {at: 1}, do: [{reinforce: r}]}\n"
-                           "  - {name: halt, when: {at: 2}, do: [{order: stop, group: r}]}\n"));
+  const Scenario s = loadBattleRun(
+      field(kConvoy + "triggers:\n"
+                      "  - {name: help, when: {at: 1}, do: [{reinforce: r}]}\n"
+                      "  - {name: halt, when: {at: 2}, do: [{order: stop, group: r}]}\n"));
   ScenarioRun run(s);
   EXPECT_EQ(run.world().units().size(), 3u);
   while (run.world().tick() < 29) {
@@ -290,15 +290,15 @@ TEST(BattleRun, TimedReinforcementSpawnsAndMoves) {
 
 TEST(BattleRun, ArrivalAndAreaTriggersFireOnTheTickTheirConditionFirstHolds) {
   const pathing::CellRect strip{10, 0, 3, 12};
-  const Scenario s =
-      load(field(kConvoy + "triggers:\n"
-                           "  - name: crossed\n"
-                           "    when: {enters: {group: b, area: {x: 10, y: 0, w: 3, h: 12},"
-                           " count: 2}}\n"
-                           "    do: [{reinforce: r}]\n"
-                           "  - name: there\n"
-                           "    when: {arrived: {group: b, fraction: 1}}\n"
-                           "    do: [{end_battle: blue}]\n"));
+  const Scenario s = loadBattleRun(
+      field(kConvoy + "triggers:\n"
+                      "  - name: crossed\n"
+                      "    when: {enters: {group: b, area: {x: 10, y: 0, w: 3, h: 12},"
+                      " count: 2}}\n"
+                      "    do: [{reinforce: r}]\n"
+                      "  - name: there\n"
+                      "    when: {arrived: {group: b, fraction: 1}}\n"
+                      "    do: [{end_battle: blue}]\n"));
   ScenarioRun run(s);
   std::int64_t crossed = -1;
   while (!run.done()) {
@@ -330,9 +330,9 @@ TEST(BattleRun, ArrivalAndAreaTriggersFireOnTheTickTheirConditionFirstHolds) {
 }
 
 TEST(BattleRun, ExitVictoryCountsEachUnitOnce) {
-  const Scenario s =
-      load(field(kConvoy + "victory:\n  - exit: {team: blue, area: {x: 20, y: 4, w: 4, h: 4},"
-                           " count: 2}\n"));
+  const Scenario s = loadBattleRun(
+      field(kConvoy + "victory:\n  - exit: {team: blue, area: {x: 20, y: 4, w: 4, h: 4},"
+                      " count: 2}\n"));
   ScenarioRun run(s);
   runOut(run);
   std::vector<std::int64_t> arrivals;
@@ -353,7 +353,7 @@ TEST(BattleRun, HoldVictoryNeedsTheAreaAloneForItsWholeTime) {
   const std::string hold =
       "victory:\n  - hold: {team: blue, area: {x: 20, y: 4, w: 4, h: 4}, seconds: 2}\n";
   {
-    const Scenario s = load(field(kConvoy + hold));
+    const Scenario s = loadBattleRun(field(kConvoy + hold));
     ScenarioRun run(s);
     runOut(run);
     std::int64_t first = s.durationTicks();
@@ -367,7 +367,7 @@ TEST(BattleRun, HoldVictoryNeedsTheAreaAloneForItsWholeTime) {
   }
   {
     // A red truck parked in the corner of the area contests it to the end.
-    const Scenario s = load(field(
+    const Scenario s = loadBattleRun(field(
         "groups:\n"
         "  - {name: b, team: blue, type: truck, count: 3, spawn: {x: 0, y: 4, w: 2, h: 3},\n"
         "     goal: {x: 20, y: 4, w: 4, h: 4}}\n"
@@ -390,7 +390,7 @@ std::string skirmish(const std::string& triggers = "") {
 }
 
 TEST(BattleRun, SkirmishIsDeterministicAndItsStatisticsAddUp) {
-  const Scenario s = load(field(skirmish(), 60));
+  const Scenario s = loadBattleRun(field(skirmish(), 60));
   ScenarioRun a(s);
   runOut(a);
   ScenarioRun b(s);
@@ -422,8 +422,8 @@ TEST(BattleRun, SkirmishIsDeterministicAndItsStatisticsAddUp) {
 // Playing a live run's issued entries back (ScenarioRun's script mode) gives the same world:
 // orders of every kind, a reinforcement, and the end.
 TEST(BattleRun, ScriptPlaybackReproducesTheLiveRun) {
-  const Scenario s =
-      load(field(skirmish("  - {name: stop, when: {at: 8}, do: [{end_battle: none}]}\n"), 60));
+  const Scenario s = loadBattleRun(
+      field(skirmish("  - {name: stop, when: {at: 8}, do: [{end_battle: none}]}\n"), 60));
   ScenarioRun live(s);
   std::vector<std::uint64_t> hashes;
   while (!live.done()) {

@@ -9,14 +9,13 @@
 
 #include "engine/scenario.h"
 #include "engine/scenario_run.h"
+#include "support/scenario_files.h"
 
 namespace warpath::engine {
 namespace {
 
-const std::string kDir = std::string(WARPATH_SOURCE_DIR) + "/scenarios/";
-
 std::string readScenario(const std::string& name) {
-  std::ifstream in(kDir + name + ".yaml");
+  std::ifstream in(testing::kScenariosDir + name + ".yaml");
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
@@ -31,7 +30,7 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 }
 
 Report play(const std::string& text, const std::string& name) {
-  Result<Scenario> s = parseScenario(text, kDir + name + ".yaml");
+  Result<Scenario> s = parseScenario(text, testing::kScenariosDir + name + ".yaml");
   EXPECT_TRUE(s.ok()) << s.error().describe();
   if (!s.ok()) return {};
   ScenarioRun run(s.value());

@@ -12,6 +12,7 @@
 
 #include "pathing/cluster_abstraction.h"
 #include "pathing/map_io.h"
+#include "support/wall_with_gaps.h"
 
 namespace warpath::engine {
 namespace {
@@ -22,24 +23,8 @@ using pathing::Cell;
 using pathing::Terrain;
 
 const Capability kGround = Capability::of({Terrain::Ground});
-const Agent kInfantry{1, kGround};
+const Agent kWalker{1, kGround};
 constexpr double kSpeed = 1.5;  // [Unit: cells/s]
-
-// 48x24: a wall across columns 22-25 with a gap 2 cells wide (rows 6-7) and one 3 wide (rows
-// 16-18).
-pathing::GridMap wallWithTwoGaps() {
-  std::string rows;
-  for (int y = 0; y < 24; ++y) {
-    std::string row(48, '.');
-    for (int x = 22; x <= 25; ++x)
-      if (!(y == 6 || y == 7 || (y >= 16 && y <= 18))) row[static_cast<std::size_t>(x)] = '@';
-    rows += row + "\n";
-  }
-  std::istringstream in("type octile\nheight 24\nwidth 48\nmap\n" + rows);
-  auto map = pathing::parseMap(in, "inline");
-  EXPECT_TRUE(map.ok());
-  return map.value();
-}
 
 // A straight path along row `y` from column 2 to 45.
 std::vector<Cell> along(int y) {
@@ -54,48 +39,48 @@ UnitId unit(std::uint32_t index) {
 }
 
 TEST(Congestion, AQueueFormsAtANarrowPlaceFirstComeFirstServed) {
-  const pathing::AnnotatedGrid grid(wallWithTwoGaps());
+  const pathing::AnnotatedGrid grid(testing::wallWithTwoGaps(48, 24, 22, 16));
   Congestion congestion(grid, 16);
   const std::vector<Cell> path = along(6);
-  EXPECT_EQ(congestion.waitAlong(kInfantry, kSpeed, path, 0.0), 0.0);
+  EXPECT_EQ(congestion.waitAlong(kWalker, kSpeed, path, 0.0), 0.0);
   EXPECT_EQ(congestion.queuesAt(0.0), 0u);
   // Ten units on the same path at once: each holds the 2-wide gap 1/3 s (two files of bodies
   // 3/4 cell wide, a cell apart at 1.5 cells/s), so the eleventh waits about 10/3 s there.
   for (std::uint32_t i = 0; i < 10; ++i)
-    congestion.book(unit(i), kInfantry, kSpeed, path, 0.0);
+    congestion.book(unit(i), kWalker, kSpeed, path, 0.0);
   EXPECT_EQ(congestion.queuesAt(0.0), 1u);
-  const double wait = congestion.waitAlong(kInfantry, kSpeed, path, 0.0);
+  const double wait = congestion.waitAlong(kWalker, kSpeed, path, 0.0);
   EXPECT_NEAR(wait, 10.0 / 3.0, 1e-9);
   // Arriving after the queue has gone: no wait.
-  EXPECT_EQ(congestion.waitAlong(kInfantry, kSpeed, path, 20.0), 0.0);
+  EXPECT_EQ(congestion.waitAlong(kWalker, kSpeed, path, 20.0), 0.0);
   // The other gap and open rows have no queue.
-  EXPECT_EQ(congestion.waitAlong(kInfantry, kSpeed, along(17), 0.0), 0.0);
-  EXPECT_EQ(congestion.waitAlong(kInfantry, kSpeed, along(1), 0.0), 0.0);
+  EXPECT_EQ(congestion.waitAlong(kWalker, kSpeed, along(17), 0.0), 0.0);
+  EXPECT_EQ(congestion.waitAlong(kWalker, kSpeed, along(1), 0.0), 0.0);
   // A unit's new path replaces its bookings; cancelled ones go.
-  congestion.book(unit(0), kInfantry, kSpeed, along(17), 0.0);
-  EXPECT_NEAR(congestion.waitAlong(kInfantry, kSpeed, path, 0.0), 9.0 / 3.0, 1e-9);
+  congestion.book(unit(0), kWalker, kSpeed, along(17), 0.0);
+  EXPECT_NEAR(congestion.waitAlong(kWalker, kSpeed, path, 0.0), 9.0 / 3.0, 1e-9);
   // Alone at the 3-wide gap (four files): the next unit there waits its 1/6 s.
-  EXPECT_NEAR(congestion.waitAlong(kInfantry, kSpeed, along(17), 0.0), 1.0 / (kSpeed * 4), 1e-9);
+  EXPECT_NEAR(congestion.waitAlong(kWalker, kSpeed, along(17), 0.0), 1.0 / (kSpeed * 4), 1e-9);
   for (std::uint32_t i = 1; i < 10; ++i)
     congestion.cancel(unit(i));
-  EXPECT_EQ(congestion.waitAlong(kInfantry, kSpeed, path, 0.0), 0.0);
+  EXPECT_EQ(congestion.waitAlong(kWalker, kSpeed, path, 0.0), 0.0);
   // A change of terrain drops every booking.
   congestion.terrainChanged();
   EXPECT_EQ(congestion.queuesAt(0.0), 0u);
-  EXPECT_EQ(congestion.waitAlong(kInfantry, kSpeed, along(17), 0.0), 0.0);
+  EXPECT_EQ(congestion.waitAlong(kWalker, kSpeed, along(17), 0.0), 0.0);
 }
 
 TEST(Congestion, TheSurchargeIsTheWaitAtTheTimeTheSearchGetsThere) {
-  const pathing::AnnotatedGrid grid(wallWithTwoGaps());
+  const pathing::AnnotatedGrid grid(testing::wallWithTwoGaps(48, 24, 22, 16));
   const pathing::ClusterAbstraction graph = pathing::ClusterAbstraction::build(
       grid,
       pathing::AbstractionSpec{.clusterSize = 16, .maxAgentSize = 1, .capabilities = {kGround}});
   Congestion congestion(grid, 16);
   // 60 units reach the gap 20 cells on, at 13.3 s; its queue ends 20 s later.
   for (std::uint32_t i = 0; i < 60; ++i)
-    congestion.book(unit(i), kInfantry, kSpeed, along(6), 0.0);
-  const Congestion::Surcharge cells(congestion, kInfantry, kSpeed, 0.0, false);
-  const Congestion::Surcharge seconds(congestion, kInfantry, kSpeed, 0.0, true);
+    congestion.book(unit(i), kWalker, kSpeed, along(6), 0.0);
+  const Congestion::Surcharge cells(congestion, kWalker, kSpeed, 0.0, false);
+  const Congestion::Surcharge seconds(congestion, kWalker, kSpeed, 0.0, true);
   // Every edge of the graph, reached 20 cells from the start (when the queue is there): those
   // that enter the narrow gap get its wait (in cells at the unit's speed, or in seconds), the
   // rest nothing; reached 6 cells later, 6 cells less. Reached at once, before the crowd,

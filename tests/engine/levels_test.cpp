@@ -15,6 +15,7 @@
 #include "pathing/map_io.h"
 #include "support/one_unit_scenario.h"
 #include "support/run_out.h"
+#include "support/wall_with_gaps.h"
 
 namespace warpath::engine {
 namespace {
@@ -33,25 +34,9 @@ TEST(Levels, TheScenarioKeysParse) {
   EXPECT_EQ(two.value().settings.pathing.levelTwoSize, 3);
 }
 
-// 64x32: a wall across columns 38-41 with a gap 2 cells wide (rows 6-7) and one 3 wide (rows
-// 20-22).
-pathing::GridMap wallWithTwoGaps() {
-  std::string rows;
-  for (int y = 0; y < 32; ++y) {
-    std::string row(64, '.');
-    for (int x = 38; x <= 41; ++x)
-      if (!(y == 6 || y == 7 || (y >= 20 && y <= 22))) row[static_cast<std::size_t>(x)] = '@';
-    rows += row + "\n";
-  }
-  std::istringstream in("type octile\nheight 32\nwidth 64\nmap\n" + rows);
-  auto map = pathing::parseMap(in, "inline");
-  EXPECT_TRUE(map.ok());
-  return map.value();
-}
-
 // A surcharge says a level-2 cluster is free only when its every edge is charged nothing.
 TEST(Levels, CongestionFreesTheLevelTwoClustersWithoutAQueue) {
-  const pathing::AnnotatedGrid grid(wallWithTwoGaps());
+  const pathing::AnnotatedGrid grid(testing::wallWithTwoGaps(64, 32, 38, 20));
   const pathing::Capability ground = pathing::Capability::of({Terrain::Ground});
   const pathing::Agent infantry{1, ground};
   const pathing::ClusterAbstraction graph =

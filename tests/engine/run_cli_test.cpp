@@ -18,8 +18,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using Result = warpath::testing::RtsResult;
 using warpath::testing::rts;
+using warpath::testing::RtsResult;
 
 class RunCli : public ::testing::Test {
  protected:
@@ -49,7 +49,7 @@ TEST_F(RunCli, PassingScenarioExitsZeroAndWritesTheReport) {
   const std::string file =
       write("ok.yaml", "  - arrival_rate: {team: blue, type: infantry, at_least: 1, by: 20}\n");
   const std::string report = (dir_ / "report.json").string();
-  const Result r = rts("run " + file + " --report " + report);
+  const RtsResult r = rts("run " + file + " --report " + report);
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("PASS"), std::string::npos) << r.out;
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(report));
@@ -66,7 +66,7 @@ TEST_F(RunCli, PassingScenarioExitsZeroAndWritesTheReport) {
 TEST_F(RunCli, FailingExpectationExitsOne) {
   const std::string file =
       write("slow.yaml", "  - arrival_rate: {team: blue, type: infantry, at_least: 1, by: 1}\n");
-  const Result r = rts("run " + file);
+  const RtsResult r = rts("run " + file);
   EXPECT_EQ(r.status, 1) << r.out;
   EXPECT_NE(r.out.find("FAIL (0)"), std::string::npos) << r.out;
 }
@@ -74,7 +74,7 @@ TEST_F(RunCli, FailingExpectationExitsOne) {
 TEST_F(RunCli, UntilStopsEarlyWithAPartialReport) {
   const std::string file = write("ok.yaml", "  - max_stuck: 0\n");
   const std::string report = (dir_ / "report.json").string();
-  const Result r = rts("run " + file + " --until 15 --quiet --report " + report);
+  const RtsResult r = rts("run " + file + " --until 15 --quiet --report " + report);
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_EQ(r.out, "");
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(report));
@@ -89,7 +89,7 @@ TEST_F(RunCli, ReportFolderIsCreatedOrRefusedBeforeTheRun) {
   EXPECT_TRUE(fs::exists(nested));
   // A folder that cannot be made (a file stands in the way) is bad input, found up front.
   std::ofstream(dir_ / "plain") << "x";
-  const Result r = rts("run " + file + " --report " + (dir_ / "plain" / "r.json").string());
+  const RtsResult r = rts("run " + file + " --report " + (dir_ / "plain" / "r.json").string());
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_EQ(r.out.find("tick"), std::string::npos) << "the run started: " << r.out;
 }
@@ -97,7 +97,7 @@ TEST_F(RunCli, ReportFolderIsCreatedOrRefusedBeforeTheRun) {
 TEST_F(RunCli, BadInputExitsTwoNamingFileLineColumn) {
   const std::string file =
       write("bad.yaml", "  - arrival_rate: {team: green, type: infantry, at_least: 1, by: 1}\n");
-  const Result r = rts("run " + file);
+  const RtsResult r = rts("run " + file);
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(file + ":8:"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("unknown team 'green'"), std::string::npos) << r.out;
@@ -107,7 +107,7 @@ TEST_F(RunCli, BadInputExitsTwoNamingFileLineColumn) {
 TEST_F(RunCli, TestCommandCountsPassesAndFailures) {
   write("a.yaml", "  - arrival_rate: {team: blue, type: infantry, at_least: 1, by: 20}\n");
   write("b.yaml", "  - arrival_rate: {team: blue, type: infantry, at_least: 1, by: 1}\n");
-  const Result r = rts("test " + dir_.string());
+  const RtsResult r = rts("test " + dir_.string());
   EXPECT_EQ(r.status, 1) << r.out;
   EXPECT_NE(r.out.find("PASS " + (dir_ / "a.yaml").string()), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("FAIL " + (dir_ / "b.yaml").string()), std::string::npos) << r.out;
@@ -139,7 +139,7 @@ TEST_F(RunCli, ABattleEndsAtItsVictoryAndReportsTheOutcome) {
                          "  - winner: blue\n"
                          "  - losses: {team: blue, at_most: 0}\n";
   const std::string report = (dir_ / "report.json").string();
-  const Result r = rts("run " + file.string() + " --report " + report);
+  const RtsResult r = rts("run " + file.string() + " --report " + report);
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("winner: blue (blue eliminates the others) at tick 91 (3.0 s)\n"),
             std::string::npos)
@@ -175,7 +175,7 @@ TEST_F(RunCli, ABattleEndsAtItsVictoryAndReportsTheOutcome) {
   EXPECT_TRUE(j["timing"].contains("combat_ms"));
 
   // Stopped before the end: a partial report, no winner yet.
-  const Result early = rts("run " + file.string() + " --until 40 --quiet --report " + report);
+  const RtsResult early = rts("run " + file.string() + " --until 40 --quiet --report " + report);
   EXPECT_EQ(early.status, 1) << early.out;  // winner == blue does not hold yet
   const nlohmann::json p = nlohmann::json::parse(std::ifstream(report));
   EXPECT_EQ(p["ticks"], 40);
@@ -187,7 +187,7 @@ TEST_F(RunCli, ABattleEndsAtItsVictoryAndReportsTheOutcome) {
   EXPECT_EQ(p["battle"][0]["shots_fired"], 1);
 
   // rts test names the winner.
-  const Result t = rts("test " + dir_.string());
+  const RtsResult t = rts("test " + dir_.string());
   EXPECT_NE(t.out.find("PASS " + file.string() + " (2 units, 91 ticks, winner blue,"),
             std::string::npos)
       << t.out;
@@ -197,7 +197,7 @@ TEST_F(RunCli, ABattleEndsAtItsVictoryAndReportsTheOutcome) {
 TEST_F(RunCli, ATravelRunHasNoBattleSummary) {
   const std::string file = write("ok.yaml", "  - max_stuck: 0\n");
   const std::string report = (dir_ / "report.json").string();
-  const Result r = rts("run " + file + " --report " + report);
+  const RtsResult r = rts("run " + file + " --report " + report);
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_EQ(r.out.find("winner:"), std::string::npos) << r.out;
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(report));
@@ -246,7 +246,7 @@ TEST_F(RunCli, BadInputIsRefusedQuicklyNamingFileAndProblem) {
   };
   for (const auto& [args, message] : cases) {
     const auto began = std::chrono::steady_clock::now();
-    const Result r = rts(args);
+    const RtsResult r = rts(args);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
     EXPECT_EQ(r.status, 2) << args << "\n" << r.out;

@@ -7,11 +7,12 @@
 
 #include "engine/scenario.h"
 #include "engine/scenario_run.h"
+#include "support/scenario_files.h"
 
 namespace warpath::engine {
 namespace {
 
-const std::string kFile = std::string(WARPATH_SOURCE_DIR) + "/scenarios/test_input.yaml";
+const std::string kTestInputFile = std::string(WARPATH_SOURCE_DIR) + "/scenarios/test_input.yaml";
 
 // A valid scenario on an inline map: a wall with a gap 2 cells wide (rows 2-3) and a pond.
 std::string scenario(const std::string& extra, const std::string& group) {
@@ -35,13 +36,11 @@ const std::string kGroup =
     " goal: {x: 15, y: 0, w: 3, h: 3}}\n";
 
 Error errorOf(const std::string& text) {
-  const Result<Scenario> r = parseScenario(text, kFile);
-  EXPECT_FALSE(r.ok()) << text;
-  return r.ok() ? Error{} : r.error();
+  return testing::scenarioError(text, kTestInputFile);
 }
 
 TEST(Errors, ValidInputLoads) {
-  const Result<Scenario> r = parseScenario(scenario("", kGroup), kFile);
+  const Result<Scenario> r = parseScenario(scenario("", kGroup), kTestInputFile);
   ASSERT_TRUE(r.ok()) << r.error().describe();
   EXPECT_EQ(r.value().groups.size(), 1u);
   EXPECT_EQ(r.value().catalogue.size(), 4u);
@@ -53,7 +52,7 @@ TEST(Errors, UnknownKeyNamesLineAndColumn) {
   EXPECT_EQ(e.line, 13);
   EXPECT_EQ(e.column, 1);
   EXPECT_NE(e.message.find("unknown key 'speeed'"), std::string::npos) << e.message;
-  EXPECT_EQ(e.describe().rfind(kFile + ":13:1: unknown key", 0), 0u) << e.describe();
+  EXPECT_EQ(e.describe().rfind(kTestInputFile + ":13:1: unknown key", 0), 0u) << e.describe();
 }
 
 TEST(Errors, UnknownUnitType) {
@@ -92,14 +91,14 @@ TEST(Errors, MissingMapFile) {
 TEST(Errors, MapThatIsNotAFileSaysWhatItIs) {
   // Not "not found": the path exists but cannot be a map.
   Error e = errorOf("map: /dev/zero\nduration: 1\nteams: [a]\ngroups: []\n");
-  EXPECT_EQ(e.describe(), kFile + ":1:6: map: /dev/zero: not a regular file");
+  EXPECT_EQ(e.describe(), kTestInputFile + ":1:6: map: /dev/zero: not a regular file");
   e = errorOf("map: ../assets\nduration: 1\nteams: [a]\ngroups: []\n");
-  EXPECT_EQ(e.describe(), kFile + ":1:6: map: " + std::string(WARPATH_SOURCE_DIR) +
+  EXPECT_EQ(e.describe(), kTestInputFile + ":1:6: map: " + std::string(WARPATH_SOURCE_DIR) +
                               "/scenarios/../assets: is a directory");
   e = errorOf(
       "map: ../assets/maps/river.map\ncatalogue: /dev/zero\nduration: 1\nteams: [a]\n"
       "groups: []\n");
-  EXPECT_EQ(e.describe(), kFile + ":2:12: catalogue: /dev/zero: not a regular file");
+  EXPECT_EQ(e.describe(), kTestInputFile + ":2:12: catalogue: /dev/zero: not a regular file");
 }
 
 TEST(Errors, ScenarioFileThatIsNotAFile) {
@@ -129,14 +128,14 @@ TEST(Errors, AliasedInlineMapIsBoundedByCells) {
                            "]\ncatalogue: ../assets/units.yaml\nduration: 1\nteams: [a]\n"
                            "groups: []\n";
   EXPECT_EQ(errorOf(text).describe(),
-            kFile +
+            kTestInputFile +
                 ":2:9: the inline map has 8192 rows of 8192 cells, more than the 1048576 "
                 "cells allowed: give a .map file");
   // Rows may still be repeated within the limit.
   const std::string small = "map:\n  rows: [&r '....'" + repeated("*r", 3) +
                             "]\ncatalogue: ../assets/units.yaml\nduration: 1\nteams: [a]\n"
                             "groups: []\n";
-  EXPECT_TRUE(parseScenario(small, kFile).ok());
+  EXPECT_TRUE(parseScenario(small, kTestInputFile).ok());
 }
 
 TEST(Errors, AliasedGroupsAreBoundedByUnitsAndEntries) {
@@ -169,7 +168,7 @@ TEST(Errors, AliasBombIsBoundedByNodes) {
   EXPECT_EQ(e.message,
             "the file expands to more than 250000 YAML nodes (anchors and aliases repeat what they "
             "name)");
-  EXPECT_EQ(e.file, kFile);
+  EXPECT_EQ(e.file, kTestInputFile);
   EXPECT_GT(e.line, 0);
 }
 
@@ -208,7 +207,7 @@ TEST(Errors, BadValuesAndExpectations) {
 
 TEST(Errors, UnitTypeOverridesAreChecked) {
   const Result<Scenario> ok =
-      parseScenario(scenario("unit_types: {tank: {speed: 3.5}}\n", kGroup), kFile);
+      parseScenario(scenario("unit_types: {tank: {speed: 3.5}}\n", kGroup), kTestInputFile);
   ASSERT_TRUE(ok.ok()) << ok.error().describe();
   EXPECT_EQ(ok.value().catalogue[2].name, "tank");
   EXPECT_EQ(ok.value().catalogue[2].maxSpeed(), 3.5);
@@ -228,7 +227,7 @@ TEST(Errors, OrdersNeedWhatTheirKindTakes) {
                                                 "order: retreat}\n"));
   EXPECT_NE(k.message.find("unknown order 'retreat'"), std::string::npos) << k.message;
   const Result<Scenario> hold = parseScenario(
-      scenario("", kGroup + "orders:\n  - {at: 1, group: group1, order: hold}\n"), kFile);
+      scenario("", kGroup + "orders:\n  - {at: 1, group: group1, order: hold}\n"), kTestInputFile);
   ASSERT_TRUE(hold.ok()) << hold.error().describe();
   EXPECT_EQ(hold.value().triggers.at(0).actions.at(0).order, OrderKind::Hold);
 }
@@ -243,7 +242,7 @@ std::string placeOf(const std::string& text, const std::string& needle, std::siz
   const auto line =
       1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n');
   const std::size_t column = at - (lineStart == std::string::npos ? 0 : lineStart + 1) + 1;
-  return kFile + ":" + std::to_string(line) + ":" + std::to_string(column) + ": ";
+  return kTestInputFile + ":" + std::to_string(line) + ":" + std::to_string(column) + ": ";
 }
 
 // `extra` is refused with `message`, reported at the first `needle` in it (the value or key at
@@ -342,7 +341,7 @@ TEST(Limits, SettingsAtTheEdgesOfTheirRangesAreUsable) {
         "level_two_size: 256, budget: 1000000000, cache: 100000000}\nstuck: {seconds: 1000000, "
         "min_progress: 1000000, flag_after: "
         "1000000}\ncombat: {wreck_seconds: 1000000, scan_every: 1000000}\n"}) {
-    const Result<Scenario> r = parseScenario(scenario(extra, kGroup), kFile);
+    const Result<Scenario> r = parseScenario(scenario(extra, kGroup), kTestInputFile);
     ASSERT_TRUE(r.ok()) << r.error().describe();
     EXPECT_EQ(problemWith(r.value().settings), "");
     ScenarioRun run(r.value());

@@ -14,6 +14,7 @@
 
 #include "engine/scenario_run.h"
 #include "pathing/map_io.h"
+#include "support/scenario_files.h"
 
 namespace warpath::engine {
 namespace {
@@ -31,13 +32,6 @@ const Bundled kBundled[] = {
     {"narrow_pass", 0, 0.5}, {"swamp", 0, 0.5},          {"stress_2000", 120, 0.04},
 };
 
-Scenario loadBundled(const std::string& name) {
-  Result<Scenario> r =
-      loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/" + name + ".yaml");
-  EXPECT_TRUE(r.ok()) << r.error().describe();
-  return std::move(r).value();
-}
-
 Report run(const Scenario& s, std::int64_t ticks) {
   ScenarioRun r(s);
   while (!r.done() && (ticks == 0 || r.world().tick() < ticks))
@@ -48,7 +42,7 @@ Report run(const Scenario& s, std::int64_t ticks) {
 class BundledScenario : public ::testing::TestWithParam<Bundled> {};
 
 TEST_P(BundledScenario, RunsTheSameTwice) {
-  const Scenario s = loadBundled(GetParam().name);
+  const Scenario s = testing::bundledScenario(GetParam().name);
   const Report a = run(s, GetParam().determinismTicks);
   const Report b = run(s, GetParam().determinismTicks);
   EXPECT_EQ(a.stateHash, b.stateHash);
@@ -57,7 +51,7 @@ TEST_P(BundledScenario, RunsTheSameTwice) {
 }
 
 TEST_P(BundledScenario, EveryExpectationCanFail) {
-  Scenario s = loadBundled(GetParam().name);
+  Scenario s = testing::bundledScenario(GetParam().name);
   const double k = GetParam().timeFactor;
   // Less time: every time-bound expectation must fail.
   s.duration *= k;
@@ -79,7 +73,7 @@ INSTANTIATE_TEST_SUITE_P(Scenarios, BundledScenario, ::testing::ValuesIn(kBundle
                          [](const auto& p) { return std::string(p.param.name); });
 
 TEST(BundledScenarios, TheRiverMakesTanksUseTheBridge) {
-  const Scenario s = loadBundled("river_crossing");
+  const Scenario s = testing::bundledScenario("river_crossing");
   ScenarioRun r(s);
   const int tank = 2;  // catalogue order: infantry, jeep, tank, amphibious
   while (!r.done()) {
@@ -155,7 +149,7 @@ struct Golden {
 class GoldenHash : public ::testing::TestWithParam<Golden> {};
 
 TEST_P(GoldenHash, OfTheWholeRun) {
-  Scenario s = loadBundled(GetParam().scenario);
+  Scenario s = testing::bundledScenario(GetParam().scenario);
   ASSERT_TRUE(s.settings.pathing.cooperative);
   {
     ScenarioRun r(s);
@@ -188,7 +182,7 @@ INSTANTIATE_TEST_SUITE_P(
 // golden hash of before the complete state hash: the simulation did not change with it, and
 // format-2 replays verify.
 TEST(BundledScenarios, LegacyHashOfTheDemoIsUnchanged) {
-  Scenario s = loadBundled("demo");
+  Scenario s = testing::bundledScenario("demo");
   s.settings.pathing.cooperative = false;  // as format 2 plays it back
   ScenarioRun r(s);
   while (!r.done())

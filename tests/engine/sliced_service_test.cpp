@@ -16,6 +16,8 @@
 #include "pathing/map_generator.h"
 #include "pathing/random.h"
 #include "support/one_unit_scenario.h"
+#include "support/scenario_files.h"
+#include "support/serve_all.h"
 
 namespace warpath::engine {
 namespace {
@@ -60,18 +62,6 @@ std::vector<PathRequest> requests(const pathing::AnnotatedGrid& grid, std::uint6
   return out;
 }
 
-struct Served {
-  std::vector<PathDelivery> deliveries;
-  std::vector<std::uint64_t> spentPerTick;
-};
-
-Served serveAll(PathService& service) {
-  Served s;
-  while (service.queued() > 0)
-    s.spentPerTick.push_back(service.serve(s.deliveries));
-  return s;
-}
-
 TEST(SlicedPathService, TicksStayWithinTheBudgetAndAnswersAreTheUnslicedOnes) {
   const pathing::AnnotatedGrid grid(randomTerrain(3));
   std::vector<pathing::Capability> capabilities;
@@ -92,8 +82,8 @@ TEST(SlicedPathService, TicksStayWithinTheBudgetAndAnswersAreTheUnslicedOnes) {
         whole.request(r);
         sliced.request(r);
       }
-      const Served expected = serveAll(whole);
-      const Served got = serveAll(sliced);
+      const testing::Served expected = testing::serveAll(whole);
+      const testing::Served got = testing::serveAll(sliced);
       ASSERT_EQ(got.deliveries.size(), expected.deliveries.size());
       for (std::size_t i = 0; i < got.deliveries.size(); ++i) {
         const PathDelivery& a = got.deliveries[i];
@@ -145,7 +135,7 @@ TEST(SlicedPathService, CancelAndTerrainChangesAbandonTheSearchUnderWay) {
   ASSERT_GT(service.slicedExpanded(), 0u);
   service.cancel({0, 0});
   EXPECT_EQ(service.slicedExpanded(), 0u);
-  const Served rest = serveAll(service);
+  const testing::Served rest = testing::serveAll(service);
   ASSERT_EQ(rest.deliveries.size(), 1u);
   EXPECT_EQ(rest.deliveries[0].unit, (UnitId{1, 0}));
 
@@ -156,26 +146,19 @@ TEST(SlicedPathService, CancelAndTerrainChangesAbandonTheSearchUnderWay) {
   const pathing::TerrainChange change = grid.setTerrain({0, 0, 4, 4}, Terrain::Blocked);
   service.changeTerrain(change);
   EXPECT_EQ(service.slicedExpanded(), 0u);
-  const Served after = serveAll(service);
+  const testing::Served after = testing::serveAll(service);
   ASSERT_EQ(after.deliveries.size(), 1u);
   PathServiceSettings fresh = settings;
   fresh.sliced = false;
   PathService reference(grid, fresh, {infantry.capability}, 1);
   reference.request({{2, 0}, 1, infantry, far.start, far.goal});
-  const Served expected = serveAll(reference);
+  const testing::Served expected = testing::serveAll(reference);
   ASSERT_EQ(expected.deliveries.size(), 1u);
   EXPECT_EQ(after.deliveries[0].status, expected.deliveries[0].status);
   ASSERT_EQ(after.deliveries[0].path != nullptr, expected.deliveries[0].path != nullptr);
   if (after.deliveries[0].path) {
     EXPECT_EQ(after.deliveries[0].path->digest, expected.deliveries[0].path->digest);
   }
-}
-
-Scenario loadBundled(const std::string& name) {
-  Result<Scenario> r =
-      loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/" + name + ".yaml");
-  EXPECT_TRUE(r.ok()) << r.error().describe();
-  return std::move(r).value();
 }
 
 Report runToEnd(const Scenario& s) {
@@ -191,7 +174,7 @@ Report runToEnd(const Scenario& s) {
 // the run is deterministic. (Unsliced with the small budget, timings shift and one tank of the
 // demo fails to arrive in time, so that run is not the reference.)
 TEST(SlicedPathService, ABundledScenarioReachesTheSameArrivals) {
-  Scenario s = loadBundled("demo");
+  Scenario s = testing::bundledScenario("demo");
   ASSERT_FALSE(s.settings.pathing.sliced);
   const Report bundled = runToEnd(s);
   s.settings.pathing.expansionBudget = 400;
@@ -222,7 +205,7 @@ TEST(SlicedPathService, ABundledScenarioReachesTheSameArrivals) {
 // batch, every unit arrives as the scenario expects, and the run is deterministic.
 TEST(SlicedPathService, WindowSearchesPauseAtTheBudgetAtChokepoints) {
   for (const std::string name : {"chokepoints/door_30v30", "chokepoints/corridor_tanks_4"}) {
-    Scenario s = loadBundled(name);
+    Scenario s = testing::bundledScenario(name);
     ASSERT_TRUE(s.settings.pathing.cooperative && s.settings.pathing.slicedWindows) << name;
     s.settings.pathing.sliced = true;
     s.settings.pathing.expansionBudget = 300;

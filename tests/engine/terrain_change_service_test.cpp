@@ -8,6 +8,7 @@
 
 #include "engine/path_service.h"
 #include "pathing/annotated_grid.h"
+#include "support/serve_all.h"
 
 namespace warpath::engine {
 namespace {
@@ -15,13 +16,6 @@ namespace {
 using pathing::Cell;
 using pathing::PathStatus;
 using pathing::Terrain;
-
-std::vector<PathDelivery> serveAll(PathService& service) {
-  std::vector<PathDelivery> out;
-  while (service.queued() > 0)
-    service.serve(out);
-  return out;
-}
 
 // Two halves joined by a bridge of ground over a river (water) and a ford far south.
 pathing::GridMap river() {
@@ -49,7 +43,7 @@ TEST(PathServiceTerrainChange, GraphsFollowTheChangeAndOnlyTouchedAnswersAreDrop
     PathService service(grid, settings, {tank.capability}, 2);
     service.request({{0, 0}, 1, tank, {4, 9}, {58, 9}});    // across the bridge
     service.request({{1, 0}, 1, tank, {4, 30}, {20, 40}});  // on the west bank only
-    std::vector<PathDelivery> out = serveAll(service);
+    std::vector<PathDelivery> out = testing::serveAll(service).deliveries;
     ASSERT_EQ(out.size(), 2u);
     ASSERT_EQ(out[0].status, PathStatus::Found);
     ASSERT_EQ(out[1].status, PathStatus::Found);
@@ -63,7 +57,7 @@ TEST(PathServiceTerrainChange, GraphsFollowTheChangeAndOnlyTouchedAnswersAreDrop
     EXPECT_EQ(service.metrics().cacheDropped, 1u);  // the crossing, not the west-bank path
     service.request({{0, 0}, 2, tank, {4, 9}, {58, 9}});
     service.request({{1, 0}, 2, tank, {4, 30}, {20, 40}});
-    out = serveAll(service);
+    out = testing::serveAll(service).deliveries;
     ASSERT_EQ(out.size(), 2u);
     EXPECT_EQ(out[0].status, PathStatus::Unreachable);
     EXPECT_EQ(out[1].path, westBank);  // still cached: the change did not touch it
@@ -73,7 +67,7 @@ TEST(PathServiceTerrainChange, GraphsFollowTheChangeAndOnlyTouchedAnswersAreDrop
     service.changeTerrain(ford);
     EXPECT_EQ(service.metrics().cacheDropped, 2u);  // the failed answer may now succeed
     service.request({{0, 0}, 3, tank, {4, 9}, {58, 9}});
-    out = serveAll(service);
+    out = testing::serveAll(service).deliveries;
     ASSERT_EQ(out.size(), 1u);
     ASSERT_EQ(out[0].status, PathStatus::Found);
     EXPECT_EQ(pathing::findIllegalStep(grid, tank, out[0].path->cells), "");
@@ -132,7 +126,7 @@ TEST(PathServiceTerrainChange, ATerrainNewToTheMapSeparatesMergedCostProfiles) {
   EXPECT_EQ(service.distinctCostProfiles(), 2u);
   service.request({{0, 0}, 1, {1, land}, {2, 5}, {45, 5}, 0});
   service.request({{1, 0}, 1, {1, amphibious}, {2, 5}, {45, 5}, 1});
-  const std::vector<PathDelivery> out = serveAll(service);
+  const std::vector<PathDelivery> out = testing::serveAll(service).deliveries;
   ASSERT_EQ(out.size(), 2u);
   EXPECT_EQ(out[0].status, PathStatus::Unreachable);
   EXPECT_EQ(out[1].status, PathStatus::Found);

@@ -17,6 +17,8 @@
 #include "engine/scenario.h"
 #include "engine/scenario_run.h"
 #include "pathing/map_io.h"
+#include "support/event_history.h"
+#include "support/scenario_files.h"
 
 namespace warpath::engine {
 namespace {
@@ -26,21 +28,20 @@ using pathing::Cell;
 using pathing::CellRect;
 using pathing::Terrain;
 
-const std::string kFile = std::string(WARPATH_SOURCE_DIR) + "/scenarios/bridge_demolition.yaml";
+const std::string kDemolitionFile =
+    std::string(WARPATH_SOURCE_DIR) + "/scenarios/bridge_demolition.yaml";
 constexpr CellRect kBridge{28, 6, 8, 5};
 constexpr CellRect kFord{28, 34, 8, 5};
 
 std::string scenarioText() {
-  std::ifstream in(kFile);
+  std::ifstream in(kDemolitionFile);
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
 }
 
-Scenario load(const std::string& text) {
-  Result<Scenario> s = parseScenario(text, kFile);
-  EXPECT_TRUE(s.ok()) << s.error().describe();
-  return s.ok() ? std::move(s).value() : Scenario{};
+Scenario loadDemolition(const std::string& text) {
+  return testing::parsedScenario(text, kDemolitionFile);
 }
 
 // The bundled scenario without its demolition: the bridge stands.
@@ -91,7 +92,7 @@ Visits runAndWatch(const Scenario& s, std::int64_t& changeTick, Report& report) 
 }
 
 TEST(BridgeDemolition, TheConvoyReRoutesByTheFordAndArrives) {
-  const Scenario s = load(scenarioText());
+  const Scenario s = loadDemolition(scenarioText());
   std::int64_t changeTick = -1;
   Report report;
   const Visits v = runAndWatch(s, changeTick, report);
@@ -111,7 +112,7 @@ TEST(BridgeDemolition, TheConvoyReRoutesByTheFordAndArrives) {
 
 // Without the demolition the convoy takes the bridge: the ford test above can fail.
 TEST(BridgeDemolition, WithTheBridgeStandingNoTankFords) {
-  const Scenario s = load(withoutDemolition());
+  const Scenario s = loadDemolition(withoutDemolition());
   EXPECT_FALSE(s.settings.terrainChanges);
   std::int64_t changeTick = -1;
   Report report;
@@ -129,15 +130,15 @@ std::uint64_t finalHash(const Scenario& s) {
 }
 
 TEST(BridgeDemolition, DeterministicAndTheChangeReachesTheHash) {
-  const Scenario s = load(scenarioText());
+  const Scenario s = loadDemolition(scenarioText());
   const std::uint64_t first = finalHash(s);
   EXPECT_EQ(finalHash(s), first);  // the second run starts from the unchanged shared grid
-  EXPECT_NE(finalHash(load(withoutDemolition())), first);
+  EXPECT_NE(finalHash(loadDemolition(withoutDemolition())), first);
 }
 
 // Two worlds that differ only in a change that touches no unit's route hash differently.
 TEST(WorldTerrainChange, AChangeAloneChangesTheHash) {
-  const Scenario s = load(scenarioText());
+  const Scenario s = loadDemolition(scenarioText());
   WorldSettings settings = s.settings;
   World a(s.grid, s.catalogue, settings);
   World b(s.grid, s.catalogue, settings);
@@ -151,7 +152,7 @@ TEST(WorldTerrainChange, AChangeAloneChangesTheHash) {
 }
 
 TEST(WorldTerrainChange, NeedsAWorldThatMayChangeItsTerrain) {
-  const Scenario s = load(withoutDemolition());
+  const Scenario s = loadDemolition(withoutDemolition());
   WorldSettings settings = s.settings;
   World world(s.grid, s.catalogue, settings);
   EXPECT_THROW(world.setTerrain({1, 1, 1, 1}, Terrain::Water), std::logic_error);
@@ -169,7 +170,7 @@ class TerrainReplay : public ::testing::Test {
 
 TEST_F(TerrainReplay, RecordsTheChangeAndVerifies) {
   ReplaySource source;
-  Result<Scenario> s = loadRecordedScenario(kFile, source);
+  Result<Scenario> s = loadRecordedScenario(kDemolitionFile, source);
   ASSERT_TRUE(s.ok()) << s.error().describe();
   source.seed = s.value().settings.seed;
   source.hashEvery = 10;
@@ -265,11 +266,6 @@ units::UnitType kind(const std::string& name, int size) {
   return t;
 }
 
-int countEvents(const World& world, EventKind kind) {
-  return static_cast<int>(std::count_if(world.events().begin(), world.events().end(),
-                                        [&](const Event& e) { return e.kind == kind; }));
-}
-
 // The rule: a unit whose footprint can no longer stand where it is moves to the nearest anchor
 // it can stand on, at once, at the start of the step the change applies in.
 TEST(WorldTerrainChange, AUnitOnTerrainThatBecameImpassableIsPushedToTheNearestStandableCell) {
@@ -280,7 +276,7 @@ TEST(WorldTerrainChange, AUnitOnTerrainThatBecameImpassableIsPushedToTheNearestS
   const UnitId truck = world.spawn(0, 0, 0, {5, 4});
   world.setTerrain({4, 2, 4, 6}, Terrain::Blocked);  // x 4-7, rows 2-7: under the truck
   world.step();
-  EXPECT_EQ(countEvents(world, EventKind::Pushed), 1);
+  EXPECT_EQ(testing::countEvents(world, EventKind::Pushed), 1);
   const Unit& u = *world.find(truck);
   const Cell anchor = units::centreToAnchor(u.position, 2);
   EXPECT_TRUE(world.grid().canStand({2, pathing::parseCapability("ground").value()}, anchor));
@@ -299,8 +295,8 @@ TEST(WorldTerrainChange, AUnitWithNowhereToStandIsKilled) {
   world.setTerrain({0, 0, 8, 8}, Terrain::Water);
   world.step();
   EXPECT_FALSE(world.find(truck)->alive());
-  EXPECT_EQ(countEvents(world, EventKind::Killed), 1);
-  EXPECT_EQ(countEvents(world, EventKind::Pushed), 0);
+  EXPECT_EQ(testing::countEvents(world, EventKind::Killed), 1);
+  EXPECT_EQ(testing::countEvents(world, EventKind::Pushed), 0);
 }
 
 TEST(WorldTerrainChange, AMovingUnitWhosePathCrossesTheChangeRepaths) {

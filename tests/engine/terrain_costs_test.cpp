@@ -9,15 +9,10 @@
 #include "engine/scenario_run.h"
 #include "pathing/planner.h"
 #include "support/run_out.h"
+#include "support/scenario_files.h"
 
 namespace warpath::engine {
 namespace {
-
-Scenario load(const std::string& name) {
-  Result<Scenario> r = loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/" + name);
-  EXPECT_TRUE(r.ok()) << r.error().describe();
-  return std::move(r).value();
-}
 
 bool passes(const Scenario& s, std::uint64_t seed) {
   return testing::runToEnd(s, seed).passed();
@@ -26,7 +21,7 @@ bool passes(const Scenario& s, std::uint64_t seed) {
 // Infantry go round a swamp when that is faster and meet the time bounds at every seed;
 // planning in cells they wade across, and miss them.
 TEST(TerrainCosts, InfantryGoRoundASwampWhenThatIsFaster) {
-  Scenario s = load("swamp_detour.yaml");
+  Scenario s = testing::bundledScenario("swamp_detour");
   ASSERT_TRUE(s.settings.pathing.terrainCosts);
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     s.settings.pathing.terrainCosts = true;
@@ -38,14 +33,14 @@ TEST(TerrainCosts, InfantryGoRoundASwampWhenThatIsFaster) {
 
 // …and wade across one where the way round is longer.
 TEST(TerrainCosts, InfantryWadeWhereTheWayRoundIsLonger) {
-  const Scenario s = load("swamp_wade.yaml");
+  const Scenario s = testing::bundledScenario("swamp_wade");
   for (std::uint64_t seed = 1; seed <= 3; ++seed)
     EXPECT_TRUE(passes(s, seed)) << "seed " << seed;
 }
 
 // Every planner plans under the costs: the hierarchical ones on a weighted graph per profile.
 TEST(TerrainCosts, EveryPlannerGoesRoundTheSwamp) {
-  Scenario s = load("swamp_detour.yaml");
+  Scenario s = testing::bundledScenario("swamp_detour");
   for (pathing::Algorithm algorithm :
        {pathing::Algorithm::Hybrid, pathing::Algorithm::HaaHigh, pathing::Algorithm::HaaLow}) {
     s.settings.pathing.algorithm = algorithm;

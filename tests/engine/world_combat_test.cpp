@@ -11,6 +11,7 @@
 
 #include "engine/world.h"
 #include "pathing/map_io.h"
+#include "support/event_history.h"
 #include "units/combat.h"
 
 namespace warpath::engine {
@@ -65,11 +66,6 @@ void stepUntil(World& world, std::int64_t tick) {
     world.step();
 }
 
-int countEvents(const World& world, EventKind kind) {
-  return static_cast<int>(std::count_if(world.events().begin(), world.events().end(),
-                                        [&](const Event& e) { return e.kind == kind; }));
-}
-
 // Two riflemen 3 cells apart: both weapons are ready at tick 30 (one cooldown after spawning)
 // and fire every 30 ticks; 10 damage a shot against 100 hp is 10 shots, so the tenth volley, in
 // the step that starts at tick 300, kills both: instant shots fired in one tick all land.
@@ -96,7 +92,7 @@ TEST(WorldCombat, EqualRiflemenKillEachOtherOnTheTenthVolley) {
   }
   EXPECT_EQ(world.find(a)->killedBy, b);
   EXPECT_EQ(world.find(b)->killedBy, a);
-  EXPECT_EQ(countEvents(world, EventKind::Killed), 2);
+  EXPECT_EQ(testing::countEvents(world, EventKind::Killed), 2);
   EXPECT_EQ(world.aliveCount(0), 0);
   EXPECT_EQ(world.aliveCount(1), 0);
   EXPECT_EQ(world.physics().stats().bodies, 0);  // no wrecks: bodies removed at once
@@ -244,7 +240,7 @@ TEST(WorldCombat, WrecksStayForTheirTimeThenGo) {
   world.step();  // the step that brings the clock to wreckUntilTick removes the body
   EXPECT_EQ(world.physics().stats().bodies, 1);
   EXPECT_EQ(world.find(jeep)->wreckUntilTick, -1);
-  EXPECT_EQ(countEvents(world, EventKind::WreckCleared), 1);
+  EXPECT_EQ(testing::countEvents(world, EventKind::WreckCleared), 1);
   EXPECT_EQ(world.pathService().metrics().requests, requests);
   EXPECT_EQ(world.find(jeep)->state, UnitState::Dead);
 }

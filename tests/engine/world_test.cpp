@@ -16,6 +16,7 @@
 #include "pathing/map_io.h"
 #include "support/event_history.h"
 #include "support/expect_rejected.h"
+#include "support/scenario_files.h"
 
 namespace warpath::engine {
 namespace {
@@ -23,12 +24,8 @@ namespace {
 using pathing::Cell;
 using pathing::Terrain;
 
-const std::string kDir = std::string(WARPATH_SOURCE_DIR) + "/scenarios/";
-
 Scenario load(const std::string& text) {
-  Result<Scenario> r = parseScenario(text, kDir + "test_input.yaml");
-  EXPECT_TRUE(r.ok()) << r.error().describe();
-  return std::move(r).value();
+  return testing::parsedScenario(text, testing::kScenariosDir + "test_input.yaml");
 }
 
 // Largest depth by which a unit's body overlaps a cell it may not enter (or the outside).
@@ -506,7 +503,7 @@ TEST(World, UnitsMeetingHeadOnInACorridorPushPast) {
 TEST(World, NoUnitOfABundledScenarioEverOverlapsForbiddenTerrain) {
   for (const char* name : {"demo", "river_crossing", "forest", "narrow_pass", "swamp"}) {
     SCOPED_TRACE(name);
-    Result<Scenario> s = loadScenario(kDir + name + ".yaml");
+    Result<Scenario> s = loadScenario(testing::kScenariosDir + name + ".yaml");
     ASSERT_TRUE(s.ok()) << s.error().describe();
     ScenarioRun run(s.value());
     runChecked(run);

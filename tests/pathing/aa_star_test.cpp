@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "pathing/inline_maps.h"
 #include "pathing/map_generator.h"
 #include "pathing/map_io.h"
 #include "pathing/random.h"
@@ -11,18 +12,6 @@
 
 namespace warpath::pathing {
 namespace {
-
-const Capability kGround = Capability::of({Terrain::Ground});
-const Capability kInfantry = Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Trees});
-const Capability kAmphibious = Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Water});
-const Capability kWater = Capability::of({Terrain::Water});
-
-GridMap mapFromRows(const std::string& text) {
-  std::istringstream in(text);
-  auto map = parseMap(in, "inline");
-  EXPECT_TRUE(map) << map.error().describe();
-  return map.value();
-}
 
 // Every reachability verdict and optimal cost equals brute-force Dijkstra's, and every path is
 // legal for the agent and costs what the search says.

@@ -11,21 +11,13 @@
 #include "cooperative_request.h"
 #include "pathing/aa_star.h"
 #include "pathing/cooperative_search.h"
+#include "pathing/inline_maps.h"
 #include "pathing/map_io.h"
 #include "pathing/moves.h"
 #include "random_grid.h"
 
 namespace warpath::pathing {
 namespace {
-
-const Capability kGround = Capability::of({Terrain::Ground});
-
-GridMap mapFromRows(const std::string& text) {
-  std::istringstream in(text);
-  auto map = parseMap(in, "inline");
-  EXPECT_TRUE(map) << map.error().describe();
-  return map.value();
-}
 
 TEST(ReservationTable, FootprintsOverHalfOpenIntervals) {
   ReservationTable table(10, 10);

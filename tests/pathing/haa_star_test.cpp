@@ -15,6 +15,7 @@
 
 #include "pathing/aa_star.h"
 #include "pathing/cluster_abstraction.h"
+#include "pathing/inline_maps.h"
 #include "pathing/map_generator.h"
 #include "pathing/map_io.h"
 #include "pathing/moves.h"
@@ -30,9 +31,6 @@ using testing::completenessCapabilities;
 using testing::CompletenessCase;
 using testing::CompletenessTally;
 using testing::drawCompletenessCases;
-
-const Capability kGround = Capability::of({Terrain::Ground});
-const Capability kInfantry = Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Trees});
 
 // Map sizes divisible by none of the cluster sizes used, so edge clusters are cut short; the
 // patch size and obstacle share range from open fields to dense chokepoints.
@@ -66,14 +64,8 @@ GridMap randomMap(const RandomMapCase& c) {
   return generateRandomMap(spec);
 }
 
-GridMap mapFromRows(const std::string& text) {
-  std::istringstream in(text);
-  auto map = parseMap(in, "inline");
-  EXPECT_TRUE(map) << map.error().describe();
-  return map.value();
-}
-
-AbstractionSpec catalogueSpec(int clusterSize, AbstractionQuality quality, bool cachePaths = true) {
+AbstractionSpec completenessSpec(int clusterSize, AbstractionQuality quality,
+                                 bool cachePaths = true) {
   return AbstractionSpec{.clusterSize = clusterSize,
                          .maxAgentSize = 3,
                          .capabilities = completenessCapabilities(),
@@ -101,7 +93,7 @@ TEST(HaaStarTest, CompleteLegalAndNeverBelowTheOptimumOnRandomMaps) {
         // Uncached intra-edges are refined by search instead: check that route once per map.
         for (bool cachePaths : {true, false}) {
           if (!cachePaths && clusterSize != 10) continue;
-          const AbstractionSpec spec = catalogueSpec(clusterSize, quality, cachePaths);
+          const AbstractionSpec spec = completenessSpec(clusterSize, quality, cachePaths);
           ASSERT_EQ(problemWith(spec), "");
           const ClusterAbstraction abstraction = ClusterAbstraction::build(grid, spec);
           HierarchicalAStar smoothed(abstraction, HaaOptions{.smooth = true});
@@ -130,7 +122,7 @@ TEST(HaaStarTest, JumpPointGridSearchesKeepItComplete) {
         drawCompletenessCases(grid, testing::completenessAgents(4), m.seed + 5, 4, 10, 1);
     for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
       for (bool cachePaths : {true, false}) {
-        const AbstractionSpec spec = catalogueSpec(10, quality, cachePaths);
+        const AbstractionSpec spec = completenessSpec(10, quality, cachePaths);
         const ClusterAbstraction abstraction = ClusterAbstraction::build(grid, spec);
         HierarchicalAStar haa(abstraction, HaaOptions{.gridSearch = GridSearch::JumpPoints});
         checkCompleteness(grid, cases, haa, label(m, spec, "grid searches by JPS"), tally);
@@ -164,7 +156,7 @@ TEST(HaaStarTest, InsertionTablesKeepItCompleteAndCostWhatTheSearchCosts) {
         drawCompletenessCases(grid, testing::completenessAgents(), m.seed + 9, 6, 12, 2);
     for (int clusterSize : {8, 16}) {
       for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
-        const AbstractionSpec spec = catalogueSpec(clusterSize, quality, clusterSize == 16);
+        const AbstractionSpec spec = completenessSpec(clusterSize, quality, clusterSize == 16);
         const ClusterAbstraction abstraction = ClusterAbstraction::build(grid, spec);
         HierarchicalAStar tabled(abstraction, HaaOptions{.insertion = InsertionMode::Tables});
         HierarchicalAStar rawTabled(
@@ -237,7 +229,7 @@ void forHybridCases(int first, std::uint64_t seedOffset, std::initializer_list<s
     const AnnotatedGrid grid(randomMap(m));
     const std::vector<CompletenessCase> cases =
         drawCompletenessCases(grid, testing::completenessAgents(), m.seed + seedOffset, 3, 6, 1);
-    const AbstractionSpec spec = catalogueSpec(10, AbstractionQuality::High);
+    const AbstractionSpec spec = completenessSpec(10, AbstractionQuality::High);
     const ClusterAbstraction abstraction = ClusterAbstraction::build(grid, spec);
     for (const std::uint64_t tau : taus) {
       HybridPlanner hybrid(abstraction, HybridOptions{.tau = tau, .attempt = attempt});
@@ -354,7 +346,7 @@ TEST(HaaStarTest, InvalidEndsGetTheirStatus) {
   const AnnotatedGrid grid(map);
   for (AbstractionQuality quality : {AbstractionQuality::High, AbstractionQuality::Low}) {
     const ClusterAbstraction abstraction =
-        ClusterAbstraction::build(grid, catalogueSpec(8, quality));
+        ClusterAbstraction::build(grid, completenessSpec(8, quality));
     HierarchicalAStar haa(abstraction);
     HybridPlanner hybrid(abstraction);
     std::vector<Cell> path;
@@ -484,7 +476,7 @@ TEST(HaaStarTest, ASurchargeOnEdgesSendsTheRouteAnotherWay) {
 
 TEST(HaaStarTest, ResultsAndGraphsAreDeterministic) {
   const AnnotatedGrid grid(randomMap(randomMapCase(2)));
-  const AbstractionSpec spec = catalogueSpec(10, AbstractionQuality::Low);
+  const AbstractionSpec spec = completenessSpec(10, AbstractionQuality::Low);
   const ClusterAbstraction a = ClusterAbstraction::build(grid, spec);
   const ClusterAbstraction b = ClusterAbstraction::build(grid, spec);
   EXPECT_EQ(a.stats().nodes, b.stats().nodes);
@@ -521,11 +513,11 @@ TEST(HaaStarTest, ResultsAndGraphsAreDeterministic) {
 TEST(HaaStarTest, GraphStatistics) {
   const AnnotatedGrid grid(randomMap(randomMapCase(3)));
   const ClusterAbstraction hq =
-      ClusterAbstraction::build(grid, catalogueSpec(10, AbstractionQuality::High));
+      ClusterAbstraction::build(grid, completenessSpec(10, AbstractionQuality::High));
   const ClusterAbstraction lq =
-      ClusterAbstraction::build(grid, catalogueSpec(10, AbstractionQuality::Low));
+      ClusterAbstraction::build(grid, completenessSpec(10, AbstractionQuality::Low));
   const ClusterAbstraction bare =
-      ClusterAbstraction::build(grid, catalogueSpec(10, AbstractionQuality::High, false));
+      ClusterAbstraction::build(grid, completenessSpec(10, AbstractionQuality::High, false));
   // 87x93 in clusters of 10: the last column and row are short.
   ASSERT_EQ(grid.map().width(), 87);
   ASSERT_EQ(grid.map().height(), 93);
@@ -579,7 +571,7 @@ TEST(HaaStarTest, EveryAbstractEdgeRefinesForEveryAgentThatMayUseIt) {
         for (bool cachePaths : {true, false}) {
           if (!cachePaths && clusterSize != 10) continue;
           const ClusterAbstraction graph =
-              ClusterAbstraction::build(grid, catalogueSpec(clusterSize, quality, cachePaths));
+              ClusterAbstraction::build(grid, completenessSpec(clusterSize, quality, cachePaths));
           std::vector<Cell> cells;
           for (std::uint32_t n = 0; n < graph.nodeCount(); ++n) {
             const Cell from = graph.nodeCell(n);
@@ -618,24 +610,24 @@ using warpath::testing::expectRejected;
 
 TEST(HaaStarTest, SpecsAreValidated) {
   const AnnotatedGrid grid(GridMap(20, 20));
-  EXPECT_EQ(problemWith(catalogueSpec(8, AbstractionQuality::High)), "");
+  EXPECT_EQ(problemWith(completenessSpec(8, AbstractionQuality::High)), "");
   const auto check = [&](const AbstractionSpec& spec, const std::string& message) {
     EXPECT_EQ(problemWith(spec), message);
     expectRejected([&] { ClusterAbstraction::build(grid, spec); }, message);
   };
-  AbstractionSpec spec = catalogueSpec(8, AbstractionQuality::High);
+  AbstractionSpec spec = completenessSpec(8, AbstractionQuality::High);
   spec.clusterSize = 1;
   check(spec, "clusterSize must be 2..4096 (got 1)");
   spec.clusterSize = kMaxClusterSize + 1;
   check(spec, "clusterSize must be 2..4096 (got 4097)");
   spec.clusterSize = kMaxClusterSize;  // the largest allowed: one cluster holds the map
   EXPECT_EQ(ClusterAbstraction::build(grid, spec).clusterCount(), 1);
-  spec = catalogueSpec(8, AbstractionQuality::High);
+  spec = completenessSpec(8, AbstractionQuality::High);
   spec.maxAgentSize = 0;
   check(spec, "maxAgentSize must be 1..255 (got 0)");
   spec.maxAgentSize = 256;
   check(spec, "maxAgentSize must be 1..255 (got 256)");
-  spec = catalogueSpec(8, AbstractionQuality::High);
+  spec = completenessSpec(8, AbstractionQuality::High);
   spec.capabilities.clear();
   check(spec, "capabilities must not be empty (got none)");
   spec.capabilities = {kGround, Capability{}};
@@ -646,9 +638,9 @@ TEST(HaaStarTest, HybridOptionsAndPlannerArgumentsAreValidated) {
   const AnnotatedGrid grid(GridMap(20, 20));
   const AnnotatedGrid other(GridMap(20, 20));
   const ClusterAbstraction hq =
-      ClusterAbstraction::build(grid, catalogueSpec(8, AbstractionQuality::High));
+      ClusterAbstraction::build(grid, completenessSpec(8, AbstractionQuality::High));
   const ClusterAbstraction lq =
-      ClusterAbstraction::build(grid, catalogueSpec(8, AbstractionQuality::Low));
+      ClusterAbstraction::build(grid, completenessSpec(8, AbstractionQuality::Low));
   EXPECT_EQ(problemWith(HybridOptions{}), "");
   EXPECT_EQ(problemWith(HybridOptions{.tau = 1}), "");
   EXPECT_EQ(problemWith(HybridOptions{.tau = 0}), "tau must be >= 1 (got 0)");
@@ -677,9 +669,9 @@ TEST(HaaStarTest, HybridOptionsAndPlannerArgumentsAreValidated) {
 TEST(HaaStarTest, EveryEntryPointAnswersBadQueryArgumentsWithAStatus) {
   const AnnotatedGrid grid(GridMap(30, 30));
   const ClusterAbstraction hq =
-      ClusterAbstraction::build(grid, catalogueSpec(8, AbstractionQuality::High));
+      ClusterAbstraction::build(grid, completenessSpec(8, AbstractionQuality::High));
   const ClusterAbstraction lq =
-      ClusterAbstraction::build(grid, catalogueSpec(8, AbstractionQuality::Low));
+      ClusterAbstraction::build(grid, completenessSpec(8, AbstractionQuality::Low));
   AnnotatedAStar aa(grid);
   HierarchicalAStar haa(hq);
   HybridPlanner hybrid(hq);
@@ -730,7 +722,7 @@ TEST(HaaStarTest, PlannerFacadeRunsEveryAlgorithm) {
        {Algorithm::AStar, Algorithm::HaaHigh, Algorithm::HaaLow, Algorithm::Hybrid}) {
     std::optional<ClusterAbstraction> abstraction;
     if (const auto quality = abstractionQualityFor(algorithm)) {
-      abstraction.emplace(ClusterAbstraction::build(grid, catalogueSpec(8, *quality)));
+      abstraction.emplace(ClusterAbstraction::build(grid, completenessSpec(8, *quality)));
     }
     Planner planner(grid, algorithm, abstraction ? &*abstraction : nullptr);
     EXPECT_EQ(planner.algorithm(), algorithm);

@@ -8,16 +8,13 @@
 #include <utility>
 
 #include "pathing/aa_star.h"
+#include "pathing/inline_maps.h"
 #include "pathing/planner.h"
 #include "pathing/random.h"
 #include "random_grid.h"
 
 namespace warpath::pathing {
 namespace {
-
-const Capability kGround = Capability::of({Terrain::Ground});
-const Capability kInfantry = Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Trees});
-const Capability kAmphibious = Capability::of({Terrain::Ground, Terrain::Swamp, Terrain::Water});
 
 // One query of JPS against AA* (optimal): the same status, the same cost, and a legal path
 // from start to goal that costs what JPS says. Returns whether a path was found.

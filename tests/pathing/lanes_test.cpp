@@ -8,12 +8,11 @@
 #include <vector>
 
 #include "pathing/aa_star.h"
+#include "pathing/inline_maps.h"
 #include "random_grid.h"
 
 namespace warpath::pathing {
 namespace {
-
-const Capability kGround = Capability::of({Terrain::Ground});
 
 // 40×20 ground; a river of water over columns 12..27, crossed by a bridge over rows
 // bridgeTop .. bridgeTop + bridgeWidth - 1.

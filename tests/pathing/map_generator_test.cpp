@@ -7,6 +7,7 @@
 #include <string>
 
 #include "pathing/aa_star.h"
+#include "pathing/inline_maps.h"
 #include "pathing/map_io.h"
 #include "support/brute_force.h"
 #include "support/expect_rejected.h"
@@ -14,7 +15,6 @@
 namespace warpath::pathing {
 namespace {
 
-const Capability kGround = Capability::of({Terrain::Ground});
 const Capability kGroundTrees = Capability::of({Terrain::Ground, Terrain::Trees});
 
 GridMap sampleMap() {

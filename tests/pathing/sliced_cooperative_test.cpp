@@ -15,13 +15,12 @@
 #include "cooperative_request.h"
 #include "pathing/aa_star.h"
 #include "pathing/cooperative_search.h"
+#include "pathing/inline_maps.h"
 #include "pathing/map_io.h"
 #include "random_grid.h"
 
 namespace warpath::pathing {
 namespace {
-
-const Capability kGround = Capability::of({Terrain::Ground});
 
 // Moves from rest take 3 ticks longer.
 CooperativeRequest requestFrom(Agent agent, Cell start, Cell goal, Tick window) {
