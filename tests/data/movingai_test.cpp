@@ -79,16 +79,25 @@ TEST_P(MovingAiMap, EveryScenQueryMatchesItsOptimalLength) {
   ASSERT_TRUE(fits) << fits.error().describe();
 
   const AnnotatedGrid grid(std::move(map).value());
-  // Every optimal planner: AA*, jump point search, and JPS+ (its tables).
+  // Every optimal planner: AA*, jump point search, and JPS+ (its tables). The jump point
+  // searches answer every query; AA* every query of maps with at most kAStarQueries, and an even
+  // sample of that many elsewhere: maze512-4-0's 9,730 queries took AA* about 100 s of the 130 s
+  // of the suite's longest test, for nothing a sample of 2,500 across all its lengths misses.
+  constexpr std::size_t kAStarQueries = 2'500;
+  const std::size_t aStarEvery = (scen.value().size() + kAStarQueries - 1) / kAStarQueries;
   Planner aa(grid, Algorithm::AStar, nullptr);
   Planner jps(grid, Algorithm::Jps, nullptr);
   Planner jpsPlus(grid, Algorithm::JpsPlus, nullptr);
   std::vector<Cell> path;
   int failures = 0;
-  for (const ScenQuery& q : scen.value()) {
+  std::size_t answers = 0;
+  for (std::size_t i = 0; i < scen.value().size(); ++i) {
+    const ScenQuery& q = scen.value()[i];
     // MovingAI semantics: size 1, capability = the start cell's movement class.
     const Agent agent{1, movingAiClassOf(grid.map().at(q.start))};
     for (Planner* planner : {&aa, &jps, &jpsPlus}) {
+      if (planner == &aa && i % aStarEvery != 0) continue;
+      ++answers;
       const PathResult result = planner->findPath(agent, q.start, q.goal, &path);
       const bool ok = result.found() && std::abs(result.cost - q.optimalLength) <= 0.01 &&
                       findIllegalStep(grid, agent, path).empty();
@@ -99,7 +108,7 @@ TEST_P(MovingAiMap, EveryScenQueryMatchesItsOptimalLength) {
       }
     }
   }
-  EXPECT_EQ(failures, 0) << "of " << 3 * scen.value().size() << " answers";
+  EXPECT_EQ(failures, 0) << "of " << answers << " answers";
   EXPECT_FALSE(scen.value().empty());
 }
 
