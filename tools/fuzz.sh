@@ -2,7 +2,8 @@
 # Builds the libFuzzer harnesses (tests/fuzz, docs/fuzzing.md) with clang in build-fuzz/,
 # prepares their seed corpora from the bundled files and runs each for a while:
 #   tools/fuzz.sh [--seconds N] [--build-only] [TARGET...] [-- LIBFUZZER_FLAGS...]
-# TARGET: fuzz_map fuzz_scen fuzz_scenario fuzz_replay (default: all four, one after another).
+# TARGET: fuzz_map fuzz_scen fuzz_scenario fuzz_replay (default: all four, as many at once as
+# there are cores).
 # Seeds go to out/fuzz/seeds/TARGET (rebuilt every time), inputs the fuzzer finds to
 # out/fuzz/corpus/TARGET (kept between runs), crash/timeout/OOM inputs to
 # out/fuzz/artifacts/TARGET/, the fuzzer's output to out/fuzz/logs/TARGET.log. Exits 1 when a
@@ -89,20 +90,41 @@ seeds() {  # TARGET -> fills $out/seeds/TARGET
   fi
 }
 
-failed=()
+# Each fuzzer runs for $seconds, as many at once as there are cores (seeds are prepared first:
+# make_replay_seed runs the simulation).
+run() {  # TARGET -> the fuzzer's exit status; its output goes to its log
+  local target=$1
+  local flags=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
+               -artifact_prefix="$out/artifacts/$target/")
+  [[ -f tests/fuzz/$target.dict ]] && flags+=(-dict="tests/fuzz/$target.dict")
+  UBSAN_OPTIONS=print_stacktrace=1 \
+    "$bin/$target" "${flags[@]}" "${extra[@]}" "$out/corpus/$target" "$out/seeds/$target" \
+    >"$out/logs/$target.log" 2>&1
+}
 for target in "${targets[@]}"; do
   seeds "$target"
   mkdir -p "$out/corpus/$target" "$out/artifacts/$target" "$out/logs"
-  flags=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
-         -artifact_prefix="$out/artifacts/$target/")
-  [[ -f tests/fuzz/$target.dict ]] && flags+=(-dict="tests/fuzz/$target.dict")
-  log=$out/logs/$target.log
-  echo "fuzz: $target for ${seconds}s (log $log)"
+done
+declare -A pid_of
+running=0
+for target in "${targets[@]}"; do
+  if ((running >= $(nproc))); then
+    wait -n || true
+    running=$((running - 1))
+  fi
+  echo "fuzz: $target for ${seconds}s (log $out/logs/$target.log)"
+  run "$target" &
+  pid_of[$target]=$!
+  running=$((running + 1))
+done
+
+failed=()
+for target in "${targets[@]}"; do
   status=0
-  UBSAN_OPTIONS=print_stacktrace=1 \
-    "$bin/$target" "${flags[@]}" "${extra[@]}" "$out/corpus/$target" "$out/seeds/$target" \
-    >"$log" 2>&1 || status=$?
+  wait "${pid_of[$target]}" || status=$?
+  log=$out/logs/$target.log
   # The last coverage line, then libFuzzer's final stats.
+  echo "fuzz: $target:"
   grep -E '^#[0-9]+' "$log" | tail -n 1 || true
   grep -E '^stat::' "$log" | tr '\n' ' ' && echo
   if ((status != 0)); then
