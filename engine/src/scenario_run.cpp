@@ -67,17 +67,33 @@ RunState initialState(const Scenario& scenario) {
 
 namespace {
 
-DelayStats delayOf(const std::vector<Unit>& units, int team, int type) {
+// Whether `u` is of `team` and `type` (-1: any).
+bool matches(const Unit& u, int team, int type) {
+  return (team < 0 || u.team == team) && (type < 0 || u.type == type);
+}
+
+// Ascending delays (time to arrive / planned time) of the units of (team, type) that were
+// planned a time; those that never arrived count as +inf when `lateCounts`, else not at all.
+std::vector<double> delaysOf(const std::vector<Unit>& units, int team, int type, bool lateCounts) {
   std::vector<double> delays;
   for (const Unit& u : units) {
-    if (u.team != team || u.type != type || u.arrivalTick < 0 || u.plannedTicks <= 0) continue;
-    delays.push_back(static_cast<double>(u.arrivalTick - u.orderTick) /
-                     static_cast<double>(u.plannedTicks));
+    if (!matches(u, team, type) || u.plannedTicks <= 0) continue;
+    if (u.arrivalTick >= 0) {
+      delays.push_back(static_cast<double>(u.arrivalTick - u.orderTick) /
+                       static_cast<double>(u.plannedTicks));
+    } else if (lateCounts) {
+      delays.push_back(std::numeric_limits<double>::infinity());
+    }
   }
+  std::sort(delays.begin(), delays.end());
+  return delays;
+}
+
+DelayStats delayOf(const std::vector<Unit>& units, int team, int type) {
+  std::vector<double> delays = delaysOf(units, team, type, false);
   DelayStats d;
   d.arrived = static_cast<int>(delays.size());
   if (delays.empty()) return d;
-  std::sort(delays.begin(), delays.end());
   d.p50 = percentile(delays, 50);
   d.p90 = percentile(delays, 90);
   d.max = delays.back();
@@ -368,9 +384,6 @@ Report ScenarioRun::report() const {
   const double rate = world_.tickRate();
   const std::vector<Unit>& units = world_.units();
 
-  const auto matches = [](const Unit& u, int team, int type) {
-    return (team < 0 || u.team == team) && (type < 0 || u.type == type);
-  };
   // Ascending times-to-arrive of the matching units; +inf for those not (yet) arrived.
   const auto arrivalTimes = [&](int team, int type) {
     std::vector<double> times;
@@ -462,6 +475,21 @@ Report ScenarioRun::report() const {
         result.pass = result.actual <= e.threshold;
         break;
       }
+      case ExpectationKind::Delay: {
+        const std::vector<double> delays = delaysOf(units, e.team, e.type, true);
+        result.actual = delays.empty() ? std::numeric_limits<double>::infinity()
+                                       : percentile(delays, e.percentile);
+        result.pass = result.actual <= e.threshold;
+        break;
+      }
+      case ExpectationKind::MaxWait:
+        result.actual = r.movement.maxWaitSeconds;
+        result.pass = result.actual <= e.threshold;
+        break;
+      case ExpectationKind::MaxDeadlocks:
+        result.actual = static_cast<double>(r.movement.counters.deadlocksBroken);
+        result.pass = result.actual <= e.threshold;
+        break;
       case ExpectationKind::Winner:
         result.actual = state_.winner;
         result.pass = state_.winner == e.team;

@@ -645,7 +645,8 @@ TEST(BattleParse, OutcomeExpectationErrors) {
               "at_most must be between 0 and", "-1");
   expectError(battle("expectations:\n  - casualties: {team: blue, at_most: 1}\n"),
               "unknown expectation 'casualties' (expected arrival_rate, arrival_time, max_stuck, "
-              "winner, kills, losses, damage_dealt, damage_taken, shots_fired or alive)",
+              "winner, delay, max_wait, max_deadlocks, kills, losses, damage_dealt, damage_taken, "
+              "shots_fired or alive)",
               "casualties");
 }
 

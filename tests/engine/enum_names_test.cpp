@@ -22,9 +22,11 @@ TEST(EngineEnumNames, TablesRoundTrip) {
        EventKind::Arrived, EventKind::Parked, EventKind::Repath, EventKind::StuckFlagged,
        EventKind::Killed, EventKind::WreckCleared, EventKind::Pushed});
   // Stat expectations are keyed by their statistic, not by a name of their own.
-  testing::expectRoundTrip(kExpectationKindNames,
-                           {ExpectationKind::ArrivalRate, ExpectationKind::ArrivalTime,
-                            ExpectationKind::MaxStuck, ExpectationKind::Winner});
+  testing::expectRoundTrip(
+      kExpectationKindNames,
+      {ExpectationKind::ArrivalRate, ExpectationKind::ArrivalTime, ExpectationKind::MaxStuck,
+       ExpectationKind::Winner, ExpectationKind::Delay, ExpectationKind::MaxWait,
+       ExpectationKind::MaxDeadlocks});
   EXPECT_EQ(kExpectationKindNames.name(ExpectationKind::Stat), "?");
   testing::expectRoundTrip(kStatKindNames,
                            {StatKind::Kills, StatKind::Losses, StatKind::DamageDealt,

@@ -25,14 +25,22 @@ enum class ExpectationKind : std::uint8_t {
   ArrivalTime,  // the `percentile` of time-to-arrive (team, type) <= threshold seconds
   Winner,       // the report's winner is `team` (-1: no winner)
   Stat,         // a battle statistic of (team, type) compared with threshold
+  // The movement section's figures (docs/cooperative.md):
+  Delay,         // the `percentile` of delay = time to arrive / planned time (team, type)
+                 // <= threshold
+  MaxWait,       // the longest single wait of any unit <= threshold seconds
+  MaxDeadlocks,  // cycles of units waiting on each other, broken, <= threshold
 };
 // The keys of the expectations that are not statistics (a Stat expectation's key is the name of
 // its statistic, kStatKindNames).
-inline constexpr EnumNames<ExpectationKind, 4> kExpectationKindNames{{{
+inline constexpr EnumNames<ExpectationKind, 7> kExpectationKindNames{{{
     {ExpectationKind::ArrivalRate, "arrival_rate"},
     {ExpectationKind::ArrivalTime, "arrival_time"},
     {ExpectationKind::MaxStuck, "max_stuck"},
     {ExpectationKind::Winner, "winner"},
+    {ExpectationKind::Delay, "delay"},
+    {ExpectationKind::MaxWait, "max_wait"},
+    {ExpectationKind::MaxDeadlocks, "max_deadlocks"},
 }}};
 
 // Battle statistics summed per (team, type) in the report.
@@ -53,7 +61,7 @@ struct Expectation {
   int type = -1;  // index into Scenario::catalogue; -1: every type
   double threshold = 0.0;
   double by = 0.0;          // [Unit: s] ArrivalRate
-  double percentile = 0.0;  // [Limit: 0..100] ArrivalTime
+  double percentile = 0.0;  // [Limit: 0..100] ArrivalTime, Delay
   StatKind stat = StatKind::Kills;
   bool atMost = true;  // Stat: actual <= threshold; else actual >= threshold
   std::string text;    // as printed, e.g. "arrival_rate(blue, tank) >= 0.9 by 120s"

@@ -688,13 +688,20 @@ raw::Expectation expectation(const Reader& r, const YAML::Node& node) {
       who();
       break;
     case ExpectationKind::MaxStuck:
-      e.maxStuck = r.integer(body, "max_stuck");
+      e.count = r.integer(body, "max_stuck");
       break;
     case ExpectationKind::ArrivalTime:
-      r.checkKeys(body, "arrival_time", {"team", "type", "percentile", "at_most"});
-      e.percentile = r.number(r.need(body, "percentile", "arrival_time"), "percentile");
-      e.threshold = r.number(r.need(body, "at_most", "arrival_time"), "at_most");
+    case ExpectationKind::Delay:
+      r.checkKeys(body, e.key.value, {"team", "type", "percentile", "at_most"});
+      e.percentile = r.number(r.need(body, "percentile", e.key.value), "percentile");
+      e.threshold = r.number(r.need(body, "at_most", e.key.value), "at_most");
       who();
+      break;
+    case ExpectationKind::MaxWait:
+      e.threshold = r.number(body, "max_wait");
+      break;
+    case ExpectationKind::MaxDeadlocks:
+      e.count = r.integer(body, "max_deadlocks");
       break;
     case ExpectationKind::Winner:
       e.team = r.text(body, "winner");

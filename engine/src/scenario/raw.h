@@ -211,13 +211,14 @@ struct Expectation {
   Field<std::string> key;  // as written: the kind, or the statistic's name
   ExpectationKind kind = ExpectationKind::ArrivalRate;
   StatKind stat = StatKind::Kills;
-  Maybe<std::string> team;  // ArrivalRate, ArrivalTime, Stat; Winner: the team or `none`
+  Maybe<std::string> team;  // ArrivalRate, ArrivalTime, Delay, Stat; Winner: the team or `none`
   Maybe<std::string> type;
-  Field<double> threshold;   // at_least (ArrivalRate, Stat), at_most (ArrivalTime, Stat)
+  // at_least (ArrivalRate, Stat), at_most (ArrivalTime, Delay, Stat), the value (MaxWait)
+  Field<double> threshold;
   bool atMost = false;       // Stat
   Field<double> by;          // ArrivalRate
-  Field<double> percentile;  // ArrivalTime
-  Field<int> maxStuck;       // MaxStuck
+  Field<double> percentile;  // ArrivalTime, Delay
+  Field<int> count;          // MaxStuck, MaxDeadlocks
 };
 
 }  // namespace warpath::engine::raw

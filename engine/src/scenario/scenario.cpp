@@ -684,7 +684,7 @@ class Builder {
             who("arrival_rate") + " >= " + fmtNumber(e.threshold) + " by " + fmtNumber(e.by) + "s";
         break;
       case ExpectationKind::MaxStuck:
-        e.threshold = c_.range(in.maxStuck, "max_stuck", 0, 1000000);
+        e.threshold = c_.range(in.count, "max_stuck", 0, 1000000);
         e.text = "max_stuck <= " + fmtNumber(e.threshold);
         break;
       case ExpectationKind::ArrivalTime:
@@ -692,6 +692,19 @@ class Builder {
         e.threshold = c_.range(in.threshold, "at_most", 0.0, 1e6);
         e.text = who("arrival_time") + " p" + fmtNumber(e.percentile) +
                  " <= " + fmtNumber(e.threshold) + "s";
+        break;
+      case ExpectationKind::Delay:
+        e.percentile = c_.range(in.percentile, "percentile", 0.0, 100.0);
+        e.threshold = c_.range(in.threshold, "at_most", 0.0, 1e6);
+        e.text = who("delay") + " p" + fmtNumber(e.percentile) + " <= " + fmtNumber(e.threshold);
+        break;
+      case ExpectationKind::MaxWait:
+        e.threshold = c_.range(in.threshold, "max_wait", 0.0, 1e6);
+        e.text = "max_wait <= " + fmtNumber(e.threshold) + "s";
+        break;
+      case ExpectationKind::MaxDeadlocks:
+        e.threshold = c_.range(in.count, "max_deadlocks", 0, 1000000);
+        e.text = "max_deadlocks <= " + fmtNumber(e.threshold);
         break;
       case ExpectationKind::Winner:
         e.team = teamOrNone(*in.team, "winner");
