@@ -233,6 +233,52 @@ TEST_F(TestCommand, MergeNamesMissingAndDuplicatedCases) {
   EXPECT_NE(foreign.out.find("are not shards of one run"), std::string::npos) << foreign.out;
 }
 
+// --min-pass-rate: a sweep passes when each scenario file passes at that share of its cases;
+// a file that does not load fails it whatever the rate.
+TEST_F(TestCommand, AMinimumPassRateJudgesEachScenarioFileBySeeds) {
+  // One rifleman from a random spawn cell: its arrival time (4.7-5.6 s) depends on the seed.
+  write("mixed.yaml", "  - arrival_time: {team: blue, percentile: 100, at_most: 5}\n", 1);
+  write("always.yaml", "  - max_stuck: 0\n");
+  const std::string sweep = "test " + q(scenarios_) + " --seeds 1..10";
+  const Result all = rts(sweep);
+  EXPECT_EQ(all.status, 1) << all.out;
+  // How many of mixed.yaml's ten pass (always.yaml's ten do); the rest is checked against it.
+  int passed = 0;
+  for (std::size_t at = 0; (at = all.out.find("PASS ", at)) != std::string::npos; ++at)
+    passed += all.out.compare(at, 5 + (scenarios_ / "mixed").string().size(),
+                              "PASS " + (scenarios_ / "mixed").string()) == 0
+                  ? 1
+                  : 0;
+  ASSERT_GT(passed, 0) << all.out;
+  ASSERT_LT(passed, 10) << all.out;
+  EXPECT_TRUE(all.out.ends_with(std::to_string(10 + passed) + " passed, " +
+                                std::to_string(10 - passed) + " failed\n"))
+      << all.out;
+
+  const auto tenths = [](int n) { return n == 10 ? std::string("1") : "0." + std::to_string(n); };
+  const std::string enough = tenths(passed);
+  const Result atRate = rts(sweep + " --min-pass-rate " + enough);
+  EXPECT_EQ(atRate.status, 0) << atRate.out;
+  const std::string tooMuch = tenths(passed + 1);
+  const Result aboveRate =
+      rts(sweep + " --min-pass-rate " + tooMuch + " --report-dir " + q(dir_ / "r") + " --jobs 2");
+  EXPECT_EQ(aboveRate.status, 1) << aboveRate.out;
+  EXPECT_NE(aboveRate.out.find((scenarios_ / "mixed.yaml").string() + ": " +
+                               std::to_string(passed) + " of 10 cases passed"),
+            std::string::npos)
+      << aboveRate.out;
+  EXPECT_EQ(aboveRate.out.find("always.yaml: "), std::string::npos) << aboveRate.out;
+  // merge judges the joined cases by the same rule.
+  EXPECT_EQ(rts("test merge " + q(dir_ / "r") + " --min-pass-rate " + enough).status, 0);
+  EXPECT_EQ(rts("test merge " + q(dir_ / "r") + " --min-pass-rate " + tooMuch).status, 1);
+
+  // A file that does not load is an error, never tolerated.
+  std::ofstream(scenarios_ / "broken.yaml") << "map: [\n";
+  const Result broken = rts(sweep + " --min-pass-rate 0");
+  EXPECT_EQ(broken.status, 1) << broken.out;
+  EXPECT_EQ(rts("test " + q(scenarios_ / "mixed.yaml") + " --min-pass-rate 1.5").status, 2);
+}
+
 TEST_F(TestCommand, JUnitHasFailuresErrorsAndTimes) {
   write("pass.yaml", "  - arrival_rate: {team: blue, type: infantry, at_least: 1, by: 20}\n");
   write("slow.yaml", "  - arrival_rate: {team: blue, type: infantry, at_least: 1, by: 1}\n");

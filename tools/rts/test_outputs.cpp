@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <utility>
 
 #include "pathing/file_read.h"
 #include "rts/cli_support.h"
@@ -209,6 +211,28 @@ void printTotals(const std::vector<CaseResult>& results) {
     failed += r.status == CaseStatus::Fail || r.status == CaseStatus::Error ? 1 : 0;
   }
   fmt::print("{} passed, {} failed\n", passed, failed);
+}
+
+bool passesAtRate(const std::vector<CaseResult>& results, double minPassRate) {
+  bool ok = true;
+  std::map<std::string, std::pair<int, int>> byFile;  // file -> (passed, cases)
+  for (const CaseResult& r : results) {
+    // A case that could not run is a bug or a bad file, never a flaky seed.
+    ok = ok && (r.status == CaseStatus::Pass || r.status == CaseStatus::Fail);
+    auto& [passed, cases] = byFile[r.file];
+    passed += r.status == CaseStatus::Pass ? 1 : 0;
+    ++cases;
+  }
+  for (const auto& [file, count] : byFile) {
+    const auto [passed, cases] = count;
+    // (The tolerance keeps 0.95 of 40 at 38, whatever the rounding of 0.95 * 40.)
+    if (passed >= minPassRate * cases - 1e-9) continue;
+    ok = false;
+    if (minPassRate < 1.0)  // (at 1 the FAIL lines say it all)
+      fmt::print(stderr, "rts: {}: {} of {} cases passed ({:.1f} %), below --min-pass-rate {}\n",
+                 file, passed, cases, 100.0 * passed / cases, minPassRate);
+  }
+  return ok;
 }
 
 }  // namespace warpath::tools

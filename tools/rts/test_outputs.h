@@ -45,4 +45,9 @@ Summary readSummary(const std::string& dir);
 // "N passed, N failed": errors count as failures, cases never started as neither.
 void printTotals(const std::vector<CaseResult>& results);
 
+// Whether a run of `results` passes: every case ran to its end (no error, none left unrun),
+// and of each scenario file's cases at least `minPassRate` held every expectation (1: all of
+// them; --min-pass-rate). Below 1, prints each file under the rate, with its count, to stderr.
+bool passesAtRate(const std::vector<CaseResult>& results, double minPassRate);
+
 }  // namespace warpath::tools
