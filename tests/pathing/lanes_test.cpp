@@ -167,6 +167,15 @@ TEST(Lanes, ALaneGoesOnThroughAJunction) {
   EXPECT_LT(*std::min_element(junctionBefore.begin(), junctionBefore.end()), row);
 }
 
+// `lane` keeps row `row` over anchor columns x0..x1 and is one row back (north) at the column
+// just outside each end, where it starts to taper.
+void expectRowHeldOver(const std::vector<Cell>& lane, int row, int x0, int x1) {
+  for (const int y : rowsOver(lane, x0, x1))
+    EXPECT_EQ(y, row) << "columns " << x0 << ".." << x1;
+  EXPECT_EQ(rowsOver(lane, x0 - 1, x0 - 1), std::vector<int>{row - 1});
+  EXPECT_EQ(rowsOver(lane, x1 + 1, x1 + 1), std::vector<int>{row - 1});
+}
+
 TEST(Lanes, ALaneHoldsTwoFootprintsBeyondItsBridge) {
   // The bridge of the first test (columns 12..27, rows 7..12): a tank's footprint is on it from
   // anchor column 10 to 27. Heading east its lane there is row 10 (the south half); its path
@@ -178,10 +187,7 @@ TEST(Lanes, ALaneHoldsTwoFootprintsBeyondItsBridge) {
   expectLegalBetween(grid, tank, held, east);
   // The lane's row holds for two footprints (six columns) before and after the bridge, then
   // tapers a row a cell.
-  for (const int y : rowsOver(held, 4, 33))
-    EXPECT_EQ(y, 10);
-  EXPECT_EQ(rowsOver(held, 3, 3), std::vector<int>{9});
-  EXPECT_EQ(rowsOver(held, 34, 34), std::vector<int>{9});
+  expectRowHeldOver(held, 10, 4, 33);
   // Without the hold (replay formats before 18) the lane tapers from the bridge's ends.
   const std::vector<Cell> ending = keepRight(grid, tank, east, {.holdBeyond = false});
   expectLegalBetween(grid, tank, ending, east);
@@ -210,18 +216,12 @@ TEST(Lanes, ALaneHoldsFiveFootprintsBeyondABridgeFiveFootprintsWide) {
   const std::vector<Cell> held = keepRight(grid, tank, east);
   expectLegalBetween(grid, tank, held, east);
   // Five footprints (15 columns) before and after the bridge, then a row a cell.
-  for (const int y : rowsOver(held, 15, 62))
-    EXPECT_EQ(y, 12);
-  EXPECT_EQ(rowsOver(held, 14, 14), std::vector<int>{11});
-  EXPECT_EQ(rowsOver(held, 63, 63), std::vector<int>{11});
+  expectRowHeldOver(held, 12, 15, 62);
   // Two footprints, as on narrower passages (the six-wide bridge above) and in replay formats
   // before 20.
   const std::vector<Cell> near = keepRight(grid, tank, east, {.holdFartherWhereWide = false});
   expectLegalBetween(grid, tank, near, east);
-  for (const int y : rowsOver(near, 24, 53))
-    EXPECT_EQ(y, 12);
-  EXPECT_EQ(rowsOver(near, 23, 23), std::vector<int>{11});
-  EXPECT_EQ(rowsOver(near, 54, 54), std::vector<int>{11});
+  expectRowHeldOver(near, 12, 24, 53);
   EXPECT_NEAR(pathCost(held), pathCost(near), 1e-9);
   // A bridge one row narrower (four footprints) holds two footprints only.
   for (int x = 32; x <= 47; ++x)
