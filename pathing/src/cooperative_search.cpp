@@ -414,15 +414,49 @@ CooperativePlan CooperativeSearch::plan(const CooperativeRequest& r, DistanceFie
   return finalizePlan();
 }
 
-namespace {
-
-bool openOrder(double fa, Tick ga, std::uint32_t na, double fb, Tick gb, std::uint32_t nb) {
-  if (fa != fb) return fa > fb;
-  if (ga != gb) return ga < gb;
-  return na > nb;
+CooperativeSearch::OpenHeap::Entry CooperativeSearch::OpenHeap::entry(double f, Tick g,
+                                                                      std::uint32_t node) {
+  // g is ticks since the start, within a window (the state keys take 32 bits of it too).
+  const auto ticks = static_cast<std::uint64_t>(std::clamp<Tick>(g, 0, 0xFFFFFFFF));
+  return {std::bit_cast<std::uint64_t>(f), (0xFFFFFFFFull - ticks) << 32 | node};
 }
 
-}  // namespace
+void CooperativeSearch::OpenHeap::push(Entry e) {
+  std::size_t i = heap_.size();
+  heap_.push_back(e);
+  Entry* const h = heap_.data();
+  while (i > 0) {
+    const std::size_t parent = (i - 1) / 4;
+    if (!before(e, h[parent])) break;
+    h[i] = h[parent];
+    i = parent;
+  }
+  h[i] = e;
+}
+
+CooperativeSearch::OpenHeap::Entry CooperativeSearch::OpenHeap::pop() {
+  const Entry top = heap_.front();
+  const Entry last = heap_.back();
+  heap_.pop_back();
+  const std::size_t n = heap_.size();
+  if (n == 0) return top;
+  Entry* const h = heap_.data();
+  std::size_t i = 0;
+  for (;;) {
+    const std::size_t first = 4 * i + 1;
+    if (first >= n) break;
+    std::size_t best = first;
+    const std::size_t end = std::min(first + 4, n);
+    for (std::size_t c = first + 1; c < end; ++c) {
+      if (before(h[c], h[best])) best = c;
+    }
+    if (!before(h[best], last)) break;
+    h[i] = h[best];
+    i = best;
+  }
+  h[i] = last;
+  return top;
+}
 
 CooperativeStatus CooperativeSearch::beginPlan(const CooperativeRequest& r, DistanceField& field,
                                                const ReservationTable& table) {
@@ -457,16 +491,14 @@ std::size_t CooperativeSearch::movesFrom(Cell here, std::array<Move, kDirectionC
   const int half = request_.agent.size / 2;
   const std::uint8_t mask = moveMasks_[map.indexOf(here)];
   std::size_t count = 0;
-  for (int d = 0; d < kDirectionCount; ++d) {
-    if ((mask & (1u << d)) == 0) continue;
+  for (unsigned bits = mask; bits != 0; bits &= bits - 1) {
+    const int d = std::countr_zero(bits);
     const Direction& dir = kDirections[static_cast<std::size_t>(d)];
     const Cell next{here.x + dir.dx, here.y + dir.dy};
     const Terrain under = map.at({next.x + half, next.y + half});
     if (!isTraversable(under)) continue;
-    const double perCell = request_.ticksPerCell[static_cast<std::size_t>(under)];
-    if (!(perCell > 0.0) || !std::isfinite(perCell)) continue;
-    out[count++] = {next,
-                    std::max<Tick>(1, static_cast<Tick>(std::ceil(dir.cost * perCell - 1e-9)))};
+    const Tick ticks = moveTicks_[isDiagonal(d) ? 1 : 0][static_cast<std::size_t>(under)];
+    if (ticks > 0) out[count++] = {next, ticks};
   }
   return count;
 }
@@ -481,11 +513,8 @@ void CooperativeSearch::add(std::uint32_t cell, Tick tick, std::int32_t parent, 
       (parent >= 0 ? nodes_[static_cast<std::size_t>(parent)].moves : 0) + (moved ? 1 : 0);
   nodes_.push_back({cell, tick, parent, moveCount});
   const Tick g = tick - r.startTick;
-  open_.push_back({static_cast<double>(g) + kMoveCost * moveCount + h * minTicks_, g,
-                   static_cast<std::uint32_t>(nodes_.size() - 1)});
-  std::push_heap(open_.begin(), open_.end(), [](const Open& x, const Open& y) {
-    return openOrder(x.f, x.g, x.node, y.f, y.g, y.node);
-  });
+  open_.push(OpenHeap::entry(static_cast<double>(g) + kMoveCost * moveCount + h * minTicks_, g,
+                             static_cast<std::uint32_t>(nodes_.size() - 1)));
   ++plan_.metrics.generated;
 }
 
@@ -597,6 +626,13 @@ CooperativeStatus CooperativeSearch::updatePlan(std::uint64_t maxExpansions) {
       const double t = r.ticksPerCell[static_cast<std::size_t>(slot)];
       if (r.agent.capability.allows(static_cast<Terrain>(slot)) && t > 0.0 && std::isfinite(t))
         minTicks_ = std::min(minTicks_, t);
+      for (const bool diagonal : {false, true}) {
+        const double cost = diagonal ? kSqrt2 : 1.0;  // kDirections' costs
+        moveTicks_[diagonal ? 1 : 0][static_cast<std::size_t>(slot)] =
+            t > 0.0 && std::isfinite(t)
+                ? std::max<Tick>(1, static_cast<Tick>(std::ceil(cost * t - 1e-9)))
+                : 0;
+      }
     }
     moveMasks_ = grid_.layer(r.agent).moveMasks();  // looked up once: the grid is locked
     windowEnd_ = r.startTick + r.window;
@@ -610,9 +646,6 @@ CooperativeStatus CooperativeSearch::updatePlan(std::uint64_t maxExpansions) {
     deepestH_ = startDistance;
     phase_ = Phase::Search;
   }
-  const auto order = [](const Open& a, const Open& b) {
-    return openOrder(a.f, a.g, a.node, b.f, b.g, b.node);
-  };
   std::array<Move, kDirectionCount> moves{};
   while (phase_ == Phase::Search) {
     if (current_ < 0) {
@@ -621,9 +654,7 @@ CooperativeStatus CooperativeSearch::updatePlan(std::uint64_t maxExpansions) {
         break;
       }
       if (allowance == 0) break;
-      std::pop_heap(open_.begin(), open_.end(), order);
-      current_ = static_cast<std::int32_t>(open_.back().node);
-      open_.pop_back();
+      current_ = static_cast<std::int32_t>(OpenHeap::nodeOf(open_.pop()));
     }
     // What follows is done again for the same node when a slice ends before its expansion:
     // everything up to the expansion only reads (the deepest node is the same again).
