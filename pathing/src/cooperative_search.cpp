@@ -519,48 +519,56 @@ void CooperativeSearch::add(std::uint32_t cell, Tick tick, std::int32_t parent, 
 }
 
 void CooperativeSearch::SeenStates::clear() {
-  // Sized for the plan just done: most plans reach a few hundred states, and a table grown for
-  // the largest (thousands) spreads them over more cache lines than stay cached (stress_2000:
-  // a fifth of the window searches' time went to that miss).
+  // Sized for the plan just done, as most plans reach few states.
   if (slots_.size() > kSmallSlots && used_.size() * 16 < slots_.size()) {
-    slots_.assign(kSmallSlots, kEmptySlot);
+    slots_.assign(kSmallSlots, Slot{});
   } else {
     for (const std::uint32_t i : used_)
-      slots_[i] = kEmptySlot;
+      slots_[i] = Slot{};
   }
   used_.clear();
+  bits_.clear();
 }
 
-std::size_t CooperativeSearch::SeenStates::home(std::uint64_t key) const {
-  // Fibonacci hashing of the cell (the top bits of cell * 2^64 / phi), plus the tick offset: a
-  // cell's states at nearby ticks (waits) share cache lines (stress_2000: the insert -11 %).
-  const std::uint64_t cell = key >> 32;
-  return static_cast<std::size_t>(((cell * 0x9E3779B97F4A7C15ull) >> 40) + (key & 0xFFFFFFFFu)) &
-         (slots_.size() - 1);
+std::size_t CooperativeSearch::SeenStates::home(std::uint64_t block) const {
+  // Fibonacci hashing: the top bits of block * 2^64 / phi.
+  return static_cast<std::size_t>((block * 0x9E3779B97F4A7C15ull) >> 32) & (slots_.size() - 1);
 }
 
 bool CooperativeSearch::SeenStates::insert(std::uint64_t key) {
   if ((used_.size() + 1) * 2 > slots_.size()) grow();
-  for (std::size_t i = home(key);; i = (i + 1) & (slots_.size() - 1)) {
-    std::uint64_t& slot = slots_[i];
-    if (slot == kEmptySlot) {
-      slot = key;
-      used_.push_back(static_cast<std::uint32_t>(i));
-      return true;
-    }
-    if (slot == key) return false;
+  const std::uint64_t block = (key >> 32) << 32 | (key & 0xFFFFFFFFu) >> kTickBits;
+  std::size_t i = home(block);
+  while (slots_[i].block != block && slots_[i].block != kEmptySlot)
+    i = (i + 1) & (slots_.size() - 1);
+  Slot& slot = slots_[i];
+  if (slot.block == kEmptySlot) {
+    slot = {block, static_cast<std::uint32_t>(bits_.size())};
+    used_.push_back(static_cast<std::uint32_t>(i));
+    bits_.resize(bits_.size() + kWords, 0);
   }
+  const std::uint64_t tick = key & ((std::uint64_t{1} << kTickBits) - 1);
+  std::uint64_t& word = bits_[slot.bits + tick / 64];
+  const std::uint64_t bit = std::uint64_t{1} << (tick % 64);
+  if ((word & bit) != 0) return false;
+  word |= bit;
+  return true;
 }
 
 void CooperativeSearch::SeenStates::grow() {
-  std::vector<std::uint64_t> keys;
-  keys.reserve(used_.size());
+  std::vector<Slot> held;
+  held.reserve(used_.size());
   for (const std::uint32_t i : used_)
-    keys.push_back(slots_[i]);
-  slots_.assign(std::max(slots_.size() * 2, kSmallSlots), kEmptySlot);
+    held.push_back(slots_[i]);
+  slots_.assign(std::max(slots_.size() * 2, kSmallSlots), Slot{});
   used_.clear();
-  for (const std::uint64_t key : keys)
-    insert(key);
+  for (const Slot& slot : held) {
+    std::size_t i = home(slot.block);
+    while (slots_[i].block != kEmptySlot)
+      i = (i + 1) & (slots_.size() - 1);
+    slots_[i] = slot;
+    used_.push_back(static_cast<std::uint32_t>(i));
+  }
 }
 
 bool CooperativeSearch::startChain(std::int32_t at) const {
