@@ -177,25 +177,32 @@ void expectRowHeldOver(const std::vector<Cell>& lane, int row, int x0, int x1) {
 }
 
 TEST(Lanes, ALaneHoldsTwoFootprintsBeyondItsBridge) {
-  // The bridge of the first test (columns 12..27, rows 7..12): a tank's footprint is on it from
-  // anchor column 10 to 27. Heading east its lane there is row 10 (the south half); its path
-  // from the west runs along row 8.
-  const AnnotatedGrid grid(riverMap(7, 6));
+  // 60×20 ground; a river over columns 22..37 crossed by a bridge six cells wide (rows 7..12),
+  // with room on both banks for a longer hold than two footprints to show. A tank's footprint
+  // is on the bridge from anchor column 20 to 37. Heading east its lane there is row 10 (the
+  // south half); its path from the west runs along row 8.
+  GridMap map(60, 20);
+  for (int y = 0; y < 20; ++y) {
+    for (int x = 22; x <= 37; ++x) {
+      if (y < 7 || y > 12) map.set({x, y}, Terrain::Water);
+    }
+  }
+  const AnnotatedGrid grid(map);
   const Agent tank{3, kGround};
-  const std::vector<Cell> east = shortest(grid, tank, {2, 8}, {35, 8});
+  const std::vector<Cell> east = shortest(grid, tank, {2, 8}, {57, 8});
   const std::vector<Cell> held = keepRight(grid, tank, east);
   expectLegalBetween(grid, tank, held, east);
   // The lane's row holds for two footprints (six columns) before and after the bridge, then
   // tapers a row a cell.
-  expectRowHeldOver(held, 10, 4, 33);
+  expectRowHeldOver(held, 10, 14, 43);
   // Without the hold (replay formats before 18) the lane tapers from the bridge's ends.
   const std::vector<Cell> ending = keepRight(grid, tank, east, {.holdBeyond = false});
   expectLegalBetween(grid, tank, ending, east);
-  for (const int y : rowsOver(ending, 10, 27))
+  for (const int y : rowsOver(ending, 20, 37))
     EXPECT_EQ(y, 10);
-  EXPECT_EQ(rowsOver(ending, 9, 9), std::vector<int>{9});
-  EXPECT_EQ(rowsOver(ending, 8, 8), std::vector<int>{8});
-  EXPECT_EQ(rowsOver(ending, 29, 29), std::vector<int>{8});
+  EXPECT_EQ(rowsOver(ending, 19, 19), std::vector<int>{9});
+  EXPECT_EQ(rowsOver(ending, 18, 18), std::vector<int>{8});
+  EXPECT_EQ(rowsOver(ending, 39, 39), std::vector<int>{8});
   // Held or not, the lane costs the same: the held stretch runs parallel to the path.
   EXPECT_NEAR(pathCost(held), pathCost(ending), 1e-9);
 }
