@@ -463,6 +463,7 @@ CooperativeStatus CooperativeSearch::beginPlan(const CooperativeRequest& r, Dist
   const QueryClock clock;
   request_ = r;
   field_ = &field;
+  fieldComplete_ = false;
   table_ = &table;
   plan_ = {};
   current_ = -1;
@@ -480,9 +481,11 @@ CooperativeStatus CooperativeSearch::beginPlan(const CooperativeRequest& r, Dist
 }
 
 bool CooperativeSearch::settle(Cell c, std::uint64_t& allowance) {
+  if (fieldComplete_) return true;
   const std::uint64_t before = allowance;
   const bool done = field_->settle(c, allowance);
   plan_.fieldExpanded += before - allowance;
+  fieldComplete_ = done && field_->complete();
   return done;
 }
 

@@ -50,6 +50,8 @@ class DistanceField {
   virtual double settled(Cell c) const = 0;
   // Nodes expanded so far building the field (a measurement).
   virtual std::uint64_t expanded() const = 0;
+  // Every distance is known: settle() answers true at once and spends nothing, for any cell.
+  virtual bool complete() const = 0;
 };
 
 // Reverse Resumable A* (Silver 2005): A* from `goal` toward `start` on the agent's layer (its
@@ -61,6 +63,7 @@ class ReverseResumableSearch final : public DistanceField {
   bool settle(Cell c, std::uint64_t& allowance) override;
   double settled(Cell c) const override;
   std::uint64_t expanded() const override { return expanded_; }
+  bool complete() const override { return open_.empty(); }
 
  private:
   struct Entry {
@@ -96,6 +99,7 @@ class CorridorDistance final : public DistanceField {
   bool settle(Cell c, std::uint64_t& allowance) override;
   double settled(Cell c) const override;
   std::uint64_t expanded() const override { return expanded_; }
+  bool complete() const override { return open_.empty(); }
 
  private:
   // The slot of `c` in distances_ (-1 outside the rows' spans): O(1), as the Dijkstra asks it
@@ -370,6 +374,9 @@ class CooperativeSearch {
   Phase phase_ = Phase::Idle;
   CooperativeRequest request_;
   DistanceField* field_ = nullptr;
+  // The field was complete when last asked (it stays so): settle() skips it, as a window
+  // search asks it for every move of every expansion.
+  bool fieldComplete_ = false;
   const ReservationTable* table_ = nullptr;
   CooperativePlan plan_;
   double minTicks_ = 0.0;  // the least ticksPerCell: h in ticks per unit of distance
