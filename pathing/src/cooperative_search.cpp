@@ -597,13 +597,22 @@ int CooperativeSearch::keptOut(Cell anchor) const {
   if (request_.keepOut == nullptr) return 0;
   const GridMap& map = grid_.map();
   const int size = request_.agent.size;
+  const std::uint8_t* const levels = request_.keepOut->data();
+  if (size == 1) {  // most agents: one cell, a level alone
+    if (!map.contains(anchor)) return 0;
+    const int level = levels[map.indexOf(anchor)];
+    return level == 0 || request_.keepOutExit == KeepOutExit::HighestLevel ? level : 2 * level + 1;
+  }
+  const int x0 = std::max(anchor.x, 0);
+  const int x1 = std::min(anchor.x + size, map.width());
+  const int y0 = std::max(anchor.y, 0);
+  const int y1 = std::min(anchor.y + size, map.height());
   int level = 0;
   int atLevel = 0;  // cells of the footprint at `level`
-  for (int dy = 0; dy < size; ++dy) {
-    for (int dx = 0; dx < size; ++dx) {
-      const Cell c{anchor.x + dx, anchor.y + dy};
-      if (!map.contains(c)) continue;
-      const int here = (*request_.keepOut)[map.indexOf(c)];
+  for (int y = y0; y < y1; ++y) {
+    const std::uint8_t* const row = levels + map.indexOf({0, y});
+    for (int x = x0; x < x1; ++x) {
+      const int here = row[x];
       if (here > level) {
         level = here;
         atLevel = 0;

@@ -29,30 +29,6 @@ void ReservationTable::track(std::span<const std::uint8_t> cells) {
     tracked_[i] = static_cast<std::uint8_t>(tracked_[i] | (cells[i] != 0 ? 1 : 0));
 }
 
-template <class F>
-bool ReservationTable::anyCell(Cell anchor, int size, F&& f) const {
-  const int x0 = std::max(anchor.x, 0);
-  const int y0 = std::max(anchor.y, 0);
-  const int x1 = std::min(anchor.x + size, width_);
-  const int y1 = std::min(anchor.y + size, height_);
-  for (int y = y0; y < y1; ++y) {
-    for (int x = x0; x < x1; ++x) {
-      if (f(static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-            static_cast<std::size_t>(x)))
-        return true;
-    }
-  }
-  return false;
-}
-
-template <class F>
-void ReservationTable::forEachCell(Cell anchor, int size, F&& f) const {
-  anyCell(anchor, size, [&](std::size_t cell) {
-    f(cell);
-    return false;
-  });
-}
-
 void ReservationTable::reserve(Cell anchor, int size, Tick from, Tick to, std::uint32_t owner) {
   if (!(from < to) || size < 1) return;
   if (owners_.size() <= owner) owners_.resize(static_cast<std::size_t>(owner) + 1);
@@ -98,33 +74,6 @@ std::optional<std::uint32_t> ReservationTable::blocker(Cell anchor, int size, Ti
     }
   });
   return found;
-}
-
-template <class Ignored>
-bool ReservationTable::freeBut(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
-                               Ignored&& ignored) const {
-  // Stops at the first interval in the way: most asks in a crowd are answered no.
-  return !anyCell(anchor, size, [&](std::size_t cell) {
-    for (const Interval& i : heldAt(cell)) {
-      if (!(i.from < to)) break;  // the rest begin later still
-      if (i.owner != self && from < i.to && !ignored(i.owner)) return true;
-    }
-    return false;
-  });
-}
-
-bool ReservationTable::isFree(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
-                              std::span<const std::uint32_t> ignored) const {
-  return freeBut(anchor, size, from, to, self, [&](std::uint32_t owner) {
-    return std::find(ignored.begin(), ignored.end(), owner) != ignored.end();
-  });
-}
-
-bool ReservationTable::isFree(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
-                              const std::vector<std::uint8_t>& ignored) const {
-  return freeBut(anchor, size, from, to, self, [&](std::uint32_t owner) {
-    return owner < ignored.size() && ignored[owner] != 0;
-  });
 }
 
 std::vector<std::uint32_t> ReservationTable::holders(Cell anchor, int size, Tick from, Tick to,

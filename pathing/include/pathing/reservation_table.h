@@ -5,6 +5,7 @@
 // is it"; deciding who may reserve what is the caller's (the engine reserves only what a
 // search found free).
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -55,14 +56,22 @@ class ReservationTable {
   std::optional<std::uint32_t> blocker(Cell anchor, int size, Tick from, Tick to,
                                        std::uint32_t self) const;
   bool isFree(Cell anchor, int size, Tick from, Tick to, std::uint32_t self) const {
-    return !blocker(anchor, size, from, to, self);
+    return freeBut(anchor, size, from, to, self, [](std::uint32_t) { return false; });
   }
   // The same, also ignoring the owners in `ignored`.
   bool isFree(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
-              std::span<const std::uint32_t> ignored) const;
+              std::span<const std::uint32_t> ignored) const {
+    return freeBut(anchor, size, from, to, self, [&](std::uint32_t owner) {
+      return std::find(ignored.begin(), ignored.end(), owner) != ignored.end();
+    });
+  }
   // The same, also ignoring every owner o with o < ignored.size() && ignored[o] != 0.
   bool isFree(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
-              const std::vector<std::uint8_t>& ignored) const;
+              const std::vector<std::uint8_t>& ignored) const {
+    return freeBut(anchor, size, from, to, self, [&](std::uint32_t owner) {
+      return owner < ignored.size() && ignored[owner] != 0;
+    });
+  }
   // Every owner but `self` holding a cell of the footprint during part of [from, to),
   // ascending, once each.
   std::vector<std::uint32_t> holders(Cell anchor, int size, Tick from, Tick to,
@@ -90,11 +99,30 @@ class ReservationTable {
     bool operator>(const Expiry& o) const { return to != o.to ? to > o.to : cell > o.cell; }
   };
   // f(cell index) for the footprint's cells on the map, row by row; anyCell stops at the
-  // first for which f returns true, and says whether one did.
+  // first for which f returns true, and says whether one did. Inline with freeBut: a window
+  // search asks isFree of nearly every move it makes, mostly of cells holding nothing.
   template <class F>
-  bool anyCell(Cell anchor, int size, F&& f) const;
+  bool anyCell(Cell anchor, int size, F&& f) const {
+    const int x0 = std::max(anchor.x, 0);
+    const int y0 = std::max(anchor.y, 0);
+    const int x1 = std::min(anchor.x + size, width_);
+    const int y1 = std::min(anchor.y + size, height_);
+    for (int y = y0; y < y1; ++y) {
+      for (int x = x0; x < x1; ++x) {
+        if (f(static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+              static_cast<std::size_t>(x)))
+          return true;
+      }
+    }
+    return false;
+  }
   template <class F>
-  void forEachCell(Cell anchor, int size, F&& f) const;
+  void forEachCell(Cell anchor, int size, F&& f) const {
+    anyCell(anchor, size, [&](std::size_t cell) {
+      f(cell);
+      return false;
+    });
+  }
   // A cell's intervals, by `from`; read through occupied_ first (below).
   std::span<const Interval> heldAt(std::size_t cell) const {
     if (occupied_[cell] == 0) return {};
@@ -103,7 +131,16 @@ class ReservationTable {
   // Free for `self` when every other holder during part of [from, to) is ignored(owner).
   template <class Ignored>
   bool freeBut(Cell anchor, int size, Tick from, Tick to, std::uint32_t self,
-               Ignored&& ignored) const;
+               Ignored&& ignored) const {
+    // Stops at the first interval in the way: most asks in a crowd are answered no.
+    return !anyCell(anchor, size, [&](std::size_t cell) {
+      for (const Interval& i : heldAt(cell)) {
+        if (!(i.from < to)) break;  // the rest begin later still
+        if (i.owner != self && from < i.to && !ignored(i.owner)) return true;
+      }
+      return false;
+    });
+  }
 
   int width_;
   int height_;
