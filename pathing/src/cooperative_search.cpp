@@ -538,12 +538,17 @@ std::size_t CooperativeSearch::SeenStates::home(std::uint64_t block) const {
   return static_cast<std::size_t>((block * 0x9E3779B97F4A7C15ull) >> 32) & (slots_.size() - 1);
 }
 
-bool CooperativeSearch::SeenStates::insert(std::uint64_t key) {
-  if ((used_.size() + 1) * 2 > slots_.size()) grow();
-  const std::uint64_t block = (key >> 32) << 32 | (key & 0xFFFFFFFFu) >> kTickBits;
+std::size_t CooperativeSearch::SeenStates::slotOf(std::uint64_t block) const {
   std::size_t i = home(block);
   while (slots_[i].block != block && slots_[i].block != kEmptySlot)
     i = (i + 1) & (slots_.size() - 1);
+  return i;
+}
+
+bool CooperativeSearch::SeenStates::insert(std::uint64_t key) {
+  if ((used_.size() + 1) * 2 > slots_.size()) grow();
+  const std::uint64_t block = (key >> 32) << 32 | (key & 0xFFFFFFFFu) >> kTickBits;
+  const std::size_t i = slotOf(block);
   Slot& slot = slots_[i];
   if (slot.block == kEmptySlot) {
     slot = {block, static_cast<std::uint32_t>(bits_.size())};
@@ -566,9 +571,7 @@ void CooperativeSearch::SeenStates::grow() {
   slots_.assign(std::max(slots_.size() * 2, kSmallSlots), Slot{});
   used_.clear();
   for (const Slot& slot : held) {
-    std::size_t i = home(slot.block);
-    while (slots_[i].block != kEmptySlot)
-      i = (i + 1) & (slots_.size() - 1);
+    const std::size_t i = slotOf(slot.block);  // an empty one: the blocks are distinct
     slots_[i] = slot;
     used_.push_back(static_cast<std::uint32_t>(i));
   }
@@ -603,15 +606,12 @@ int CooperativeSearch::keptOut(Cell anchor) const {
     const int level = levels[map.indexOf(anchor)];
     return level == 0 || request_.keepOutExit == KeepOutExit::HighestLevel ? level : 2 * level + 1;
   }
-  const int x0 = std::max(anchor.x, 0);
-  const int x1 = std::min(anchor.x + size, map.width());
-  const int y0 = std::max(anchor.y, 0);
-  const int y1 = std::min(anchor.y + size, map.height());
+  const CellRect on = map.clip({anchor.x, anchor.y, size, size});
   int level = 0;
   int atLevel = 0;  // cells of the footprint at `level`
-  for (int y = y0; y < y1; ++y) {
+  for (int y = on.y; y < on.y + on.height; ++y) {
     const std::uint8_t* const row = levels + map.indexOf({0, y});
-    for (int x = x0; x < x1; ++x) {
+    for (int x = on.x; x < on.x + on.width; ++x) {
       const int here = row[x];
       if (here > level) {
         level = here;

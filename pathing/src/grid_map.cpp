@@ -21,14 +21,6 @@ std::size_t checkedCellCount(int width, int height) {
 GridMap::GridMap(int width, int height, Terrain fill)
     : width_(width), height_(height), cells_(checkedCellCount(width, height), fill) {}
 
-CellRect GridMap::clip(CellRect area) const {
-  const int x0 = std::max(0, area.x);
-  const int y0 = std::max(0, area.y);
-  const int x1 = std::min(width_, area.x + area.width);
-  const int y1 = std::min(height_, area.y + area.height);
-  return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
-}
-
 Capability GridMap::terrainsIn(CellRect area) const {
   area = clip(area);
   Capability in;

@@ -117,12 +117,9 @@ void placeWreck(Refs& w, Unit& unit) {
   const int size = w.typeOf(unit).size;
   if (!w.settings.combat.wrecksBlock || size < 2 || unit.wreckUntilTick < 0) return;
   const Cell anchor = units::centreToAnchor(unit.position, size);
-  const int x0 = std::max(anchor.x, 0);
-  const int y0 = std::max(anchor.y, 0);
-  const int x1 = std::min(anchor.x + size, w.map().width());
-  const int y1 = std::min(anchor.y + size, w.map().height());
-  if (x1 <= x0 || y1 <= y0) return;
-  unit.wreckArea = {x0, y0, x1 - x0, y1 - y0};
+  const CellRect area = w.map().clip({anchor.x, anchor.y, size, size});
+  if (area.width <= 0 || area.height <= 0) return;
+  unit.wreckArea = area;
   w.state.terrain.pending.push_back({TerrainEditKind::PlaceObstacle, unit.wreckArea, {}});
 }
 

@@ -415,6 +415,8 @@ class CooperativeSearch {
     };
     static constexpr std::size_t kWords = (std::size_t{1} << kTickBits) / 64;
     std::size_t home(std::uint64_t block) const;
+    // The slot holding `block`, else the empty slot where it goes.
+    std::size_t slotOf(std::uint64_t block) const;
     void grow();
     std::vector<Slot> slots_;
     std::vector<std::uint32_t> used_;  // the slots holding a block

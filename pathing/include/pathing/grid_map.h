@@ -70,8 +70,15 @@ class GridMap {
   Capability terrainsPresent() const;
   // The traversable terrains of the cells of `area` (clipped to the map).
   Capability terrainsIn(CellRect area) const;
-  // The part of `area` on the map (width or height 0 when none).
-  CellRect clip(CellRect area) const;
+  // The part of `area` on the map (width or height 0 when none). Inline: a window search
+  // clips a footprint for each move.
+  CellRect clip(CellRect area) const {
+    const int x0 = std::max(0, area.x);
+    const int y0 = std::max(0, area.y);
+    const int x1 = std::min(width_, area.x + area.width);
+    const int y1 = std::min(height_, area.y + area.height);
+    return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
+  }
 
   bool operator==(const GridMap&) const = default;
 
