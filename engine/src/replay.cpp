@@ -392,7 +392,7 @@ Result<Scenario> replayScenario(const Replay& replay) {
   // before they parked where they stood there, and passages used one way letting 8 through at
   // a time, walkers in windows, before any number went through, walkers without windows, and
   // with every window without progress counted toward the stuck flag before queued units'
-  // were not.
+  // were not, and vehicles meeting head on pushing nose to nose before they veered right.
   WorldSettings defaults;
   if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
   if (replay.version < kFirstCongestionReplayVersion) defaults.pathing.congestion = false;
@@ -417,6 +417,7 @@ Result<Scenario> replayScenario(const Replay& replay) {
   if (replay.version < kFirstQueuesExcusedReplayVersion) defaults.pathing.queuesExcused = false;
   if (replay.version < kFirstWiderLaneApproachesReplayVersion)
     defaults.pathing.widerLaneApproaches = false;
+  if (replay.version < kFirstHeadOnKeepRightReplayVersion) defaults.pathing.headOnKeepRight = false;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

@@ -81,14 +81,20 @@ TEST(BattleVariants, AmbushWithoutTankGunsFails) {
   EXPECT_FALSE(losses->pass);
 }
 
-// Unarmed tanks cannot clear the woods: the rocket teams destroy more than three of them.
-TEST(BattleVariants, ForestWithoutTankGunsFails) {
-  const std::string text = replaced(readScenario("forest_battle"), "  rocket_team:\n",
-                                    "  tank: {weapon: none}\n  rocket_team:\n");
-  const Report r = play(text, "forest_battle");
-  const ExpectationResult* losses = find(r, "losses(blue, tank) <= 3");
-  ASSERT_TRUE(losses);
-  EXPECT_FALSE(losses->pass);
+// Unarmed tanks cannot clear the woods: the rocket teams destroy at least two more of them
+// than of armed ones (3 against 1 at the file's seed). The file's bound of 3 caught the unarmed
+// run (4 lost) until vehicles meeting head on veered right (replay format 21).
+TEST(BattleVariants, ForestWithoutTankGunsLosesMoreTanks) {
+  const std::string armedText = readScenario("forest_battle");
+  const std::string unarmedText =
+      replaced(armedText, "  rocket_team:\n", "  tank: {weapon: none}\n  rocket_team:\n");
+  const Report armed = play(armedText, "forest_battle");
+  const Report unarmed = play(unarmedText, "forest_battle");
+  const ExpectationResult* armedLosses = find(armed, "losses(blue, tank) <= 3");
+  const ExpectationResult* unarmedLosses = find(unarmed, "losses(blue, tank) <= 3");
+  ASSERT_TRUE(armedLosses && unarmedLosses);
+  EXPECT_TRUE(armedLosses->pass);
+  EXPECT_GE(unarmedLosses->actual, armedLosses->actual + 2);
 }
 
 // The first wave alone is sunk on the beach: red wins.

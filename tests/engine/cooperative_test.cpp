@@ -391,6 +391,7 @@ TEST(Cooperative, AStoppedTankClaimsItsLaneThroughAnOncomingStream) {
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.standingVehicleLanes);  // the default
   s.settings.pathing.laneApproaches = false;
+  s.settings.pathing.headOnKeepRight = false;  // which spares that tank too (format 21)
   EXPECT_TRUE(runToEnd(s, 15).passed());
   s.settings.pathing.standingVehicleLanes = false;
   EXPECT_FALSE(runToEnd(s, 15).passed());
@@ -406,7 +407,10 @@ TEST(Cooperative, LanesHeldBeyondTheBridgeKeepTheMouthsApart) {
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.laneApproaches);  // the default
-  int passed[2] = {0, 0};                          // ending at the mouth, held beyond it
+  // Measured as when the rule came: vehicles meeting head on veering right (format 21) also
+  // part the tanks at the mouths, with lanes that end there too.
+  s.settings.pathing.headOnKeepRight = false;
+  int passed[2] = {0, 0};  // ending at the mouth, held beyond it
   for (const bool held : {false, true}) {
     s.settings.pathing.laneApproaches = held;
     for (std::uint64_t seed = 1; seed <= 20; ++seed)
@@ -414,6 +418,22 @@ TEST(Cooperative, LanesHeldBeyondTheBridgeKeepTheMouthsApart) {
   }
   EXPECT_GE(passed[1], 18);
   EXPECT_LE(passed[0], 16);
+}
+
+// Two vehicles meeting head on outside timed windows each veer to their right (replay format
+// 21). Pushed nose to nose, 20 tanks a side crossing a bridge 16 wide left a pair of them locked
+// together in the open by a mouth, sliding off sideways with neither making way, and a tank
+// arrived after its bound at seeds 6, 44, 46 and 47; with the rule all arrive in time.
+TEST(Cooperative, VehiclesMeetingHeadOnInTheOpenVeerRight) {
+  Result<Scenario> loaded = loadChokepoint("variations/bridge16_tanks.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.headOnKeepRight);  // the default
+  for (const bool keepRight : {true, false}) {
+    s.settings.pathing.headOnKeepRight = keepRight;
+    for (const std::uint64_t seed : {6, 44, 46, 47})
+      EXPECT_EQ(runToEnd(s, seed).passed(), keepRight) << "seed " << seed << " " << keepRight;
+  }
 }
 
 // At the crossroads the paths of opposite arms cross over in the 8×8 crossing, toward goal

@@ -362,6 +362,7 @@ void useRulesOfFormat(Scenario& s, std::uint32_t format) {
   if (format < 18) s.settings.pathing.laneApproaches = false;
   if (format < 19) s.settings.pathing.queuesExcused = false;
   if (format < 20) s.settings.pathing.widerLaneApproaches = false;
+  if (format < 21) s.settings.pathing.headOnKeepRight = false;
 }
 
 void expectVerifiesOnlyAsItsFormat(const Scenario& s, const ReplaySource& source,
@@ -598,6 +599,20 @@ TEST_F(Replays, AFormat19ReplayPlaysBackWithLanesHeldTwoFootprintsBeyondAWideBri
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format19.rpl", 19, 600);
 }
 
+// Format 20 was recorded when two vehicles meeting head on outside timed windows pushed nose to
+// nose: it plays back so, and read as format 21 (each veers to its right) the same records do
+// not verify. 20 tanks a side on a bridge 16 wide, meeting at its mouths.
+TEST_F(Replays, AFormat20ReplayPlaysBackWithVehiclesPushingHeadOn) {
+  ReplaySource source;
+  Result<Scenario> loaded = loadRecordedChokepoint("variations/bridge16_tanks.yaml", source);
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.headOnKeepRight);
+  useRulesOfFormat(s, 20);
+  source.seed = s.settings.seed;
+  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format20.rpl", 20, 900);
+}
+
 // Format 18 was recorded when a unit queued behind another going its way counted its windows
 // without progress toward the stuck flag (a count the state hash covers): it plays back so, and
 // read as format 19 the same records do not verify. The door's two crowds at seed 10, where a
@@ -622,21 +637,21 @@ TEST_F(Replays, AnotherVersionIsRefused) {
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
                                  ": replay format version 1 is not supported (this build reads "
-                                 "versions 2 to 20); it was written before battles were recorded: "
+                                 "versions 2 to 21); it was written before battles were recorded: "
                                  "record it again with rts run --replay");
   RtsResult r = rts("replay verify " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(file.string() + ": replay format version 1 is not supported"),
             std::string::npos)
       << r.out;
-  bytes[8] = 21;
+  bytes[8] = 22;
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
-                                 ": replay format version 21 is not supported (this build reads "
-                                 "versions 2 to 20)");
+                                 ": replay format version 22 is not supported (this build reads "
+                                 "versions 2 to 21)");
   r = rts("replay info " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_NE(r.out.find("version 21 is not supported"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("version 22 is not supported"), std::string::npos) << r.out;
   EXPECT_EQ(rts("replay verify " + (dir_ / "none.rpl").string()).status, 2);
 }
 
@@ -745,7 +760,7 @@ TEST_F(Replays, ABattleRecordsAndVerifies) {
 
   const RtsResult info = rts("replay info " + file.string());
   EXPECT_EQ(info.status, 0) << info.out;
-  EXPECT_NE(info.out.find("format version: 20\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("format version: 21\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("orders: 4 (2 attack_move, 1 attack, 1 reinforce)\n"), std::string::npos)
       << info.out;
   const RtsResult verify = rts("replay verify " + file.string());

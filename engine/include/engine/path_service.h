@@ -134,6 +134,10 @@ struct PathServiceSettings {
   // two footprints beyond its passage however wide the passage was (pathing::LaneRules;
   // docs/cooperative.md, "Lanes held farther beyond wide passages").
   bool widerLaneApproaches = true;
+  // Not a scenario key: false plays back replays before format 21, when two vehicles meeting
+  // head on outside timed windows pushed nose to nose instead of each veering to its right
+  // (docs/cooperative.md, "Head on in the open").
+  bool headOnKeepRight = true;
   pathing::LaneRules laneRules() const {
     return {lanesThroughJunctions, laneApproaches, widerLaneApproaches};
   }

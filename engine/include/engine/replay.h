@@ -62,9 +62,11 @@ namespace warpath::engine {
 // way that made progress in its own last window does not count toward the stuck flag (the
 // state hash covers the count; older files play back counting it). 20: the same records and
 // hashes; a vehicle's lane holds for five footprints beyond a passage at least five footprints
-// across (older files play back with two). Version-1 files (move orders only) are refused with
+// across (older files play back with two). 21: the same records and hashes; two vehicles meeting
+// head on outside timed windows each veer to their right (older files play back pushing nose to
+// nose). Version-1 files (move orders only) are refused with
 // a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 20;
+inline constexpr std::uint32_t kReplayVersion = 21;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -117,6 +119,9 @@ inline constexpr std::uint32_t kFirstQueuesExcusedReplayVersion = 19;
 // Formats before this one were recorded when a vehicle's lane held two footprints beyond its
 // passage however wide: they play back so (PathServiceSettings::widerLaneApproaches off).
 inline constexpr std::uint32_t kFirstWiderLaneApproachesReplayVersion = 20;
+// Formats before this one were recorded when two vehicles meeting head on outside timed windows
+// pushed nose to nose: they play back so (PathServiceSettings::headOnKeepRight off).
+inline constexpr std::uint32_t kFirstHeadOnKeepRightReplayVersion = 21;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

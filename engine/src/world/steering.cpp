@@ -29,15 +29,25 @@ namespace {
 
 // [Unit: rad] How far from its course a vehicle veers to pass a slower unit going its way.
 constexpr double kOvertakeRadians = 0.5;
+// [Unit: rad] How far to its right a vehicle veers from a vehicle it meets head on (about 63°).
+// At 0.6, 0.8, 1.1, 1.4 and 1.57 rad 25, 21, 17, 13 and 19 of 2,600 bench runs failed (34
+// without; docs/cooperative.md, "Head on in the open"); 1.2 and more lose bridge_two_way's own
+// seed.
+constexpr double kHeadOnRadians = 1.1;
 
 // Cooperative movement: a unit pushing into another goes no faster than that one can walk,
 // so a jeep does not drive infantry ahead of it at three times their speed. Who touches whom
-// is Box2D's (its contacts after the last step, `touching`).
+// is Box2D's (its contacts after the last step, `touching`). A vehicle (heavier than
+// `lightest`) outside a timed window that meets another head on veers to its right
+// (PathServiceSettings::headOnKeepRight), as both do, so they pass instead of pushing nose to
+// nose and sliding off together sideways; in a timed window the reservations keep them apart.
 Vec2 limitPushing(const Refs& w, std::span<const std::uint32_t> touching, const Unit& unit,
-                  Vec2 desired) {
+                  Vec2 desired, double lightest) {
   const double speed = desired.length();
   if (speed < 1e-9) return desired;
   const Vec2 heading = desired * (1.0 / speed);
+  const bool keepRight = w.settings.pathing.headOnKeepRight && !(unit.plan && unit.plan->timed);
+  bool headOn = false;
   double cap = speed;
   double side = 0.0;  // which way to pass slower units going our way: > 0 to the left
   // Slower units going our way (or parked): the direction to each and its walking speed.
@@ -56,7 +66,12 @@ Vec2 limitPushing(const Refs& w, std::span<const std::uint32_t> touching, const 
                      static_cast<int>(std::floor(other.position.y))};
     double walk = w.map().contains(under) ? otherType.speedOn(w.map().at(under)) : 0.0;
     if (!(walk > 0.0)) walk = otherType.maxSpeed();
-    if (walk >= speed) continue;
+    if (walk >= speed) {
+      const double oncoming = other.velocity.length();
+      headOn = headOn || (keepRight && otherType.radius > lightest && oncoming > 0.3 &&
+                          other.velocity.dot(heading) < -0.5 * oncoming);
+      continue;
+    }
     // A slower unit walking our way, or parked, is passed rather than followed at its pace: the
     // vehicle veers round it, pressing on it no faster than it walks.
     const Vec2 v = other.velocity;
@@ -69,6 +84,10 @@ Vec2 limitPushing(const Refs& w, std::span<const std::uint32_t> touching, const 
     cap = std::min(cap, walk);
   }
   Vec2 out = desired * (cap / speed);
+  if (headOn) {
+    const Vec2 right{-out.y, out.x};  // y grows downward
+    out = out * std::cos(kHeadOnRadians) + right * std::sin(kHeadOnRadians);
+  }
   if (passed == 0) return out;
   const double turn = side >= 0.0 ? kOvertakeRadians : -kOvertakeRadians;
   const double c = std::cos(turn);
@@ -426,7 +445,7 @@ void steerAll(Refs& w, SteeringScratch& scratch) {
       if (type.radius > lightest) {
         const std::span<const std::uint32_t> touching(scratch.touching.data() + scratch.start[i],
                                                       scratch.start[i + 1] - scratch.start[i]);
-        desired = limitPushing(w, touching, unit, desired);
+        desired = limitPushing(w, touching, unit, desired, lightest);
       } else if (scratch.stepAsideFor[i] != SteeringScratch::kNone) {
         desired = stepAside(w, unit, w.state.units[scratch.stepAsideFor[i]], desired);
       } else if (scratch.laneSide[i] != 0.0) {
