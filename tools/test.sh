@@ -6,7 +6,7 @@
 #   2. AddressSanitizer + UndefinedBehaviorSanitizer build (-O1 -g1), every test but the data
 #      suite and the Slurm test.
 #   3. When clang is installed: the libFuzzer harnesses (tests/fuzz, docs/fuzzing.md) built in
-#      build-fuzz/ and each run for 15 s from the bundled seeds; a crash, hang or OOM fails.
+#      build-fuzz/ and each run for 10 s from the bundled seeds; a crash, hang or OOM fails.
 # Pass --no-sanitizers to skip step 2 and --no-fuzz to skip step 3 while iterating.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -41,7 +41,7 @@ fi
 
 if ((fuzz)); then
   if command -v clang++ >/dev/null; then
-    bash tools/fuzz.sh --seconds 15
+    bash tools/fuzz.sh --seconds 10
   else
     echo "test: clang++ not found, fuzz harnesses skipped (tools/setup.sh installs clang)"
   fi
