@@ -35,6 +35,13 @@ constexpr double kOvertakeRadians = 0.5;
 // seed.
 constexpr double kHeadOnRadians = 1.1;
 
+// `v` turned by `radians`, toward its right for positive angles (y grows downward).
+Vec2 rotated(Vec2 v, double radians) {
+  const double c = std::cos(radians);
+  const double s = std::sin(radians);
+  return {v.x * c - v.y * s, v.x * s + v.y * c};
+}
+
 // Cooperative movement: a unit pushing into another goes no faster than that one can walk,
 // so a jeep does not drive infantry ahead of it at three times their speed. Who touches whom
 // is Box2D's (its contacts after the last step, `touching`). A vehicle (heavier than
@@ -84,15 +91,9 @@ Vec2 limitPushing(const Refs& w, std::span<const std::uint32_t> touching, const 
     cap = std::min(cap, walk);
   }
   Vec2 out = desired * (cap / speed);
-  if (headOn) {
-    const Vec2 right{-out.y, out.x};  // y grows downward
-    out = out * std::cos(kHeadOnRadians) + right * std::sin(kHeadOnRadians);
-  }
+  if (headOn) out = rotated(out, kHeadOnRadians);
   if (passed == 0) return out;
-  const double turn = side >= 0.0 ? kOvertakeRadians : -kOvertakeRadians;
-  const double c = std::cos(turn);
-  const double s = std::sin(turn);
-  out = {out.x * c - out.y * s, out.x * s + out.y * c};
+  out = rotated(out, side >= 0.0 ? kOvertakeRadians : -kOvertakeRadians);
   for (std::size_t i = 0; i < passed; ++i) {
     const auto& [toward, walk] = passing[i];
     const double pressing = out.dot(toward);
