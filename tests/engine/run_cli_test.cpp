@@ -94,6 +94,43 @@ TEST_F(RunCli, ReportFolderIsCreatedOrRefusedBeforeTheRun) {
   EXPECT_EQ(r.out.find("tick"), std::string::npos) << "the run started: " << r.out;
 }
 
+// --trace: a CSV row per traced unit every N ticks, from tick 0, with the header naming the
+// columns; the units move east toward their goal between rows.
+TEST_F(RunCli, TraceWritesTheChosenUnitsStateEveryNTicks) {
+  const std::string file = write("ok.yaml", "  - max_stuck: 0\n");
+  const fs::path trace = dir_ / "traces" / "t.csv";
+  const RtsResult r = rts("run " + file + " --quiet --until 60 --trace " + trace.string() +
+                          " --trace-every 30 --trace-units 0,2");
+  EXPECT_EQ(r.status, 0) << r.out;
+  std::ifstream in(trace);
+  std::string line;
+  ASSERT_TRUE(std::getline(in, line));
+  EXPECT_EQ(line.rfind("tick,unit,team,type,x,y,vx,vy,state,waypoint,path_cells,", 0), 0u) << line;
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::size_t from = 0;
+    for (std::size_t comma; (comma = line.find(',', from)) != std::string::npos; from = comma + 1)
+      cells.push_back(line.substr(from, comma - from));
+    cells.push_back(line.substr(from));
+    EXPECT_EQ(cells.size(), 22u) << line;
+    rows.push_back(std::move(cells));
+  }
+  ASSERT_EQ(rows.size(), 6u);  // ticks 0, 30 and 60, units 0 and 2
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i][0], std::to_string(30 * (i / 2)));
+    EXPECT_EQ(rows[i][1], i % 2 == 0 ? "0" : "2");
+    EXPECT_EQ(rows[i][2], "blue");
+    EXPECT_EQ(rows[i][3], "infantry");
+  }
+  EXPECT_EQ(rows[0][8], "idle");  // before its first tick the order waits for a path
+  EXPECT_EQ(rows[4][8], "moving");
+  EXPECT_GT(std::stod(rows[4][4]), std::stod(rows[0][4]));  // x grew: it went east
+  // A trace every 0 ticks is refused before the run.
+  EXPECT_EQ(rts("run " + file + " --quiet --trace " + trace.string() + " --trace-every 0").status,
+            2);
+}
+
 TEST_F(RunCli, BadInputExitsTwoNamingFileLineColumn) {
   const std::string file =
       write("bad.yaml", "  - arrival_rate: {team: green, type: infantry, at_least: 1, by: 1}\n");

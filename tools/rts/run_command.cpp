@@ -14,6 +14,7 @@
 #include "rts/html_report.h"
 #include "rts/render_support.h"
 #include "rts/scenario_support.h"
+#include "rts/trace_writer.h"
 
 namespace warpath::tools {
 namespace {
@@ -26,6 +27,7 @@ struct RunOptions {
   std::optional<std::int64_t> until;
   bool quiet = false;
   FrameOptions frames;
+  TraceOptions trace;
   std::string replay;
   std::int64_t replayEvery = 1;
 };
@@ -148,6 +150,7 @@ int runRun(const RunOptions& options) {
   prepareOutputPath(options.html, "--html");
   prepareOutputPath(options.frames.video, "--video");
   prepareOutputPath(options.replay, "--replay");
+  prepareOutputPath(options.trace.file, "--trace");
   engine::ScenarioRun run(scenario, options.seed);
   installInterruptHandlers();
 
@@ -178,6 +181,15 @@ int runRun(const RunOptions& options) {
       frames->onTick(r.world());
     };
   }
+  std::optional<TraceWriter> trace;
+  if (options.trace.wanted()) {
+    trace.emplace(options.trace, scenario);
+    trace->onTick(run.world());  // the start
+    limits.onTick = [&trace, before = limits.onTick](const engine::ScenarioRun& r) {
+      if (before) before(r);
+      trace->onTick(r.world());
+    };
+  }
   if (replay) {
     limits.onTick = [&replay, before = limits.onTick](const engine::ScenarioRun& r) {
       if (before) before(r);
@@ -197,6 +209,8 @@ int runRun(const RunOptions& options) {
     }
   }
 
+  if (trace && !options.quiet)
+    fmt::print("trace: {} ({} rows)\n", options.trace.file, trace->rows());
   const engine::Report& report = outcome.report;
   if (!options.quiet) {
     if (isBattle(scenario)) printBattle(scenario, report, run.world().tickRate());
@@ -252,6 +266,15 @@ void registerRunCommand(CLI::App& app, CommandRunner& run) {
       ->check(wholeNumberIn(0, engine::kMaxScenarioTicks));
   cmd->add_flag("--quiet", options->quiet, "Print nothing but errors");
   addFrameOptions(*cmd, options->frames, "--frame-every");
+  cmd->add_option("--trace", options->trace.file,
+                  "Write every unit's state tick by tick as CSV: position, velocity, order state, "
+                  "waypoint, goal, cooperative plan (docs/report.md, \"Traces\")");
+  cmd->add_option("--trace-every", options->trace.every,
+                  "A trace row per unit every N ticks (default 1)")
+      ->check(wholeNumberIn(1, engine::kMaxScenarioTicks));
+  cmd->add_option("--trace-units", options->trace.units,
+                  "Trace only these units, by index (as in the trace's unit column): 0,5,17")
+      ->delimiter(',');
   cmd->add_option("--replay", options->replay,
                   "Write a self-contained replay (scenario, files, seed, orders, state hashes)");
   cmd->add_option("--replay-every", options->replayEvery,
