@@ -392,7 +392,9 @@ Result<Scenario> replayScenario(const Replay& replay) {
   // before they parked where they stood there, and passages used one way letting 8 through at
   // a time, walkers in windows, before any number went through, walkers without windows, and
   // with every window without progress counted toward the stuck flag before queued units'
-  // were not, and vehicles meeting head on pushing nose to nose before they veered right.
+  // were not, and vehicles meeting head on pushing nose to nose before they veered right, and
+  // vehicles dropping lanes that cost more than a fixed allowance before it grew with the shift,
+  // and planned times taken before the lane.
   WorldSettings defaults;
   if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
   if (replay.version < kFirstCongestionReplayVersion) defaults.pathing.congestion = false;
@@ -418,6 +420,10 @@ Result<Scenario> replayScenario(const Replay& replay) {
   if (replay.version < kFirstWiderLaneApproachesReplayVersion)
     defaults.pathing.widerLaneApproaches = false;
   if (replay.version < kFirstHeadOnKeepRightReplayVersion) defaults.pathing.headOnKeepRight = false;
+  if (replay.version < kFirstWideLaneDetoursReplayVersion) {
+    defaults.pathing.wideLaneDetours = false;
+    defaults.pathing.plannedTimeWithLanes = false;
+  }
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

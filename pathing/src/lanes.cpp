@@ -240,10 +240,14 @@ std::vector<Cell> keepRight(const AnnotatedGrid& grid, Agent agent, std::span<co
       if (!join(layer, map, out, to)) failed = i;
     }
     // A lane is worth a short detour, not a long one: a lone unit pays it for nothing. Keeping
-    // right at one passage costs about its shift there and back, a few cells.
+    // right at one passage costs about its shift there and back: a few cells, or up to twice
+    // the shift across a passage wide enough for several footprints (detourByShift).
     if (failed == n) {
       const double detour = pathCost(out) - pathCost(path);
-      return detour <= kLaneDetourPerSize * (agent.size + 1) ? out : unchanged;
+      double allowed = kLaneDetourPerSize * (agent.size + 1);
+      if (rules.detourByShift)
+        allowed = std::max(allowed, 2.0 * *std::max_element(shift.begin(), shift.end()));
+      return detour <= allowed ? out : unchanged;
     }
     shift[failed - 1] = 0;
     shift[failed] = 0;

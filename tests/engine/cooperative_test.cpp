@@ -429,10 +429,28 @@ TEST(Cooperative, VehiclesMeetingHeadOnInTheOpenVeerRight) {
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.headOnKeepRight);  // the default
+  s.settings.pathing.wideLaneDetours = false;       // which spares those tanks too (format 22)
   for (const bool keepRight : {true, false}) {
     s.settings.pathing.headOnKeepRight = keepRight;
     for (const std::uint64_t seed : {6, 44, 46, 47})
       EXPECT_EQ(runToEnd(s, seed).passed(), keepRight) << "seed " << seed << " " << keepRight;
+  }
+}
+
+// A vehicle's lane may detour as many cells as its largest shift (replay format 22). On a bridge
+// 16 wide a jeep starting along the north edge shifts 8 rows into the south half, and the
+// diagonal steps there and back cost about 7 cells, more than the fixed 6 for its size: the lane
+// was dropped, the jeep drove along the edge the other side's tanks came down, and one of blue's
+// jeeps was held among them past its bound at seeds 73 and 79 of bridge16_mixed.
+TEST(Cooperative, JeepsKeepRightAcrossABridgeSixteenWide) {
+  Result<Scenario> loaded = loadChokepoint("variations/bridge16_mixed.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.wideLaneDetours);  // the default
+  for (const bool wide : {true, false}) {
+    s.settings.pathing.wideLaneDetours = wide;
+    for (const std::uint64_t seed : {73, 79})
+      EXPECT_EQ(runToEnd(s, seed).passed(), wide) << "seed " << seed << " " << wide;
   }
 }
 

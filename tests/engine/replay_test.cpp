@@ -363,6 +363,10 @@ void useRulesOfFormat(Scenario& s, std::uint32_t format) {
   if (format < 19) s.settings.pathing.queuesExcused = false;
   if (format < 20) s.settings.pathing.widerLaneApproaches = false;
   if (format < 21) s.settings.pathing.headOnKeepRight = false;
+  if (format < 22) {
+    s.settings.pathing.wideLaneDetours = false;
+    s.settings.pathing.plannedTimeWithLanes = false;
+  }
 }
 
 void expectVerifiesOnlyAsItsFormat(const Scenario& s, const ReplaySource& source,
@@ -613,6 +617,21 @@ TEST_F(Replays, AFormat20ReplayPlaysBackWithVehiclesPushingHeadOn) {
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format20.rpl", 20, 900);
 }
 
+// Format 21 was recorded when a vehicle's lane that cost more than the fixed allowance was dropped
+// however far it shifted: it plays back so, and read as format 22 the same records do not verify.
+// bridge16_mixed at seed 73, where four of blue's jeeps lost their lanes across the bridge.
+TEST_F(Replays, AFormat21ReplayPlaysBackDroppingWideLanes) {
+  ReplaySource source;
+  Result<Scenario> loaded = loadRecordedChokepoint("variations/bridge16_mixed.yaml", source);
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.wideLaneDetours);
+  useRulesOfFormat(s, 21);
+  s.settings.seed = 73;
+  source.seed = 73;
+  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format21.rpl", 21, 300);
+}
+
 // Format 18 was recorded when a unit queued behind another going its way counted its windows
 // without progress toward the stuck flag (a count the state hash covers): it plays back so, and
 // read as format 19 the same records do not verify. The door's two crowds at seed 10, where a
@@ -637,21 +656,21 @@ TEST_F(Replays, AnotherVersionIsRefused) {
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
                                  ": replay format version 1 is not supported (this build reads "
-                                 "versions 2 to 21); it was written before battles were recorded: "
+                                 "versions 2 to 22); it was written before battles were recorded: "
                                  "record it again with rts run --replay");
   RtsResult r = rts("replay verify " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(file.string() + ": replay format version 1 is not supported"),
             std::string::npos)
       << r.out;
-  bytes[8] = 22;
+  bytes[8] = 23;
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
-                                 ": replay format version 22 is not supported (this build reads "
-                                 "versions 2 to 21)");
+                                 ": replay format version 23 is not supported (this build reads "
+                                 "versions 2 to 22)");
   r = rts("replay info " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_NE(r.out.find("version 22 is not supported"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("version 23 is not supported"), std::string::npos) << r.out;
   EXPECT_EQ(rts("replay verify " + (dir_ / "none.rpl").string()).status, 2);
 }
 
@@ -760,7 +779,7 @@ TEST_F(Replays, ABattleRecordsAndVerifies) {
 
   const RtsResult info = rts("replay info " + file.string());
   EXPECT_EQ(info.status, 0) << info.out;
-  EXPECT_NE(info.out.find("format version: 21\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("format version: 22\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("orders: 4 (2 attack_move, 1 attack, 1 reinforce)\n"), std::string::npos)
       << info.out;
   const RtsResult verify = rts("replay verify " + file.string());

@@ -138,8 +138,16 @@ struct PathServiceSettings {
   // head on outside timed windows pushed nose to nose instead of each veering to its right
   // (docs/cooperative.md, "Head on in the open").
   bool headOnKeepRight = true;
+  // Not a scenario key: false plays back replays before format 22, when a vehicle's lane whose
+  // detour cost more than two cells per cell of footprint side plus one was dropped however far
+  // it had to shift (pathing::LaneRules::detourByShift; docs/cooperative.md, "Lanes across
+  // wide passages").
+  bool wideLaneDetours = true;
+  // Not a scenario key: false plays back replays before format 22, when a unit's planned time
+  // (the report's delays, and the state hash) was its delivered path's, before its lane.
+  bool plannedTimeWithLanes = true;
   pathing::LaneRules laneRules() const {
-    return {lanesThroughJunctions, laneApproaches, widerLaneApproaches};
+    return {lanesThroughJunctions, laneApproaches, widerLaneApproaches, wideLaneDetours};
   }
 };
 inline constexpr int kMaxCooperativeWindow = 256;

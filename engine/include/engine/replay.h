@@ -64,9 +64,11 @@ namespace warpath::engine {
 // hashes; a vehicle's lane holds for five footprints beyond a passage at least five footprints
 // across (older files play back with two). 21: the same records and hashes; two vehicles meeting
 // head on outside timed windows each veer to their right (older files play back pushing nose to
-// nose). Version-1 files (move orders only) are refused with
-// a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 21;
+// nose). 22: the same records and hashes; a vehicle's lane may detour twice its largest shift,
+// and a unit's planned time (in the hash) is taken along its lane (older files play back dropping
+// lanes that cost more than the fixed allowance, with planned times taken before the lane).
+// Version-1 files (move orders only) are refused with a message saying so.
+inline constexpr std::uint32_t kReplayVersion = 22;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -122,6 +124,11 @@ inline constexpr std::uint32_t kFirstWiderLaneApproachesReplayVersion = 20;
 // Formats before this one were recorded when two vehicles meeting head on outside timed windows
 // pushed nose to nose: they play back so (PathServiceSettings::headOnKeepRight off).
 inline constexpr std::uint32_t kFirstHeadOnKeepRightReplayVersion = 21;
+// Formats before this one were recorded when a vehicle's lane that cost more than two cells per
+// cell of footprint side plus one was dropped however far it shifted, and a unit's planned time
+// was taken before its lane: they play back so (PathServiceSettings::wideLaneDetours and
+// plannedTimeWithLanes off).
+inline constexpr std::uint32_t kFirstWideLaneDetoursReplayVersion = 22;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

@@ -334,7 +334,8 @@ std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
     if (delivery.status == PathStatus::Found) {
       // A new path: the old window goes (the unit holds where it stands until it gets one).
       if (unit.plan) releaseReservations(w, unit);
-      if (unit.plannedTicks < 0) unit.plannedTicks = freeFlowTicks(w, unit, delivery);
+      if (unit.plannedTicks < 0 && !w.settings.pathing.plannedTimeWithLanes)
+        unit.plannedTicks = freeFlowTicks(w, unit, delivery, *delivery.path);
       unit.path = delivery.path;
       // Cooperating vehicles keep to the right half of passages wide enough for two (lanes).
       // Infantry (size 1) slip past each other: lanes only bent their paths, and at the bundled
@@ -345,6 +346,9 @@ std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
         if (lane != unit.path->cells)
           unit.path = std::make_shared<const PlannedPath>(planned(std::move(lane)));
       }
+      // The planned time is the path the unit follows, its lane included: a unit alone keeps
+      // right too, and the delay measures what the traffic costs it.
+      if (unit.plannedTicks < 0) unit.plannedTicks = freeFlowTicks(w, unit, delivery, *unit.path);
       unit.next = 0;
       unit.state = UnitState::Moving;
       unit.progress.restartWindow(unit.position, w.state.tick);
@@ -358,12 +362,11 @@ std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
   return spent;
 }
 
-std::int64_t freeFlowTicks(const Refs& w, const Unit& unit, const PathDelivery& delivery) {
-  // Under terrain costs the plan's cost is its travel time.
-  if (delivery.seconds >= 0.0) return std::llround(delivery.seconds * w.settings.tickRate);
-  // Else each move at the top speed on the terrain under the body's centre at its end, as
-  // steering drives it.
-  const std::vector<Cell>& path = delivery.path->cells;
+namespace {
+
+// [Unit: s] Each move of `path` at the unit's top speed on the terrain under the body's centre
+// at its end, as steering drives it.
+double walkedSeconds(const Refs& w, const Unit& unit, const std::vector<Cell>& path) {
   const units::UnitType& type = w.typeOf(unit);
   const int half = type.size / 2;
   double seconds = 0.0;
@@ -373,6 +376,21 @@ std::int64_t freeFlowTicks(const Refs& w, const Unit& unit, const PathDelivery& 
     if (!(speed > 0.0)) speed = type.maxSpeed();
     const bool diagonal = c.x != path[i - 1].x && c.y != path[i - 1].y;
     seconds += (diagonal ? kSqrt2 : 1.0) / speed;
+  }
+  return seconds;
+}
+
+}  // namespace
+
+std::int64_t freeFlowTicks(const Refs& w, const Unit& unit, const PathDelivery& delivery,
+                           const PlannedPath& followed) {
+  double seconds = delivery.seconds;
+  if (seconds < 0.0) {
+    seconds = walkedSeconds(w, unit, followed.cells);
+  } else if (&followed != delivery.path.get()) {
+    // Under terrain costs the plan's cost is its travel time; a lane's detour adds its share.
+    const double planned = walkedSeconds(w, unit, delivery.path->cells);
+    if (planned > 0.0) seconds *= walkedSeconds(w, unit, followed.cells) / planned;
   }
   return std::llround(seconds * w.settings.tickRate);
 }

@@ -68,10 +68,12 @@ bool requestDetour(Refs& w, Unit& unit);
 // Serves the path service within its budget and hands each answer to its unit; returns the
 // expansions spent.
 std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch);
-// [Unit: ticks] The time a unit alone needs along its delivered path (under terrain costs the
-// plan's cost, else each move at its top speed there): what the report's delays are measured
+// [Unit: ticks] The time a unit alone needs along the path it follows, `followed` (the
+// delivered one, or its lane): under terrain costs the plan's cost (scaled by the lane's
+// detour), else each move at its top speed there. What the report's delays are measured
 // against.
-std::int64_t freeFlowTicks(const Refs& w, const Unit& unit, const PathDelivery& delivery);
+std::int64_t freeFlowTicks(const Refs& w, const Unit& unit, const PathDelivery& delivery,
+                           const PlannedPath& followed);
 // Units whose goal area reassignGoal last found without a free cell for them, and what that
 // answer depended on: the goal board around the area (its digest there), the terrain (changes
 // applied), the unit's component and its area. Until one of those changes the answer stays the

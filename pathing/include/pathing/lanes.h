@@ -30,6 +30,12 @@ struct LaneRules {
   // With holdBeyond: five footprints where the passage is at least five footprints across, room
   // for two each way and more, where crowds queue at the mouths.
   bool holdFartherWhereWide = true;
+  // A lane's detour may cost its largest shift there and back (twice the shift) where that is
+  // more than the fixed allowance (two cells per cell of footprint side plus one): a jeep moved
+  // 8 cells over on a bridge 16 wide pays 6-9 cells for the steps there and back, more than its
+  // fixed 6. Without, such a lane was dropped and the jeep kept to the edge the other way's
+  // traffic drives along (bridge16_mixed).
+  bool detourByShift = true;
 };
 
 // `path` (legal single moves for the agent, start to goal) kept to the right: where the path
