@@ -394,7 +394,8 @@ Result<Scenario> replayScenario(const Replay& replay) {
   // with every window without progress counted toward the stuck flag before queued units'
   // were not, and vehicles meeting head on pushing nose to nose before they veered right, and
   // vehicles dropping lanes that cost more than a fixed allowance before it grew with the shift,
-  // and planned times taken before the lane.
+  // and planned times taken before the lane, and vehicles veering only from vehicles moving at
+  // them before they veered from lighter ones steering their way too.
   WorldSettings defaults;
   if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
   if (replay.version < kFirstCongestionReplayVersion) defaults.pathing.congestion = false;
@@ -423,6 +424,7 @@ Result<Scenario> replayScenario(const Replay& replay) {
   if (replay.version < kFirstWideLaneDetoursReplayVersion) {
     defaults.pathing.wideLaneDetours = false;
     defaults.pathing.plannedTimeWithLanes = false;
+    defaults.pathing.headOnByIntent = false;
   }
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);

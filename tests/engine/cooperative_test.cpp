@@ -447,10 +447,28 @@ TEST(Cooperative, JeepsKeepRightAcrossABridgeSixteenWide) {
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.wideLaneDetours);  // the default
+  s.settings.pathing.headOnByIntent = false;        // which spares those jeeps too (format 22)
   for (const bool wide : {true, false}) {
     s.settings.pathing.wideLaneDetours = wide;
     for (const std::uint64_t seed : {73, 79})
       EXPECT_EQ(runToEnd(s, seed).passed(), wide) << "seed " << seed << " " << wide;
+  }
+}
+
+// A vehicle veers right from a lighter vehicle that steers its way, however that one moves
+// (replay format 22). At bridge16_mixed seeds 15 and 35 a jeep a few cells short of its goal
+// area met the other side's tanks leaving it: faster by kind, it does not veer from them, and
+// pushed back at their speed it was not "coming at" them, so the column pushed it back over the
+// bridge and it arrived after its bound.
+TEST(Cooperative, VehiclesVeerFromLighterOnesSteeringTheirWay) {
+  Result<Scenario> loaded = loadChokepoint("variations/bridge16_mixed.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.headOnByIntent);  // the default
+  for (const bool byIntent : {true, false}) {
+    s.settings.pathing.headOnByIntent = byIntent;
+    for (const std::uint64_t seed : {15, 35})
+      EXPECT_EQ(runToEnd(s, seed).passed(), byIntent) << "seed " << seed << " " << byIntent;
   }
 }
 

@@ -366,6 +366,7 @@ void useRulesOfFormat(Scenario& s, std::uint32_t format) {
   if (format < 22) {
     s.settings.pathing.wideLaneDetours = false;
     s.settings.pathing.plannedTimeWithLanes = false;
+    s.settings.pathing.headOnByIntent = false;
   }
 }
 

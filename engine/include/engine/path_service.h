@@ -146,6 +146,11 @@ struct PathServiceSettings {
   // Not a scenario key: false plays back replays before format 22, when a unit's planned time
   // (the report's delays, and the state hash) was its delivered path's, before its lane.
   bool plannedTimeWithLanes = true;
+  // Not a scenario key: false plays back replays before format 22, when a vehicle veered right
+  // only from a vehicle moving at it, not from a lighter one that steers its way however it
+  // moves (pushed back, or stopped against it; docs/cooperative.md, "Lighter vehicles that want
+  // to come our way").
+  bool headOnByIntent = true;
   pathing::LaneRules laneRules() const {
     return {lanesThroughJunctions, laneApproaches, widerLaneApproaches, wideLaneDetours};
   }

@@ -65,8 +65,10 @@ namespace warpath::engine {
 // across (older files play back with two). 21: the same records and hashes; two vehicles meeting
 // head on outside timed windows each veer to their right (older files play back pushing nose to
 // nose). 22: the same records and hashes; a vehicle's lane may detour twice its largest shift,
-// and a unit's planned time (in the hash) is taken along its lane (older files play back dropping
-// lanes that cost more than the fixed allowance, with planned times taken before the lane).
+// a unit's planned time (in the hash) is taken along its lane, and a vehicle veers right from a
+// lighter one steering its way however that one moves (older files play back dropping lanes
+// that cost more than the fixed allowance, with planned times taken before the lane, veering
+// only from vehicles moving at them).
 // Version-1 files (move orders only) are refused with a message saying so.
 inline constexpr std::uint32_t kReplayVersion = 22;
 // Formats before this one were recorded before cooperative movement and play back without it.
@@ -126,8 +128,8 @@ inline constexpr std::uint32_t kFirstWiderLaneApproachesReplayVersion = 20;
 inline constexpr std::uint32_t kFirstHeadOnKeepRightReplayVersion = 21;
 // Formats before this one were recorded when a vehicle's lane that cost more than two cells per
 // cell of footprint side plus one was dropped however far it shifted, and a unit's planned time
-// was taken before its lane: they play back so (PathServiceSettings::wideLaneDetours and
-// plannedTimeWithLanes off).
+// was taken before its lane, and a vehicle veered only from vehicles moving at it: they play
+// back so (PathServiceSettings::wideLaneDetours, plannedTimeWithLanes and headOnByIntent off).
 inline constexpr std::uint32_t kFirstWideLaneDetoursReplayVersion = 22;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 

@@ -42,12 +42,27 @@ Vec2 rotated(Vec2 v, double radians) {
   return {v.x * c - v.y * s, v.x * s + v.y * c};
 }
 
+// Whether `other`, following a path, steers toward its next waypoint against `heading` (more
+// than 120° from it): a vehicle that wants to come our way, however it moves (stopped nose to
+// nose with us, or pushed back by us).
+bool headsAt(const Refs& w, const Unit& other, Vec2 heading) {
+  if (other.state != UnitState::Moving || !other.path || other.next >= other.path->cells.size())
+    return false;
+  const Vec2 toWaypoint =
+      units::anchorToCentre(other.path->cells[other.next], w.typeOf(other).size) - other.position;
+  const double length = toWaypoint.length();
+  return length > 1e-9 && toWaypoint.dot(heading) < -0.5 * length;
+}
+
 // Cooperative movement: a unit pushing into another goes no faster than that one can walk,
 // so a jeep does not drive infantry ahead of it at three times their speed. Who touches whom
 // is Box2D's (its contacts after the last step, `touching`). A vehicle (heavier than
 // `lightest`) outside a timed window that meets another head on veers to its right
 // (PathServiceSettings::headOnKeepRight), as both do, so they pass instead of pushing nose to
 // nose and sliding off together sideways; in a timed window the reservations keep them apart.
+// It veers too from a lighter vehicle that steers its way however that one moves
+// (headOnByIntent): a jeep, faster by kind, does not veer from a tank, and a column of tanks
+// pushed one back over a bridge for 20 s instead of passing it.
 Vec2 limitPushing(const Refs& w, std::span<const std::uint32_t> touching, const Unit& unit,
                   Vec2 desired, double lightest) {
   const double speed = desired.length();
@@ -77,6 +92,9 @@ Vec2 limitPushing(const Refs& w, std::span<const std::uint32_t> touching, const 
       const double oncoming = other.velocity.length();
       headOn = headOn || (keepRight && otherType.radius > lightest && oncoming > 0.3 &&
                           other.velocity.dot(heading) < -0.5 * oncoming);
+      headOn = headOn || (keepRight && otherType.radius > lightest &&
+                          otherType.radius < w.typeOf(unit).radius &&
+                          w.settings.pathing.headOnByIntent && headsAt(w, other, heading));
       continue;
     }
     // A slower unit walking our way, or parked, is passed rather than followed at its pace: the
