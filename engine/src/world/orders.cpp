@@ -334,8 +334,6 @@ std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
     if (delivery.status == PathStatus::Found) {
       // A new path: the old window goes (the unit holds where it stands until it gets one).
       if (unit.plan) releaseReservations(w, unit);
-      if (unit.plannedTicks < 0 && !w.settings.pathing.plannedTimeWithLanes)
-        unit.plannedTicks = freeFlowTicks(w, unit, delivery, *delivery.path);
       unit.path = delivery.path;
       // Cooperating vehicles keep to the right half of passages wide enough for two (lanes).
       // Infantry (size 1) slip past each other: lanes only bent their paths, and at the bundled
@@ -348,7 +346,11 @@ std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
       }
       // The planned time is the path the unit follows, its lane included: a unit alone keeps
       // right too, and the delay measures what the traffic costs it.
-      if (unit.plannedTicks < 0) unit.plannedTicks = freeFlowTicks(w, unit, delivery, *unit.path);
+      if (unit.plannedTicks < 0) {
+        const bool withLane = w.settings.pathing.plannedTimeWithLanes;
+        unit.plannedTicks =
+            freeFlowTicks(w, unit, delivery, withLane ? *unit.path : *delivery.path);
+      }
       unit.next = 0;
       unit.state = UnitState::Moving;
       unit.progress.restartWindow(unit.position, w.state.tick);
