@@ -71,17 +71,16 @@ TraceWriter::TraceWriter(const TraceOptions& options, const engine::Scenario& sc
 void TraceWriter::onTick(const engine::World& world) {
   const std::int64_t tick = world.tick();
   if (tick % options_.every != 0) return;
+  const auto name = [](const std::vector<std::string>& names, int i) {
+    return i >= 0 && static_cast<std::size_t>(i) < names.size() ? names[static_cast<std::size_t>(i)]
+                                                                : std::string("?");
+  };
   std::string rows;
   for (const engine::Unit& u : world.units()) {
     if (!options_.units.empty() &&
         !std::binary_search(options_.units.begin(), options_.units.end(), u.id.index))
       continue;
     const engine::TimedPlan* plan = u.plan.get();
-    const auto name = [](const std::vector<std::string>& names, int i) {
-      return i >= 0 && static_cast<std::size_t>(i) < names.size()
-                 ? names[static_cast<std::size_t>(i)]
-                 : std::string("?");
-    };
     fmt::format_to(
         std::back_inserter(rows),
         "{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", tick,
