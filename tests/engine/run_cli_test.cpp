@@ -113,7 +113,7 @@ TEST_F(RunCli, TraceWritesTheChosenUnitsStateEveryNTicks) {
     for (std::size_t comma; (comma = line.find(',', from)) != std::string::npos; from = comma + 1)
       cells.push_back(line.substr(from, comma - from));
     cells.push_back(line.substr(from));
-    EXPECT_EQ(cells.size(), 22u) << line;
+    EXPECT_EQ(cells.size(), 24u) << line;
     rows.push_back(std::move(cells));
   }
   ASSERT_EQ(rows.size(), 6u);  // ticks 0, 30 and 60, units 0 and 2
@@ -126,6 +126,10 @@ TEST_F(RunCli, TraceWritesTheChosenUnitsStateEveryNTicks) {
   EXPECT_EQ(rows[0][8], "idle");  // before its first tick the order waits for a path
   EXPECT_EQ(rows[4][8], "moving");
   EXPECT_GT(std::stod(rows[4][4]), std::stod(rows[0][4]));  // x grew: it went east
+  // Its waypoint (columns 22, 23) lies ahead of it, east, within a few cells; none before a path.
+  EXPECT_EQ(rows[0][22], "nan");
+  EXPECT_GT(std::stod(rows[4][22]), std::stod(rows[4][4]) - 0.5);
+  EXPECT_LT(std::stod(rows[4][22]), std::stod(rows[4][4]) + 3.0);
   // A trace every 0 ticks is refused before the run.
   EXPECT_EQ(rts("run " + file + " --quiet --trace " + trace.string() + " --trace-every 0").status,
             2);

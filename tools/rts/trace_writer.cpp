@@ -60,11 +60,13 @@ const char* planName(const engine::Unit& u) {
 
 TraceWriter::TraceWriter(const TraceOptions& options, const engine::Scenario& scenario)
     : options_(options), teams_(scenario.teams), out_(options.file) {
-  for (const units::UnitType& t : scenario.catalogue)
+  for (const units::UnitType& t : scenario.catalogue) {
     types_.push_back(t.name);
+    sizes_.push_back(t.size);
+  }
   std::sort(options_.units.begin(), options_.units.end());
   out_ << "tick,unit,team,type,x,y,vx,vy,state,waypoint,path_cells,goal_x,goal_y,arrived,stuck,"
-          "plan,plan_status,plan_end_tick,gate,admitted,held_x,held_y\n";
+          "plan,plan_status,plan_end_tick,gate,admitted,held_x,held_y,waypoint_x,waypoint_y\n";
   if (!out_) throw BadInput{"cannot write the trace to '" + options.file + "'"};
 }
 
@@ -81,15 +83,21 @@ void TraceWriter::onTick(const engine::World& world) {
         !std::binary_search(options_.units.begin(), options_.units.end(), u.id.index))
       continue;
     const engine::TimedPlan* plan = u.plan.get();
+    // Where the unit's centre heads: the body centre on the waypoint (NaN without a path).
+    units::Vec2 waypoint{std::nan(""), std::nan("")};
+    if (u.path && u.next < u.path->cells.size())
+      waypoint =
+          units::anchorToCentre(u.path->cells[u.next], sizes_[static_cast<std::size_t>(u.type)]);
     fmt::format_to(
         std::back_inserter(rows),
-        "{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", tick,
-        u.id.index, name(teams_, u.team), name(types_, u.type), u.position.x, u.position.y,
+        "{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.1f},{"
+        ":.1f}\n",
+        tick, u.id.index, name(teams_, u.team), name(types_, u.type), u.position.x, u.position.y,
         u.velocity.x, u.velocity.y, stateName(u.state), u.next, u.path ? u.path->cells.size() : 0,
         u.goalCell.x, u.goalCell.y, u.arrivalTick >= 0 ? 1 : 0, u.everStuck ? 1 : 0, planName(u),
         plan ? statusName(plan->status) : "",
         plan && !plan->steps.empty() ? plan->steps.back().tick : -1, plan ? plan->gate : -1,
-        plan && plan->admitted ? 1 : 0, u.held.x, u.held.y);
+        plan && plan->admitted ? 1 : 0, u.held.x, u.held.y, waypoint.x, waypoint.y);
     ++rows_;
   }
   out_ << rows;

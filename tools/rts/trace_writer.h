@@ -32,6 +32,7 @@ class TraceWriter {
   TraceOptions options_;
   std::vector<std::string> teams_;
   std::vector<std::string> types_;
+  std::vector<int> sizes_;  // per type: footprint side, for a waypoint's body centre
   std::ofstream out_;
   std::int64_t rows_ = 0;
 };
