@@ -458,7 +458,9 @@ Report ScenarioRun::report() const {
         for (const Unit& u : units) {
           if (!matches(u, e.team, e.type)) continue;
           ++total;
-          arrived += u.arrivalTick >= 0 && u.arrivalTick <= byTick ? 1 : 0;
+          const bool inTime = u.arrivalTick >= 0 && u.arrivalTick <= byTick;
+          arrived += inTime ? 1 : 0;
+          if (!inTime) result.units.push_back(u.id.index);
         }
         result.actual = total == 0 ? 0.0 : static_cast<double>(arrived) / total;
         result.pass = total > 0 && result.actual >= e.threshold;
@@ -467,12 +469,19 @@ Report ScenarioRun::report() const {
       case ExpectationKind::MaxStuck:
         result.actual = static_cast<double>(r.stuckUnits.size());
         result.pass = result.actual <= e.threshold;
+        result.units = r.stuckUnits;
         break;
       case ExpectationKind::ArrivalTime: {
         const std::vector<double> times = arrivalTimes(e.team, e.type);
         result.actual = times.empty() ? std::numeric_limits<double>::infinity()
                                       : percentile(times, e.percentile);
         result.pass = result.actual <= e.threshold;
+        for (const Unit& u : units) {
+          if (matches(u, e.team, e.type) &&
+              (u.arrivalTick < 0 ||
+               static_cast<double>(u.arrivalTick - u.orderTick) / rate > e.threshold))
+            result.units.push_back(u.id.index);
+        }
         break;
       }
       case ExpectationKind::Delay: {
@@ -480,6 +489,13 @@ Report ScenarioRun::report() const {
         result.actual = delays.empty() ? std::numeric_limits<double>::infinity()
                                        : percentile(delays, e.percentile);
         result.pass = result.actual <= e.threshold;
+        for (const Unit& u : units) {
+          if (matches(u, e.team, e.type) && u.plannedTicks > 0 &&
+              (u.arrivalTick < 0 || static_cast<double>(u.arrivalTick - u.orderTick) /
+                                            static_cast<double>(u.plannedTicks) >
+                                        e.threshold))
+            result.units.push_back(u.id.index);
+        }
         break;
       }
       case ExpectationKind::MaxWait:

@@ -87,8 +87,10 @@ TEST(MovementExpectations, HoldExactlyUpToWhatTheRunDid) {
       "  - max_deadlocks: 1000\n";
   const Report r = testing::runToEnd(corridorExpecting(generous), 1);
   ASSERT_EQ(r.expectations.size(), 4u);
-  for (const ExpectationResult& e : r.expectations)
+  for (const ExpectationResult& e : r.expectations) {
     EXPECT_TRUE(e.pass) << e.text << " (" << e.actual << ")";
+    EXPECT_TRUE(e.units.empty()) << e.text;  // none beyond a bound it holds
+  }
   const DelayStats& blue = delayOf(r, "blue");
   const DelayStats& red = delayOf(r, "red");
   ASSERT_EQ(blue.arrived, 1);
@@ -116,6 +118,11 @@ TEST(MovementExpectations, HoldExactlyUpToWhatTheRunDid) {
   ASSERT_EQ(tight.expectations.size(), 3u);
   for (const ExpectationResult& e : tight.expectations)
     EXPECT_FALSE(e.pass) << e.text << " held (" << e.actual << ")";
+  // Each delay bound counts against the one tank beyond it (the blue one; for the maximum, the
+  // later one); a wait is no unit's in particular.
+  EXPECT_EQ(tight.expectations[0].units.size(), 1u);
+  EXPECT_EQ(tight.expectations[1].units.size(), 1u);
+  EXPECT_TRUE(tight.expectations[2].units.empty());
   const Report exact = testing::runToEnd(
       corridorExpecting(
           "  - delay: {team: blue, type: tank, percentile: 50, at_most: " + bound(blue.p50) +

@@ -66,9 +66,23 @@ TEST_F(RunCli, PassingScenarioExitsZeroAndWritesTheReport) {
 TEST_F(RunCli, FailingExpectationExitsOne) {
   const std::string file =
       write("slow.yaml", "  - arrival_rate: {team: blue, type: infantry, at_least: 1, by: 1}\n");
-  const RtsResult r = rts("run " + file);
+  const std::string report = (dir_ / "report.json").string();
+  const RtsResult r = rts("run " + file + " --report " + report);
   EXPECT_EQ(r.status, 1) << r.out;
   EXPECT_NE(r.out.find("FAIL (0)"), std::string::npos) << r.out;
+  // The units it counts against, each with where it got to: here all three, arrived later.
+  for (const char* unit : {"0", "1", "2"})
+    EXPECT_NE(r.out.find(std::string("\n  unit ") + unit + " (blue infantry): arrived at "),
+              std::string::npos)
+        << r.out;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(report));
+  EXPECT_EQ(j["expectations"][0]["units"], nlohmann::json::array({0, 1, 2}));
+  // Stopped before any arrived, each is named with its place and distance from its goal area.
+  const RtsResult early = rts("run " + file + " --until 30");
+  EXPECT_EQ(early.status, 1) << early.out;
+  EXPECT_NE(early.out.find("\n  unit 0 (blue infantry): not arrived, at ("), std::string::npos)
+      << early.out;
+  EXPECT_NE(early.out.find(" cells from its goal area\n"), std::string::npos) << early.out;
 }
 
 TEST_F(RunCli, UntilStopsEarlyWithAPartialReport) {
@@ -152,6 +166,7 @@ TEST_F(RunCli, TestCommandCountsPassesAndFailures) {
   EXPECT_EQ(r.status, 1) << r.out;
   EXPECT_NE(r.out.find("PASS " + (dir_ / "a.yaml").string()), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("FAIL " + (dir_ / "b.yaml").string()), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("failed: actual 0 (units 0, 1, 2)\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("1 passed, 1 failed\n"), std::string::npos) << r.out;
 }
 

@@ -301,7 +301,8 @@ TEST_F(TestCommand, JUnitHasFailuresErrorsAndTimes) {
             std::string::npos)
       << readFile(xml);
   EXPECT_EQ(xpath(xml, "string(//testcase[@name='slow.yaml']/failure/@message)"),
-            "expectation \"arrival_rate(blue, infantry) >= 1 by 1s\" failed: actual 0");
+            "expectation \"arrival_rate(blue, infantry) >= 1 by 1s\" failed: actual 0 (units 0, "
+            "1, 2)");
   const std::string error = xpath(xml, "string(//testcase[@name='bad.yaml']/error/@message)");
   EXPECT_NE(error.find("bad.yaml:9:26: unknown team"), std::string::npos) << error;
   EXPECT_NE(error.find("unknown team 'green'"), std::string::npos) << error;

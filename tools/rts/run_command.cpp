@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <optional>
@@ -133,6 +134,44 @@ void printBattle(const engine::Scenario& scenario, const engine::Report& report,
   }
 }
 
+// Under a failed expectation, the first units it counts against and where each got to: the
+// units to follow with --trace.
+void printUnitsAgainst(const engine::ExpectationResult& e, const engine::Scenario& scenario,
+                       const engine::World& world) {
+  constexpr std::size_t kShown = 8;
+  const double rate = world.tickRate();
+  const std::vector<engine::Unit>& units = world.units();
+  std::size_t shown = 0;
+  for (const std::uint32_t index : e.units) {
+    if (index >= units.size()) continue;
+    if (shown++ == kShown) {
+      fmt::print("  and {} more\n", e.units.size() - kShown);
+      break;
+    }
+    const engine::Unit& u = units[index];
+    const std::string who =
+        fmt::format("unit {} ({} {})", index, scenario.teams.at(static_cast<std::size_t>(u.team)),
+                    scenario.catalogue.at(static_cast<std::size_t>(u.type)).name);
+    const std::string stuck = u.everStuck ? ", flagged stuck" : "";
+    if (u.arrivalTick >= 0) {
+      const std::string sinceOrder =
+          u.orderTick > 0 ? fmt::format(" ({:.1f} s after its order)",
+                                        static_cast<double>(u.arrivalTick - u.orderTick) / rate)
+                          : "";
+      fmt::print("  {}: arrived at {:.1f} s{}{}\n", who, static_cast<double>(u.arrivalTick) / rate,
+                 sinceOrder, stuck);
+      continue;
+    }
+    // Cells from the body's centre to the nearest point of the goal area.
+    const pathing::CellRect& a = u.goalArea;
+    const double dx = std::max({a.x - u.position.x, 0.0, u.position.x - (a.x + a.width)});
+    const double dy = std::max({a.y - u.position.y, 0.0, u.position.y - (a.y + a.height)});
+    fmt::print("  {}: {} at ({:.1f}, {:.1f}), {:.1f} cells from its goal area{}\n", who,
+               u.alive() ? "not arrived," : "dead,", u.position.x, u.position.y,
+               std::sqrt(dx * dx + dy * dy), stuck);
+  }
+}
+
 engine::ReplayEnd endOf(const RunOutcome& outcome) {
   if (outcome.interrupted) return engine::ReplayEnd::Interrupted;
   return outcome.report.complete ? engine::ReplayEnd::Complete : engine::ReplayEnd::Stopped;
@@ -214,8 +253,10 @@ int runRun(const RunOptions& options) {
   const engine::Report& report = outcome.report;
   if (!options.quiet) {
     if (isBattle(scenario)) printBattle(scenario, report, run.world().tickRate());
-    for (const engine::ExpectationResult& e : report.expectations)
+    for (const engine::ExpectationResult& e : report.expectations) {
       fmt::print("expectation \"{}\": {} ({:.4g})\n", e.text, e.pass ? "PASS" : "FAIL", e.actual);
+      if (!e.pass) printUnitsAgainst(e, scenario, run.world());
+    }
     const engine::TickTiming t = run.world().meanTiming();
     fmt::print(
         "{} ticks, {:.1f} s simulated in {:.2f} s; {:.3f} ms/tick (pathing {:.3f}, combat {:.3f}, "

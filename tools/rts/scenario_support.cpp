@@ -1,5 +1,8 @@
 #include "rts/scenario_support.h"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -33,8 +36,24 @@ nlohmann::json finiteOrNull(double v) {
 nlohmann::json expectationsJson(const std::vector<engine::ExpectationResult>& expectations) {
   nlohmann::json list = nlohmann::json::array();
   for (const engine::ExpectationResult& e : expectations)
-    list.push_back({{"text", e.text}, {"actual", finiteOrNull(e.actual)}, {"pass", e.pass}});
+    list.push_back({{"text", e.text},
+                    {"actual", finiteOrNull(e.actual)},
+                    {"pass", e.pass},
+                    {"units", e.units}});
   return list;
+}
+
+std::string failureLine(const engine::ExpectationResult& e) {
+  // Enough to pick units to trace without a line as long as a crowd.
+  constexpr std::size_t kNamed = 8;
+  std::string line = fmt::format("expectation \"{}\" failed: actual {:.4g}", e.text, e.actual);
+  if (e.units.empty()) return line;
+  const std::size_t named = std::min(e.units.size(), kNamed);
+  line += fmt::format(
+      " (unit{} {}", e.units.size() == 1 ? "" : "s",
+      fmt::join(e.units.begin(), e.units.begin() + static_cast<std::ptrdiff_t>(named), ", "));
+  if (e.units.size() > named) line += fmt::format(" and {} more", e.units.size() - named);
+  return line + ")";
 }
 
 engine::Scenario loadScenarioOrThrow(const std::string& file, engine::ReplaySource* source) {

@@ -41,8 +41,12 @@ RunOutcome runToEnd(engine::ScenarioRun& run, const RunLimits& limits);
 
 // inf (a percentile of units that never arrived) has no JSON form: null.
 nlohmann::json finiteOrNull(double v);
-// The report's "expectations": text, actual value (null for inf) and pass of each.
+// The report's "expectations": text, actual value (null for inf), pass and the units it counts
+// against (ExpectationResult::units) of each.
 nlohmann::json expectationsJson(const std::vector<engine::ExpectationResult>& expectations);
+// A failed expectation's line, as `rts test` and its JUnit file give it: its text, the actual
+// value and the first units it counts against ("units 1, 5 and 3 more").
+std::string failureLine(const engine::ExpectationResult& e);
 
 nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& run);
 

@@ -253,10 +253,11 @@ CaseResult caseFromJson(const nlohmann::json& j, const std::string& where) {
     if (!j.at("state_hash").is_null()) r.stateHash = j.at("state_hash").get<std::string>();
     for (const nlohmann::json& e : j.at("expectations")) {
       const nlohmann::json& actual = e.at("actual");
+      // (Results written before expectations named their units have no "units".)
       r.expectations.push_back(
           {e.at("text").get<std::string>(),
            actual.is_null() ? std::numeric_limits<double>::infinity() : actual.get<double>(),
-           e.at("pass").get<bool>()});
+           e.at("pass").get<bool>(), e.value("units", std::vector<std::uint32_t>{})});
     }
     const nlohmann::json& report = j.at("report");
     if (report.is_string())
@@ -279,7 +280,7 @@ void printCase(const CaseResult& r) {
              r.status == CaseStatus::Pass ? "PASS" : "FAIL", r.file, seed, r.units, r.ticks,
              r.winner.empty() ? "" : ", winner " + r.winner, r.seconds);
   for (const engine::ExpectationResult& e : r.expectations) {
-    if (!e.pass) fmt::print("  expectation \"{}\" failed: actual {:.4g}\n", e.text, e.actual);
+    if (!e.pass) fmt::print("  {}\n", failureLine(e));
   }
   if (!r.message.empty()) fmt::print("  {}\n", r.message);
 }

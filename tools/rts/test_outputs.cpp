@@ -11,6 +11,7 @@
 
 #include "pathing/file_read.h"
 #include "rts/cli_support.h"
+#include "rts/scenario_support.h"
 #include "rts/svg_plot.h"
 
 namespace warpath::tools {
@@ -73,8 +74,7 @@ void appendTestCase(std::string& xml, const CaseResult& r) {
     int failed = 0;
     for (const engine::ExpectationResult& e : r.expectations) {
       if (e.pass) continue;
-      const std::string line =
-          fmt::format("expectation \"{}\" failed: actual {:.4g}", e.text, e.actual);
+      const std::string line = failureLine(e);
       if (failed++ == 0) message = line;
       body += line + '\n';
     }

@@ -74,6 +74,10 @@ struct ExpectationResult {
   std::string text;
   double actual = 0.0;  // rate, count or seconds; +inf when a percentile has not arrived
   bool pass = false;
+  // The units it counts against, by index, ascending: for arrival_rate those not arrived by its
+  // time, for arrival_time and delay those beyond its bound (or not arrived), for max_stuck
+  // those flagged; empty for the expectations about no unit in particular. What to trace.
+  std::vector<std::uint32_t> units;
   bool operator==(const ExpectationResult&) const = default;
 };
 
