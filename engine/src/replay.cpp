@@ -395,7 +395,8 @@ Result<Scenario> replayScenario(const Replay& replay) {
   // were not, and vehicles meeting head on pushing nose to nose before they veered right, and
   // vehicles dropping lanes that cost more than a fixed allowance before it grew with the shift,
   // and planned times taken before the lane, and vehicles veering only from vehicles moving at
-  // them before they veered from lighter ones steering their way too.
+  // them before they veered from lighter ones steering their way too, and units kept out of a
+  // passage waiting inside it before they took the turn from a holder not yet in.
   WorldSettings defaults;
   if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
   if (replay.version < kFirstCongestionReplayVersion) defaults.pathing.congestion = false;
@@ -426,6 +427,7 @@ Result<Scenario> replayScenario(const Replay& replay) {
     defaults.pathing.plannedTimeWithLanes = false;
     defaults.pathing.headOnByIntent = false;
   }
+  if (replay.version < kFirstInsideGoesFirstReplayVersion) defaults.pathing.insideGoesFirst = false;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

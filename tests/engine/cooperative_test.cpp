@@ -472,6 +472,21 @@ TEST(Cooperative, VehiclesVeerFromLighterOnesSteeringTheirWay) {
   }
 }
 
+// A unit kept out of a passage that stands inside it takes the turn from a holder going the
+// other way that has not entered yet (replay format 23). Three tanks a side through a corridor 5
+// wide at seed 4: red's last tank came out at the west mouth into blue's last, waiting there; its
+// window blocked, it lost the turn to blue's, which pushed it back in and along the corridor, the
+// two standing nose to nose for the last 50 s (one tank of each side never arrived).
+TEST(Cooperative, AUnitCaughtInsideAPassageGoesFirst) {
+  Result<Scenario> loaded = loadChokepoint("variations/corridor5_tanks_3v3.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.insideGoesFirst);  // the default
+  EXPECT_TRUE(runToEnd(s, 4).passed());
+  s.settings.pathing.insideGoesFirst = false;
+  EXPECT_FALSE(runToEnd(s, 4).passed());
+}
+
 // At the crossroads the paths of opposite arms cross over in the 8×8 crossing, toward goal
 // cells on the far side. With lanes through junctions (replay format 12) each tank pair holds its
 // right half across it; with lanes ending there (before) the pairs met head on in the middle

@@ -151,6 +151,11 @@ struct PathServiceSettings {
   // moves (pushed back, or stopped against it; docs/cooperative.md, "Lighter vehicles that want
   // to come our way").
   bool headOnByIntent = true;
+  // Not a scenario key: false plays back replays before format 23, when a unit kept out of a
+  // passage waited where it stood even inside it, while the holder of the passage's turn, going
+  // the other way and not yet in, pushed it back through (docs/cooperative.md, "Inside goes
+  // first").
+  bool insideGoesFirst = true;
   pathing::LaneRules laneRules() const {
     return {lanesThroughJunctions, laneApproaches, widerLaneApproaches, wideLaneDetours};
   }

@@ -68,9 +68,11 @@ namespace warpath::engine {
 // a unit's planned time (in the hash) is taken along its lane, and a vehicle veers right from a
 // lighter one steering its way however that one moves (older files play back dropping lanes
 // that cost more than the fixed allowance, with planned times taken before the lane, veering
-// only from vehicles moving at them).
+// only from vehicles moving at them). 23: the same records and hashes; a unit kept out of a
+// passage but standing inside it takes the turn from a holder going the other way that has not
+// entered yet (older files play back with it waiting there, pushed back by the holder).
 // Version-1 files (move orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 22;
+inline constexpr std::uint32_t kReplayVersion = 23;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -131,6 +133,9 @@ inline constexpr std::uint32_t kFirstHeadOnKeepRightReplayVersion = 21;
 // was taken before its lane, and a vehicle veered only from vehicles moving at it: they play
 // back so (PathServiceSettings::wideLaneDetours, plannedTimeWithLanes and headOnByIntent off).
 inline constexpr std::uint32_t kFirstWideLaneDetoursReplayVersion = 22;
+// Formats before this one were recorded when a unit kept out of a passage waited where it
+// stood even inside it: they play back so (PathServiceSettings::insideGoesFirst off).
+inline constexpr std::uint32_t kFirstInsideGoesFirstReplayVersion = 23;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

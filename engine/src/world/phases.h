@@ -233,6 +233,11 @@ class Traffic {
   units::Vec2 passageHeading(const Refs& w, const Unit& unit, std::int32_t p);
   // The gates as the units' plans left them: who holds each, and whether it is turning.
   void updateGates(const Refs& w);
+  // A unit kept out of a passage that stands inside it (pushed back in, or caught in its mouth)
+  // takes the turn from a holder going the other way that has not entered yet, the only one let
+  // through: it cannot wait inside, and the holder cannot pass it
+  // (PathServiceSettings::insideGoesFirst).
+  void letOutFromInside(Refs& w);
   // The gate of passage `p` lets the unit through now: it is free, or held by units going the
   // unit's way and not turning.
   bool admits(std::int32_t p, const Unit& unit) const;

@@ -702,6 +702,38 @@ void Traffic::addStream(const Refs& w, const Unit& unit, std::vector<std::uint32
   }
 }
 
+void Traffic::letOutFromInside(Refs& w) {
+  std::vector<Unit>& all = w.state.units;
+  const GridMap& map = w.map();
+  const Tick now = w.state.tick;
+  const auto inside = [&](const Unit& u, std::int32_t p) {
+    const units::UnitType& type = w.typeOf(u);
+    return passageAt(map, passingRoom(w, type.agent()),
+                     units::centreToAnchor(u.position, type.size)) == p;
+  };
+  for (Unit& unit : all) {
+    if (!following(unit) || !unit.plan || unit.plan->admitted || unit.plan->gate < 0) continue;
+    const std::int32_t p = unit.plan->gate;
+    if (static_cast<std::size_t>(p) >= gates_.size() || aheadOf(w, unit) != p) continue;
+    Gate& gate = gates_[static_cast<std::size_t>(p)];
+    if (gate.holder == kNone || gate.inFlight != 1 || !inside(unit, p)) continue;
+    Unit& holder = all[gate.holder];
+    if (sameWay(headings_[unit.id.index], headings_[holder.id.index]) || inside(holder, p))
+      continue;
+    // Each plans its next window under its new turn: the holder around the passage, its mouth
+    // and the stream coming out, the unit out of it.
+    standAt(w, holder, nearestStandable(w, holder), p, false, now);
+    standAt(w, unit, nearestStandable(w, unit), p, true, now);
+    gate.holder = unit.id.index;
+    gate.holderSince = now;
+    gate.turning = false;
+    gate.keptOut += 1;
+    std::vector<std::uint32_t>& stream = streams_[static_cast<std::size_t>(p)];
+    stream.clear();
+    addStream(w, unit, stream);
+  }
+}
+
 bool Traffic::admits(std::int32_t p, const Unit& unit) const {
   const Gate& gate = gates_[static_cast<std::size_t>(p)];
   return gate.holder == kNone || (!gate.turning && (gate.inFlight < kInFlight || gate.oneWay) &&
@@ -863,6 +895,7 @@ Traffic::TickWork Traffic::plan(Refs& w, std::uint64_t budget) {
     }
   }
   updateGates(w);
+  if (w.settings.pathing.insideGoesFirst) letOutFromInside(w);
   for (Unit& unit : all) {
     // Far from any chokepoint a unit needs no window: Box2D alone keeps it apart from others
     // there, as nothing is reserved in the open (docs/cooperative.md).
