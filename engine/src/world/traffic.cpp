@@ -726,8 +726,7 @@ void Traffic::letOutFromInside(Refs& w) {
     standAt(w, unit, nearestStandable(w, unit), p, true, now);
     gate.holder = unit.id.index;
     gate.holderSince = now;
-    gate.turning = false;
-    gate.keptOut += 1;
+    gate.turning = false;  // (keptOut and inFlight stay: one unit in, one out)
     std::vector<std::uint32_t>& stream = streams_[static_cast<std::size_t>(p)];
     stream.clear();
     addStream(w, unit, stream);
