@@ -428,6 +428,7 @@ Result<Scenario> replayScenario(const Replay& replay) {
     defaults.pathing.headOnByIntent = false;
   }
   if (replay.version < kFirstInsideGoesFirstReplayVersion) defaults.pathing.insideGoesFirst = false;
+  if (replay.version < kFirstParkedMoveOnReplayVersion) defaults.pathing.parkedMoveOn = false;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

@@ -487,6 +487,22 @@ TEST(Cooperative, AUnitCaughtInsideAPassageGoesFirst) {
   EXPECT_FALSE(runToEnd(s, 4).passed());
 }
 
+// A teammate parked in the way into the goal area moves on (replay format 24). `demo` at seed 22:
+// red's first tank to arrive parks in the only passage 4 rows high past a rock inside the
+// area; the two tanks bound deeper wait behind it in their windows and the third, knotted
+// with them, is flagged stuck. Each held up takes the parked tank's goal cell and sends it on
+// to its own.
+TEST(Cooperative, AParkedTeammateInTheWayMovesOn) {
+  Result<Scenario> loaded =
+      loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/demo.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.parkedMoveOn);  // the default
+  EXPECT_TRUE(runToEnd(s, 22).passed());
+  s.settings.pathing.parkedMoveOn = false;
+  EXPECT_FALSE(runToEnd(s, 22).passed());
+}
+
 // At the crossroads the paths of opposite arms cross over in the 8×8 crossing, toward goal
 // cells on the far side. With lanes through junctions (replay format 12) each tank pair holds its
 // right half across it; with lanes ending there (before) the pairs met head on in the middle

@@ -72,7 +72,7 @@ namespace warpath::engine {
 // passage but standing inside it takes the turn from a holder going the other way that has not
 // entered yet (older files play back with it waiting there, pushed back by the holder).
 // Version-1 files (move orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 23;
+inline constexpr std::uint32_t kReplayVersion = 24;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -136,6 +136,9 @@ inline constexpr std::uint32_t kFirstWideLaneDetoursReplayVersion = 22;
 // Formats before this one were recorded when a unit kept out of a passage waited where it
 // stood even inside it: they play back so (PathServiceSettings::insideGoesFirst off).
 inline constexpr std::uint32_t kFirstInsideGoesFirstReplayVersion = 23;
+// Formats before this one were recorded when a unit jammed behind a teammate parked in its way
+// went round it or pushed: they play back so (PathServiceSettings::parkedMoveOn off).
+inline constexpr std::uint32_t kFirstParkedMoveOnReplayVersion = 24;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

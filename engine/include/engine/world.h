@@ -207,7 +207,8 @@ enum class EventKind : std::uint8_t {
   Arrived,       // anchor entered the goal area
   Parked,        // reached its goal cell
   Repath,        // detail: 0 stuck, 1 left its path, 2 goal cell taken, 3 terrain changed,
-                 // 4 a unit that had no path tries again after terrain opened
+                 // 4 a unit that had no path tries again after terrain opened,
+                 // 5 a parked unit handed its goal cell to a teammate it blocked
   StuckFlagged,  // stuck for StuckRule::flagAfter windows in a row
   Killed,        // hp reached 0; detail: the killer's index
   WreckCleared,  // the wreck's body was removed

@@ -270,18 +270,27 @@ void requestPath(Refs& w, Unit& unit) {
   w.state.paths->request(nextRequest(w, unit, nearestStandable(w, unit)));
 }
 
-bool requestDetour(Refs& w, Unit& unit) {
+namespace {
+
+// The units standing for good on the next stretch of a unit's path: four footprints and four
+// cells ahead, as its footprint sweeps it.
+struct StandingInTheWay {
+  std::vector<UnitId> units;
+  std::vector<CellRect> bodies;  // theirs, as anchored footprints
+  std::size_t last = 0;          // the last index of the stretch that meets one of them
+};
+
+StandingInTheWay standingInTheWay(const Refs& w, const Unit& unit) {
   const int size = w.typeOf(unit).size;
   const std::vector<Cell>& path = unit.path->cells;
-  // The stretch looked at: four footprints and four cells ahead, as the footprint sweeps it.
   const std::size_t from = std::min(unit.next, path.size() - 1);
   const std::size_t to = std::min(path.size(), from + static_cast<std::size_t>(4 * size + 4));
   const auto footprint = [&](std::size_t i) { return CellRect{path[i].x, path[i].y, size, size}; };
   CellRect swept = footprint(from);
   for (std::size_t i = from + 1; i < to; ++i)
     swept = swept.joinedWith(footprint(i));
-  auto detour = std::make_shared<Detour>();
-  std::size_t last = from;  // the last cell of the stretch that meets one of them
+  StandingInTheWay found;
+  found.last = from;
   for (const Unit& other : w.state.units) {
     if (!other.alive() || other.id == unit.id) continue;
     // Standing for good: parked, holding, waiting for orders. Units on their way are traffic,
@@ -296,21 +305,44 @@ bool requestDetour(Refs& w, Unit& unit) {
     for (std::size_t i = from; i < to; ++i) {
       if (!footprint(i).overlaps(body)) continue;
       inTheWay = true;
-      last = std::max(last, i);
+      found.last = std::max(found.last, i);
     }
-    if (inTheWay) detour->avoid.push_back(body);
+    if (inTheWay) {
+      found.units.push_back(other.id);
+      found.bodies.push_back(body);
+    }
   }
-  // Standing at the end of the path, they are at the goal: a way around them leads nowhere
-  // (a goal cell taken is the goal rule's to change).
-  if (detour->avoid.empty() || last + static_cast<std::size_t>(size + 2) >= path.size() - 1)
+  return found;
+}
+
+// A unit parked on its goal cell, as an order to the area left it there (not holding a spot).
+bool parkedByMove(const Unit& unit) {
+  return unit.alive() && unit.state == UnitState::Parked &&
+         (unit.order == OrderKind::Move || unit.order == OrderKind::AttackMove);
+}
+
+}  // namespace
+
+bool requestDetour(Refs& w, Unit& unit) {
+  const int size = w.typeOf(unit).size;
+  const std::vector<Cell>& path = unit.path->cells;
+  const StandingInTheWay inTheWay = standingInTheWay(w, unit);
+  // Standing at the end of the path, they are at the goal: a way around them leads nowhere, and
+  // a goal cell taken is the goal rule's to change.
+  if (inTheWay.units.empty() ||
+      inTheWay.last + static_cast<std::size_t>(size + 2) >= path.size() - 1)
     return false;
   // Back onto the path a footprint and two cells past the last of them, through a block around
   // them all with room to go round.
+  auto detour = std::make_shared<Detour>();
+  detour->avoid = inTheWay.bodies;
   detour->rest = unit.path;
   detour->rejoin = static_cast<std::uint32_t>(
-      std::min(path.size() - 1, last + static_cast<std::size_t>(size + 2)));
+      std::min(path.size() - 1, inTheWay.last + static_cast<std::size_t>(size + 2)));
   const Cell start = nearestStandable(w, unit);
-  CellRect around = CellRect{start.x, start.y, size, size}.joinedWith(footprint(detour->rejoin));
+  const Cell rejoin = path[detour->rejoin];
+  CellRect around =
+      CellRect{start.x, start.y, size, size}.joinedWith({rejoin.x, rejoin.y, size, size});
   for (const CellRect& body : detour->avoid)
     around = around.joinedWith(body);
   const int margin = 2 * size + 4;
@@ -321,6 +353,50 @@ bool requestDetour(Refs& w, Unit& unit) {
   request.detour = std::move(detour);
   w.state.paths->request(request);
   return true;
+}
+
+bool takeGoalOfParkedTeammate(Refs& w, Unit& unit, Unit& parked) {
+  // Of the same order's kind: the same type and team sent to the same area, so the one's goal
+  // cell fits the other and counts the same for the report; and the goals apart, so that the
+  // parked one has somewhere else to go.
+  if (!parkedByMove(parked) || parked.id == unit.id || parked.type != unit.type ||
+      parked.team != unit.team || parked.goalArea != unit.goalArea ||
+      (unit.order != OrderKind::Move && unit.order != OrderKind::AttackMove))
+    return false;
+  const int size = w.typeOf(unit).size;
+  const Cell deeper = unit.goalCell;
+  const Cell vacated = parked.goalCell;
+  if (CellRect{deeper.x, deeper.y, size, size}.overlaps({vacated.x, vacated.y, size, size}) ||
+      componentOf(w, parked) != componentOf(w, unit))
+    return false;
+  w.state.goals.release(GoalLayer::Parked, vacated, size, parked.id);
+  w.state.goals.release(GoalLayer::Claimed, vacated, size, parked.id);
+  w.state.goals.release(GoalLayer::Claimed, deeper, size, unit.id);
+  parked.goalCell = deeper;
+  w.state.goals.take(GoalLayer::Claimed, deeper, size, parked.id);
+  unit.goalCell = vacated;
+  w.state.goals.take(GoalLayer::Claimed, vacated, size, unit.id);
+  // The parked one moves on (it keeps its arrival: it reached the area); the other plans for
+  // the cell it vacates.
+  w.log(EventKind::Repath, parked, 5);
+  ++parked.repaths;
+  if (parked.plan) releaseReservations(w, parked);
+  parked.path.reset();
+  parked.next = 0;
+  parked.state = UnitState::WaitingPath;
+  parked.progress.reset(parked.position, w.state.tick);
+  requestPath(w, parked);
+  w.log(EventKind::Repath, unit, 2);
+  requestPath(w, unit);
+  return true;
+}
+
+bool swapGoalWithParkedTeammate(Refs& w, Unit& unit) {
+  // Even at the end of its path: a teammate pushed onto this unit's goal cell parks there.
+  for (UnitId id : standingInTheWay(w, unit).units) {
+    if (takeGoalOfParkedTeammate(w, unit, w.unit(id))) return true;
+  }
+  return false;
 }
 
 std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {
