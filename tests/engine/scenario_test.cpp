@@ -175,7 +175,7 @@ TEST_P(GoldenHash, OfTheWholeRun) {
 INSTANTIATE_TEST_SUITE_P(
     BundledScenarios, GoldenHash,
     ::testing::Values(
-        Golden{"demo", "eafe338b20f9e838", "94f004afe1cb75f5", "268efd7eedf339cb"},
+        Golden{"demo", "08bf2398c4175e64", "94f004afe1cb75f5", "268efd7eedf339cb"},
         Golden{"river_ambush", "9f99ee0850bd08e4", "04a782fbee634f61", "440f53b59841d600"},
         Golden{"forest_battle", "5a9e4e0e4fc595fb", "418269f9132f682d", "1e2811529b35473b"},
         Golden{"amphibious_landing", "bf2e055edd98fd9b", "a0c07a636b15d90d", "7bb81fc9f3a1784e"},

@@ -270,27 +270,18 @@ void requestPath(Refs& w, Unit& unit) {
   w.state.paths->request(nextRequest(w, unit, nearestStandable(w, unit)));
 }
 
-namespace {
-
-// The units standing for good on the next stretch of a unit's path: four footprints and four
-// cells ahead, as its footprint sweeps it.
-struct StandingInTheWay {
-  std::vector<UnitId> units;
-  std::vector<CellRect> bodies;  // theirs, as anchored footprints
-  std::size_t last = 0;          // the last index of the stretch that meets one of them
-};
-
-StandingInTheWay standingInTheWay(const Refs& w, const Unit& unit) {
+bool requestDetour(Refs& w, Unit& unit) {
   const int size = w.typeOf(unit).size;
   const std::vector<Cell>& path = unit.path->cells;
+  // The stretch looked at: four footprints and four cells ahead, as the footprint sweeps it.
   const std::size_t from = std::min(unit.next, path.size() - 1);
   const std::size_t to = std::min(path.size(), from + static_cast<std::size_t>(4 * size + 4));
   const auto footprint = [&](std::size_t i) { return CellRect{path[i].x, path[i].y, size, size}; };
   CellRect swept = footprint(from);
   for (std::size_t i = from + 1; i < to; ++i)
     swept = swept.joinedWith(footprint(i));
-  StandingInTheWay found;
-  found.last = from;
+  auto detour = std::make_shared<Detour>();
+  std::size_t last = from;  // the last cell of the stretch that meets one of them
   for (const Unit& other : w.state.units) {
     if (!other.alive() || other.id == unit.id) continue;
     // Standing for good: parked, holding, waiting for orders. Units on their way are traffic,
@@ -305,44 +296,21 @@ StandingInTheWay standingInTheWay(const Refs& w, const Unit& unit) {
     for (std::size_t i = from; i < to; ++i) {
       if (!footprint(i).overlaps(body)) continue;
       inTheWay = true;
-      found.last = std::max(found.last, i);
+      last = std::max(last, i);
     }
-    if (inTheWay) {
-      found.units.push_back(other.id);
-      found.bodies.push_back(body);
-    }
+    if (inTheWay) detour->avoid.push_back(body);
   }
-  return found;
-}
-
-// A unit parked on its goal cell, as an order to the area left it there (not holding a spot).
-bool parkedByMove(const Unit& unit) {
-  return unit.alive() && unit.state == UnitState::Parked &&
-         (unit.order == OrderKind::Move || unit.order == OrderKind::AttackMove);
-}
-
-}  // namespace
-
-bool requestDetour(Refs& w, Unit& unit) {
-  const int size = w.typeOf(unit).size;
-  const std::vector<Cell>& path = unit.path->cells;
-  const StandingInTheWay inTheWay = standingInTheWay(w, unit);
-  // Standing at the end of the path, they are at the goal: a way around them leads nowhere, and
-  // a goal cell taken is the goal rule's to change.
-  if (inTheWay.units.empty() ||
-      inTheWay.last + static_cast<std::size_t>(size + 2) >= path.size() - 1)
+  // Standing at the end of the path, they are at the goal: a way around them leads nowhere
+  // (a goal cell taken is the goal rule's to change).
+  if (detour->avoid.empty() || last + static_cast<std::size_t>(size + 2) >= path.size() - 1)
     return false;
   // Back onto the path a footprint and two cells past the last of them, through a block around
   // them all with room to go round.
-  auto detour = std::make_shared<Detour>();
-  detour->avoid = inTheWay.bodies;
   detour->rest = unit.path;
   detour->rejoin = static_cast<std::uint32_t>(
-      std::min(path.size() - 1, inTheWay.last + static_cast<std::size_t>(size + 2)));
+      std::min(path.size() - 1, last + static_cast<std::size_t>(size + 2)));
   const Cell start = nearestStandable(w, unit);
-  const Cell rejoin = path[detour->rejoin];
-  CellRect around =
-      CellRect{start.x, start.y, size, size}.joinedWith({rejoin.x, rejoin.y, size, size});
+  CellRect around = CellRect{start.x, start.y, size, size}.joinedWith(footprint(detour->rejoin));
   for (const CellRect& body : detour->avoid)
     around = around.joinedWith(body);
   const int margin = 2 * size + 4;
@@ -354,6 +322,16 @@ bool requestDetour(Refs& w, Unit& unit) {
   w.state.paths->request(request);
   return true;
 }
+
+namespace {
+
+// A unit parked on its goal cell, as an order to the area left it there (not holding a spot).
+bool parkedByMove(const Unit& unit) {
+  return unit.alive() && unit.state == UnitState::Parked &&
+         (unit.order == OrderKind::Move || unit.order == OrderKind::AttackMove);
+}
+
+}  // namespace
 
 bool takeGoalOfParkedTeammate(Refs& w, Unit& unit, Unit& parked) {
   // Of the same order's kind: the same type and team sent to the same area, so the one's goal
@@ -389,14 +367,6 @@ bool takeGoalOfParkedTeammate(Refs& w, Unit& unit, Unit& parked) {
   w.log(EventKind::Repath, unit, 2);
   requestPath(w, unit);
   return true;
-}
-
-bool swapGoalWithParkedTeammate(Refs& w, Unit& unit) {
-  // Even at the end of its path: a teammate pushed onto this unit's goal cell parks there.
-  for (UnitId id : standingInTheWay(w, unit).units) {
-    if (takeGoalOfParkedTeammate(w, unit, w.unit(id))) return true;
-  }
-  return false;
 }
 
 std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch) {

@@ -65,13 +65,11 @@ void requestPath(Refs& w, Unit& unit);
 // next stretch of its path, back onto the path past them (docs/cooperative.md, "Detours"). False,
 // asking nothing, when none stands there, or they stand at the end of the path.
 bool requestDetour(Refs& w, Unit& unit);
-// Parked teammates move on (docs/cooperative.md): a unit held up by a teammate parked on the
+// Parked teammates move on (docs/cooperative.md): a unit waiting on a teammate parked on the
 // way into their goal area by an order of the same kind (same type, team and area) takes that
-// one's goal cell and hands it its own, deeper one; both ask for paths. False, changing nothing,
-// when `parked` is not such a teammate, or their goal cells overlap.
+// one's goal cell and hands it its own, which lies beyond it; both ask for paths. False,
+// changing nothing, when `parked` is not such a teammate, or their goal cells overlap.
 bool takeGoalOfParkedTeammate(Refs& w, Unit& unit, Unit& parked);
-// The same with the first such teammate standing on the next stretch of a jammed unit's path.
-bool swapGoalWithParkedTeammate(Refs& w, Unit& unit);
 // Serves the path service within its budget and hands each answer to its unit; returns the
 // expansions spent.
 std::uint64_t deliverPaths(Refs& w, std::vector<PathDelivery>& scratch);

@@ -108,13 +108,6 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor, FullGoalAreas& fullGoalArea
     // Near the goal, a crowd is the likely cause: a free goal cell resolves it.
     const bool newGoal = movingToArea && nearEnd && reassignGoal(w, unit, &fullGoalAreas);
     w.log(EventKind::Repath, unit, 0);
-    // A teammate parked in the way into the area moves on to this unit's goal cell, which lies
-    // beyond it, and this one parks where it stood.
-    if (!newGoal && movingToArea && settings.pathing.cooperative && settings.pathing.parkedMoveOn &&
-        swapGoalWithParkedTeammate(w, unit)) {
-      requestPath(w, unit);
-      return;
-    }
     // Units standing for good on the path ahead would jam it again: a way around them
     // (detours). Else the traffic jammed it: a unit keeping to a window plans a new one
     // against today's reservations (at the same place at a passage's gate); one following its

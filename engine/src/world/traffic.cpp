@@ -777,8 +777,9 @@ void Traffic::breakDeadlocks(Refs& w, std::uint64_t& spent, std::uint64_t limit)
     if (const std::optional<std::uint32_t> other = waitsFor(w, unit))
       waitFor_[unit.id.index] = *other;
   }
-  // Waiting on a teammate parked in the way into their area: it moves on to this one's goal
-  // cell instead, and this one parks where it stood (it waits on nobody now).
+  // Waiting on a teammate parked in the way into their area (PathServiceSettings::parkedMoveOn):
+  // that one moves on to this one's goal cell, beyond it, and this one takes its cell (it waits
+  // on nobody now).
   if (w.settings.pathing.parkedMoveOn) {
     for (Unit& unit : all) {
       const std::uint32_t other = waitFor_[unit.id.index];
