@@ -270,6 +270,15 @@ void requestPath(Refs& w, Unit& unit) {
   w.state.paths->request(nextRequest(w, unit, nearestStandable(w, unit)));
 }
 
+void startPathAfresh(Refs& w, Unit& unit) {
+  if (unit.plan) releaseReservations(w, unit);
+  unit.path.reset();
+  unit.next = 0;
+  unit.state = UnitState::WaitingPath;
+  unit.progress.reset(unit.position, w.state.tick);
+  requestPath(w, unit);
+}
+
 bool requestDetour(Refs& w, Unit& unit) {
   const int size = w.typeOf(unit).size;
   const std::vector<Cell>& path = unit.path->cells;
@@ -358,12 +367,7 @@ bool takeGoalOfParkedTeammate(Refs& w, Unit& unit, Unit& parked) {
   // the cell it vacates.
   w.log(EventKind::Repath, parked, 5);
   ++parked.repaths;
-  if (parked.plan) releaseReservations(w, parked);
-  parked.path.reset();
-  parked.next = 0;
-  parked.state = UnitState::WaitingPath;
-  parked.progress.reset(parked.position, w.state.tick);
-  requestPath(w, parked);
+  startPathAfresh(w, parked);
   w.log(EventKind::Repath, unit, 2);
   requestPath(w, unit);
   return true;

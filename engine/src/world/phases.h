@@ -61,6 +61,9 @@ void pursue(Refs& w, Unit& unit, bool force);
 // The anchor nearest the unit's body where its footprint fits.
 pathing::Cell nearestStandable(const Refs& w, const Unit& unit);
 void requestPath(Refs& w, Unit& unit);
+// Drops the unit's path and window (and what they reserve) and asks for a new path, the
+// progress window restarted: a repath from scratch.
+void startPathAfresh(Refs& w, Unit& unit);
 // A jammed unit asks for a way around the units standing for good (not following a path) on the
 // next stretch of its path, back onto the path past them (docs/cooperative.md, "Detours"). False,
 // asking nothing, when none stands there, or they stand at the end of the path.

@@ -80,12 +80,7 @@ void repath(Refs& w, Unit& unit, bool goalGone) {
     return;
   }
   if (goalGone) reassignGoal(w, unit);
-  if (unit.plan) releaseReservations(w, unit);
-  unit.path.reset();
-  unit.next = 0;
-  unit.state = UnitState::WaitingPath;
-  unit.progress.reset(unit.position, w.state.tick);
-  requestPath(w, unit);
+  startPathAfresh(w, unit);
 }
 
 // A unit that found no way to its goal tries again: an attacker closes in anew, a moving unit
