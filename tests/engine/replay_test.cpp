@@ -654,9 +654,9 @@ TEST_F(Replays, AFormat22ReplayPlaysBackWaitingInsideThePassage) {
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format22.rpl", 22, 2400);
 }
 
-// Format 23 was recorded when a unit held up by a teammate parked in its way into their goal
-// area waited, went round or pushed: it plays back so, and read as format 24 (the parked one
-// moves on to the other's goal cell) the same records do not verify. `demo` at seed 22, where
+// Format 23 was recorded when a unit waiting in its window on a teammate parked in its way into
+// their goal area went on waiting: it plays back so, and read as format 24 (the parked one moves
+// on to the other's goal cell) the same records do not verify. `demo` at seed 22, where
 // red's tanks bound deeper in their area waited behind the first one parked in a passage.
 TEST_F(Replays, AFormat23ReplayPlaysBackWithParkedTeammatesStaying) {
   ReplaySource source;

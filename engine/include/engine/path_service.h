@@ -156,10 +156,10 @@ struct PathServiceSettings {
   // the other way and not yet in, pushed it back through (docs/cooperative.md, "Inside goes
   // first").
   bool insideGoesFirst = true;
-  // Not a scenario key: false plays back replays before format 24, when a unit jammed behind a
-  // teammate parked on the way into their goal area (same type, same area) went round it or
-  // pushed, instead of taking the parked one's goal cell and sending it on to its own deeper
-  // one (docs/cooperative.md, "Parked teammates move on").
+  // Not a scenario key: false plays back replays before format 24, when a unit waiting in its
+  // window on a teammate parked on the way into their goal area (same type, team and area) went
+  // on waiting, instead of taking the parked one's goal cell and sending it on to its own, which
+  // lies beyond (docs/cooperative.md, "Parked teammates move on").
   bool parkedMoveOn = true;
   pathing::LaneRules laneRules() const {
     return {lanesThroughJunctions, laneApproaches, widerLaneApproaches, wideLaneDetours};

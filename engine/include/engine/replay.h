@@ -70,7 +70,10 @@ namespace warpath::engine {
 // that cost more than the fixed allowance, with planned times taken before the lane, veering
 // only from vehicles moving at them). 23: the same records and hashes; a unit kept out of a
 // passage but standing inside it takes the turn from a holder going the other way that has not
-// entered yet (older files play back with it waiting there, pushed back by the holder).
+// entered yet (older files play back with it waiting there, pushed back by the holder). 24: the
+// same records and hashes; a unit waiting in its window on a teammate parked on the way into
+// their goal area takes that one's goal cell and sends it on to its own (older files play back
+// with it waiting on).
 // Version-1 files (move orders only) are refused with a message saying so.
 inline constexpr std::uint32_t kReplayVersion = 24;
 // Formats before this one were recorded before cooperative movement and play back without it.
@@ -136,8 +139,8 @@ inline constexpr std::uint32_t kFirstWideLaneDetoursReplayVersion = 22;
 // Formats before this one were recorded when a unit kept out of a passage waited where it
 // stood even inside it: they play back so (PathServiceSettings::insideGoesFirst off).
 inline constexpr std::uint32_t kFirstInsideGoesFirstReplayVersion = 23;
-// Formats before this one were recorded when a unit jammed behind a teammate parked in its way
-// went round it or pushed: they play back so (PathServiceSettings::parkedMoveOn off).
+// Formats before this one were recorded when a unit waiting on a teammate parked in its way
+// went on waiting: they play back so (PathServiceSettings::parkedMoveOn off).
 inline constexpr std::uint32_t kFirstParkedMoveOnReplayVersion = 24;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
