@@ -5,12 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <span>
 #include <string>
 
 #include "engine/scenario.h"
 #include "engine/scenario_run.h"
 #include "engine/state_description.h"
 #include "support/run_out.h"
+#include "support/sanitized.h"
 
 namespace warpath::engine {
 namespace {
@@ -22,6 +24,7 @@ Scenario parse(const std::string& text) {
   return std::move(r).value();
 }
 
+using testing::fullOrSanitized;
 using testing::runToEnd;
 
 // A bundled chokepoint scenario (scenarios/chokepoints/FILE).
@@ -139,14 +142,16 @@ TEST(Cooperative, TanksHeadOnInACorridorWhatCooperationChanges) {
 // side standing clear of its mouth and of the stream coming out): everyone arrives by the bound
 // and nobody is flagged stuck, at every seed. Without it both crowds push into the door at once
 // and some arrive too late. The run stops at the bound, where the expectations are decided.
+// Seeds 1-3 (seed 1 under the sanitizers, support/sanitized.h).
 TEST(Cooperative, ThirtyAsideSwapThroughADoorTakingTurns) {
   Result<Scenario> loaded = loadChokepoint("door_30v30.yaml");
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   s.duration = 100.0;
+  const std::uint64_t lastSeed = fullOrSanitized(3, 1);
   for (const bool cooperative : {true, false}) {
     s.settings.pathing.cooperative = cooperative;
-    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    for (std::uint64_t seed = 1; seed <= lastSeed; ++seed) {
       const Report r = runToEnd(s, seed);
       EXPECT_EQ(r.passed(), cooperative) << "seed " << seed << " cooperative " << cooperative;
     }
@@ -156,7 +161,7 @@ TEST(Cooperative, ThirtyAsideSwapThroughADoorTakingTurns) {
 // When the door's gate turns, the side kept out is let through nearest first: its front files
 // in instead of some unit at the back pushing through the crowd (flagged stuck there at seeds
 // 6 and 8 when the longest wait went first), and the last ones arrive sooner. Seeds 5-8 keep
-// the test short (8 runs of 60 units; it took 90 s in the sanitizer build at seeds 1-8).
+// the test short (8 runs of 60 units), and seeds 5-6 under the sanitizers (78 s at seeds 5-8).
 TEST(Cooperative, ThoseKeptOutNearestTheDoorGoFirst) {
   Result<Scenario> loaded = loadChokepoint("door_30v30.yaml");
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
@@ -164,18 +169,19 @@ TEST(Cooperative, ThoseKeptOutNearestTheDoorGoFirst) {
   ASSERT_TRUE(s.settings.pathing.nearestKeptOutFirst);  // the default
   // Counted as when the rule came (format 11): those pushing through the crowd were flagged.
   s.settings.pathing.queuesExcused = false;
+  const std::uint64_t lastSeed = fullOrSanitized(8, 6);
   int passed[2] = {0, 0};
   double p90[2] = {0.0, 0.0};  // summed over the seeds and both sides
   for (const bool nearest : {true, false}) {
     s.settings.pathing.nearestKeptOutFirst = nearest;
-    for (std::uint64_t seed = 5; seed <= 8; ++seed) {
+    for (std::uint64_t seed = 5; seed <= lastSeed; ++seed) {
       const Report r = runToEnd(s, seed);
       passed[nearest ? 1 : 0] += r.passed() ? 1 : 0;
       for (const ArrivalStats& a : r.arrivals)
         p90[nearest ? 1 : 0] += a.p90;
     }
   }
-  EXPECT_EQ(passed[1], 4);
+  EXPECT_EQ(passed[1], static_cast<int>(lastSeed) - 4);
   EXPECT_GT(passed[1], passed[0]);
   EXPECT_LT(p90[1], p90[0]);
 }
@@ -184,14 +190,15 @@ TEST(Cooperative, ThoseKeptOutNearestTheDoorGoFirst) {
 // turn, not jammed. At the door (seeds 10 and 28) a rifleman at the back of its side's stream,
 // held up by the other side's crowd at the far mouth, was flagged; now nobody is, and since the
 // rule changes the count alone (a queued unit still looks for a way round), every unit moves
-// and arrives exactly as before.
+// and arrives exactly as before. Seed 10 alone under the sanitizers.
 TEST(Cooperative, AQueueHeldUpIsNoJam) {
   Result<Scenario> loaded = loadChokepoint("door_30v30.yaml");
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   s.duration = 45.0;
   ASSERT_TRUE(s.settings.pathing.queuesExcused);  // the default
-  for (const std::uint64_t seed : {std::uint64_t{10}, std::uint64_t{28}}) {
+  const std::uint64_t seeds[] = {10, 28};
+  for (const std::uint64_t seed : std::span(seeds).first(fullOrSanitized(2u, 1u))) {
     const Report excused = runToEnd(s, seed);
     s.settings.pathing.queuesExcused = false;
     const Report counted = runToEnd(s, seed);
@@ -206,7 +213,8 @@ TEST(Cooperative, AQueueHeldUpIsNoJam) {
 // A passage used one way only (replay format 16): its gate lets any number through, and walkers
 // cross it without timed windows. Thirty walkers through a 1-cell door pressed in at its sides
 // in windows, some flagged stuck there; thirty jeeps through a gap their width, 8 let through at
-// a time, stalled among those kept out. Seeds 1-4: all pass, and fewer without the rule.
+// a time, stalled among those kept out. Seeds 1-4 (1-2 under the sanitizers): all pass, and
+// fewer without the rule.
 TEST(Cooperative, OneWayPassagesLetTheWholeCrowdThrough) {
   for (const char* fixture : {"one_way_door.yaml", "one_way_gap.yaml"}) {
     SCOPED_TRACE(fixture);
@@ -218,13 +226,14 @@ TEST(Cooperative, OneWayPassagesLetTheWholeCrowdThrough) {
     // Counted as when the rule came (format 16): walkers pressed in at the door's sides were
     // flagged.
     s.settings.pathing.queuesExcused = false;
+    const std::uint64_t lastSeed = fullOrSanitized(4, 2);
     int passed[2] = {0, 0};
     for (const bool oneWay : {true, false}) {
       s.settings.pathing.oneWayPassages = oneWay;
-      for (std::uint64_t seed = 1; seed <= 4; ++seed)
+      for (std::uint64_t seed = 1; seed <= lastSeed; ++seed)
         passed[oneWay ? 1 : 0] += runToEnd(s, seed).passed() ? 1 : 0;
     }
-    EXPECT_EQ(passed[1], 4);
+    EXPECT_EQ(passed[1], static_cast<int>(lastSeed));
     EXPECT_LT(passed[0], passed[1]);
   }
 }
@@ -493,8 +502,7 @@ TEST(Cooperative, AUnitCaughtInsideAPassageGoesFirst) {
 // with them, is flagged stuck. Each held up takes the parked tank's goal cell and sends it on
 // to its own.
 TEST(Cooperative, AParkedTeammateInTheWayMovesOn) {
-  Result<Scenario> loaded =
-      loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/demo.yaml");
+  Result<Scenario> loaded = loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/demo.yaml");
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.parkedMoveOn);  // the default

@@ -14,6 +14,7 @@
 
 #include "engine/scenario_run.h"
 #include "pathing/map_io.h"
+#include "support/sanitized.h"
 #include "support/scenario_files.h"
 
 namespace warpath::engine {
@@ -22,14 +23,16 @@ namespace {
 struct Bundled {
   const char* name;
   // Ticks to run for the determinism check (0: the whole scenario) and the factor applied to
-  // every time in the "can fail" check; the stress scenario only runs briefly in tests.
+  // every time in the "can fail" check; the stress scenario only runs briefly in tests, and
+  // more briefly under the sanitizers (support/sanitized.h).
   std::int64_t determinismTicks;
   double timeFactor;
 };
 
 const Bundled kBundled[] = {
-    {"demo", 0, 0.5},        {"river_crossing", 0, 0.5}, {"forest", 0, 0.5},
-    {"narrow_pass", 0, 0.5}, {"swamp", 0, 0.5},          {"stress_2000", 120, 0.04},
+    {"demo", 0, 0.5},   {"river_crossing", 0, 0.5},
+    {"forest", 0, 0.5}, {"narrow_pass", 0, 0.5},
+    {"swamp", 0, 0.5},  {"stress_2000", 120, testing::fullOrSanitized(0.04, 0.02)},
 };
 
 Report run(const Scenario& s, std::int64_t ticks) {
