@@ -168,6 +168,16 @@ TEST_F(RunCli, TestCommandCountsPassesAndFailures) {
   EXPECT_NE(r.out.find("FAIL " + (dir_ / "b.yaml").string()), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("failed: actual 0 (units 0, 1, 2)\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("1 passed, 1 failed\n"), std::string::npos) << r.out;
+  // Each failed case ends with the command that traces the units it counts against; at the
+  // file's own seed without --seed, at a seed of --seeds with it.
+  EXPECT_NE(r.out.find("  trace: rts run "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("b.yaml --quiet --trace trace.csv --trace-units 0,1,2\n"), std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("a.yaml --quiet --trace"), std::string::npos) << r.out;
+  const RtsResult seeded = rts("test " + (dir_ / "b.yaml").string() + " --seeds 5");
+  EXPECT_NE(seeded.out.find("b.yaml --seed 5 --quiet --trace trace.csv --trace-units 0,1,2\n"),
+            std::string::npos)
+      << seeded.out;
 }
 
 // A battle: the run ends when the victory condition is met; the report holds the statistics

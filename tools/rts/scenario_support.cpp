@@ -44,11 +44,9 @@ nlohmann::json expectationsJson(const std::vector<engine::ExpectationResult>& ex
 }
 
 std::string failureLine(const engine::ExpectationResult& e) {
-  // Enough to pick units to trace without a line as long as a crowd.
-  constexpr std::size_t kNamed = 8;
   std::string line = fmt::format("expectation \"{}\" failed: actual {:.4g}", e.text, e.actual);
   if (e.units.empty()) return line;
-  const std::size_t named = std::min(e.units.size(), kNamed);
+  const std::size_t named = std::min(e.units.size(), kUnitsNamed);
   line += fmt::format(
       " (unit{} {}", e.units.size() == 1 ? "" : "s",
       fmt::join(e.units.begin(), e.units.begin() + static_cast<std::ptrdiff_t>(named), ", "));

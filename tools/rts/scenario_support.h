@@ -2,6 +2,7 @@
 // What `rts run` and `rts test` share: running a scenario to its end (or a tick limit, or an
 // interrupt) and the report as JSON.
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -47,6 +48,8 @@ nlohmann::json expectationsJson(const std::vector<engine::ExpectationResult>& ex
 // A failed expectation's line, as `rts test` and its JUnit file give it: its text, the actual
 // value and the first units it counts against ("units 1, 5 and 3 more").
 std::string failureLine(const engine::ExpectationResult& e);
+// How many units failureLine names, and traceHint traces, at the most.
+inline constexpr std::size_t kUnitsNamed = 8;
 
 nlohmann::json reportJson(const RunOutcome& outcome, const engine::ScenarioRun& run);
 

@@ -1,6 +1,7 @@
 #include "rts/test_cases.h"
 
 #include <fmt/core.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <charconv>
@@ -270,6 +271,33 @@ CaseResult caseFromJson(const nlohmann::json& j, const std::string& where) {
   return r;
 }
 
+namespace {
+
+// The command that traces, tick by tick, the units a failed case's expectations count against
+// (at most kUnitsNamed, lowest first); empty when they name none.
+std::string traceHint(const CaseResult& r) {
+  std::set<std::uint32_t> named;
+  for (const engine::ExpectationResult& e : r.expectations) {
+    if (!e.pass) named.insert(e.units.begin(), e.units.end());
+  }
+  if (named.empty()) return {};
+  std::vector<std::uint32_t> units(named.begin(), named.end());
+  if (units.size() > kUnitsNamed) units.resize(kUnitsNamed);
+  // A path the shell would split or expand goes in single quotes (a quote in it as '\'').
+  std::string file = r.file;
+  if (file.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
+                             "_-./+,:@%=") != std::string::npos) {
+    for (std::size_t at = file.find('\''); at != std::string::npos; at = file.find('\'', at + 4))
+      file.replace(at, 1, "'\\''");
+    file = "'" + file + "'";
+  }
+  const std::string seed = r.seedGiven && r.seed ? " --seed " + std::to_string(*r.seed) : "";
+  return fmt::format("trace: rts run {}{} --quiet --trace trace.csv --trace-units {}", file, seed,
+                     fmt::join(units.begin(), units.end(), ","));
+}
+
+}  // namespace
+
 void printCase(const CaseResult& r) {
   const std::string seed = r.seedGiven && r.seed ? " seed " + std::to_string(*r.seed) : "";
   if (r.stateHash.empty()) {  // it never ran: a bad file or a crash
@@ -283,6 +311,7 @@ void printCase(const CaseResult& r) {
     if (!e.pass) fmt::print("  {}\n", failureLine(e));
   }
   if (!r.message.empty()) fmt::print("  {}\n", r.message);
+  if (const std::string hint = traceHint(r); !hint.empty()) fmt::print("  {}\n", hint);
 }
 
 }  // namespace warpath::tools
