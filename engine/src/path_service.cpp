@@ -35,6 +35,10 @@ std::string problemWith(const PathServiceSettings& settings) {
     return "levels must be 1..2 (got " + std::to_string(settings.levels) + ")";
   if (settings.levelTwoSize < 2 || settings.levelTwoSize > 256)
     return "levelTwoSize must be 2..256 (got " + std::to_string(settings.levelTwoSize) + ")";
+  if (settings.buildThreads < 1 || settings.buildThreads > pathing::kMaxBuildThreads) {
+    return "buildThreads must be 1.." + std::to_string(pathing::kMaxBuildThreads) + " (got " +
+           std::to_string(settings.buildThreads) + ")";
+  }
   if (settings.expansionBudget < 1) return "expansionBudget must be >= 1 (got 0)";
   if (settings.window < 1 || settings.window > kMaxCooperativeWindow) {
     return "window must be 1.." + std::to_string(kMaxCooperativeWindow) + " (got " +
@@ -87,6 +91,7 @@ PathService::PathService(const AnnotatedGrid& grid, const PathServiceSettings& s
     spec.quality = *quality;
     spec.levels = settings.levels;
     spec.levelTwoSize = settings.levelTwoSize;
+    spec.threads = settings.buildThreads;
     abstraction_ = std::make_unique<ClusterAbstraction>(ClusterAbstraction::build(grid, spec));
   }
   // Requests without a profile plan in the uniform model (by AA* when the algorithm needs a
@@ -136,6 +141,7 @@ PathService::WeightedPlanner& PathService::weightedPlanner(int costProfile) {
         weightedAbstractionSpec(w.agent, w.costs, settings_.clusterSize, *quality);
     spec.levels = settings_.levels;
     spec.levelTwoSize = settings_.levelTwoSize;
+    spec.threads = settings_.buildThreads;
     w.abstraction =
         std::make_unique<ClusterAbstraction>(ClusterAbstraction::build(grid_, std::move(spec)));
     w.planner.emplace(grid_, settings_.algorithm, w.abstraction.get());

@@ -1,12 +1,15 @@
 #include "pathing/cluster_abstraction.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <exception>
 #include <limits>
 #include <map>
 #include <numeric>
+#include <thread>
 
 #include "cluster_dijkstra.h"
 #include "limit_messages.h"
@@ -35,6 +38,8 @@ std::string problemWith(const AbstractionSpec& spec) {
       return "costs must give a cost to every terrain of capabilities[0]";
   }
   if (spec.levels < 1 || spec.levels > 2) return limits::between("levels", 1, 2, spec.levels);
+  if (spec.threads < 1 || spec.threads > kMaxBuildThreads)
+    return limits::between("threads", 1, kMaxBuildThreads, spec.threads);
   if (spec.levels == 2 && (spec.levelTwoSize < 2 || spec.levelTwoSize > 256))
     return limits::between("levelTwoSize", 2, 256, spec.levelTwoSize);
   return {};
@@ -456,6 +461,29 @@ class AbstractionBuilder {
     scanBorder(first_, second_);
   }
 
+  // What the searches of one cluster for one capability add: its intra-edge candidates, their
+  // paths numbered from 0. These are searched apart (on several threads with
+  // AbstractionSpec::threads) and added to the graph in the order of (cluster, capability), so
+  // the graph is the same for any number of threads.
+  struct ClusterEdges {
+    std::vector<Candidate> candidates;
+    std::vector<std::uint32_t> pathBegin;
+    std::vector<std::uint8_t> pathSteps;
+    std::uint64_t expanded = 0;
+  };
+
+  // The scratch one thread reuses from cluster to cluster.
+  struct IntraScratch {
+    ClusterDijkstra dijkstra;
+    RegionMoves moves;
+    RegionComponents parts;
+    std::vector<std::uint8_t> cv;
+    std::vector<Cell> targets;
+    std::vector<std::uint32_t> targetNodes;
+    std::vector<std::uint8_t> steps;
+    std::vector<int> coveredTo;
+  };
+
   // For every cluster, capability and size: one Dijkstra per transition reaches all the
   // others. A size-s search whose paths to every higher-numbered node also admit size s+1
   // answers the size-(s+1) search too (those paths stay optimal), so it is skipped.
@@ -464,72 +492,114 @@ class AbstractionBuilder {
     std::vector<std::vector<std::uint32_t>> members(static_cast<std::size_t>(clusters));
     for (std::uint32_t n = 0; n < nodeCells_.size(); ++n)
       members[static_cast<std::size_t>(g_.clusterOf(nodeCells_[n]))].push_back(n);
-
-    ClusterDijkstra dijkstra;
-    RegionMoves moves;
-    RegionComponents parts;
-    std::vector<std::uint8_t> cv;
-    std::vector<Cell> targets;
-    std::vector<std::uint32_t> targetNodes;
-    std::vector<std::uint8_t> steps;
+    std::vector<std::pair<int, std::size_t>> todo;  // (cluster, capability)
     for (int k = 0; k < clusters; ++k) {
-      const std::vector<std::uint32_t>& nodes = members[static_cast<std::size_t>(k)];
-      if (nodes.size() < 2) continue;
-      const CellRect region = g_.clusterBounds(k);
-      for (std::size_t ci = 0; ci < fields_.size(); ++ci) {
-        const Capability capability = capabilities_[ci];
-        // The cluster's truncated clearances, indexed as the searches index cells.
-        cv.assign(regionCells(region), 0);
-        for (int y = region.y; y < region.y + region.height; ++y) {
-          for (int x = region.x; x < region.x + region.width; ++x)
-            cv[regionIndex(region, {x, y})] = static_cast<std::uint8_t>(truncated(ci, {x, y}));
+      if (members[static_cast<std::size_t>(k)].size() < 2) continue;
+      for (std::size_t ci = 0; ci < fields_.size(); ++ci)
+        todo.push_back({k, ci});
+    }
+    const std::size_t threads =
+        std::min(todo.size(), static_cast<std::size_t>(std::max(1, g_.spec_.threads)));
+    if (threads <= 1) {
+      IntraScratch scratch;
+      ClusterEdges found;
+      for (const auto& [k, ci] : todo) {
+        searchCluster(k, ci, members[static_cast<std::size_t>(k)], scratch, found);
+        addClusterEdges(found);
+      }
+      return;
+    }
+    // Each thread takes the next (cluster, capability) not taken; the results wait in order.
+    std::vector<ClusterEdges> found(todo.size());
+    std::atomic<std::size_t> next{0};
+    std::vector<std::exception_ptr> failed(threads);
+    const auto work = [&](std::size_t worker) {
+      try {
+        IntraScratch scratch;
+        for (std::size_t i = next++; i < todo.size(); i = next++) {
+          const auto& [k, ci] = todo[i];
+          searchCluster(k, ci, members[static_cast<std::size_t>(k)], scratch, found[i]);
         }
-        const auto clearanceAt = [&](Cell c) { return int{cv[regionIndex(region, c)]}; };
-        // coveredTo[i]: sizes up to this are already answered for sources nodes[i].
-        std::vector<int> coveredTo(nodes.size(), 0);
-        for (int size = minSize_; size <= maxSize_; ++size) {
-          const AgentLayer& layer = grid_.layer({size, capability});
-          // Targets the search cannot reach inside the cluster are left out, and sources that
-          // reach none are not searched from: it finds the same paths, sooner.
-          moves.load(map_, layer, region);
-          parts.label(moves);
-          for (std::size_t i = 0; i < nodes.size(); ++i) {
-            const Cell source = nodeCells_[nodes[i]];
-            if (clearanceAt(source) < size || coveredTo[i] >= size) continue;
-            const std::uint32_t part = parts.partOf(source);
-            if (part == 0) continue;
-            targets.clear();
-            targetNodes.clear();
-            for (std::size_t j = i + 1; j < nodes.size(); ++j) {
-              if (clearanceAt(nodeCells_[nodes[j]]) < size ||
-                  parts.partOf(nodeCells_[nodes[j]]) != part)
-                continue;
-              targets.push_back(nodeCells_[nodes[j]]);
-              targetNodes.push_back(nodes[j]);
-            }
-            if (targets.empty()) continue;
-            dijkstra.run(moves, source, targets, costs_);
-            expanded_ += dijkstra.expanded();
-            int covers = maxSize_;
-            for (std::size_t t = 0; t < targets.size(); ++t) {
-              if (!dijkstra.reached(targets[t])) continue;
-              steps.clear();
-              dijkstra.appendSteps(targets[t], &steps);
-              // The largest size for which every step stays legal.
-              const int clearance = dijkstra.smallestAlong(steps, cv);
-              covers = std::min(covers, clearance);
-              addIntraEdge(nodes[i], targetNodes[t], dijkstra.cost(targets[t]), capability,
-                           clearance, steps);
-            }
-            coveredTo[i] = covers;
-          }
+      } catch (...) {
+        failed[worker] = std::current_exception();
+        next = todo.size();
+      }
+    };
+    {
+      std::vector<std::jthread> pool;
+      for (std::size_t t = 1; t < threads; ++t)
+        pool.emplace_back(work, t);
+      work(0);
+    }
+    for (const std::exception_ptr& e : failed) {
+      if (e) std::rethrow_exception(e);
+    }
+    for (ClusterEdges& edges : found)
+      addClusterEdges(edges);
+  }
+
+  // The intra-edges of cluster k, whose nodes are `nodes`, for capability ci, into `out`
+  // (emptied first). Reads the builder and the grid only, so clusters may be searched on several
+  // threads at once.
+  void searchCluster(int k, std::size_t ci, const std::vector<std::uint32_t>& nodes,
+                     IntraScratch& s, ClusterEdges& out) const {
+    out.candidates.clear();
+    out.pathBegin.clear();
+    out.pathSteps.clear();
+    out.expanded = 0;
+    const CellRect region = g_.clusterBounds(k);
+    const Capability capability = capabilities_[ci];
+    // The cluster's truncated clearances, indexed as the searches index cells.
+    s.cv.assign(regionCells(region), 0);
+    for (int y = region.y; y < region.y + region.height; ++y) {
+      for (int x = region.x; x < region.x + region.width; ++x)
+        s.cv[regionIndex(region, {x, y})] = static_cast<std::uint8_t>(truncated(ci, {x, y}));
+    }
+    const auto clearanceAt = [&](Cell c) { return int{s.cv[regionIndex(region, c)]}; };
+    // coveredTo[i]: sizes up to this are already answered for sources nodes[i].
+    s.coveredTo.assign(nodes.size(), 0);
+    for (int size = minSize_; size <= maxSize_; ++size) {
+      const AgentLayer& layer = grid_.layer({size, capability});
+      // Targets the search cannot reach inside the cluster are left out, and sources that
+      // reach none are not searched from: it finds the same paths, sooner.
+      s.moves.load(map_, layer, region);
+      s.parts.label(s.moves);
+      for (std::size_t i = 0; i < nodes.size(); ++i) {
+        const Cell source = nodeCells_[nodes[i]];
+        if (clearanceAt(source) < size || s.coveredTo[i] >= size) continue;
+        const std::uint32_t part = s.parts.partOf(source);
+        if (part == 0) continue;
+        s.targets.clear();
+        s.targetNodes.clear();
+        for (std::size_t j = i + 1; j < nodes.size(); ++j) {
+          if (clearanceAt(nodeCells_[nodes[j]]) < size ||
+              s.parts.partOf(nodeCells_[nodes[j]]) != part)
+            continue;
+          s.targets.push_back(nodeCells_[nodes[j]]);
+          s.targetNodes.push_back(nodes[j]);
         }
+        if (s.targets.empty()) continue;
+        s.dijkstra.run(s.moves, source, s.targets, costs_);
+        out.expanded += s.dijkstra.expanded();
+        int covers = maxSize_;
+        for (std::size_t t = 0; t < s.targets.size(); ++t) {
+          if (!s.dijkstra.reached(s.targets[t])) continue;
+          s.steps.clear();
+          s.dijkstra.appendSteps(s.targets[t], &s.steps);
+          // The largest size for which every step stays legal.
+          const int clearance = s.dijkstra.smallestAlong(s.steps, s.cv);
+          covers = std::min(covers, clearance);
+          addIntraEdge(nodes[i], s.targetNodes[t], s.dijkstra.cost(s.targets[t]), capability,
+                       clearance, s.steps, out);
+        }
+        s.coveredTo[i] = covers;
       }
     }
   }
 
-  void addIntraEdge(std::uint32_t from, std::uint32_t to, double cost, Capability capability,
-                    int clearance, const std::vector<std::uint8_t>& steps) {
+  static void addIntraEdge(std::uint32_t from, std::uint32_t to, double cost, Capability capability,
+                           int clearance, const std::vector<std::uint8_t>& steps,
+                           ClusterEdges& out) {
     Candidate e;
     e.a = std::min(from, to);
     e.b = std::max(from, to);
@@ -537,15 +607,29 @@ class AbstractionBuilder {
     e.capability = capability;
     e.clearance = static_cast<std::uint8_t>(clearance);
     e.intra = true;
-    e.path = static_cast<std::uint32_t>(pathBegin_.size());
-    pathBegin_.push_back(static_cast<std::uint32_t>(pathSteps_.size()));
+    e.path = static_cast<std::uint32_t>(out.pathBegin.size());
+    out.pathBegin.push_back(static_cast<std::uint32_t>(out.pathSteps.size()));
     if (from < to) {
-      pathSteps_.insert(pathSteps_.end(), steps.begin(), steps.end());
+      out.pathSteps.insert(out.pathSteps.end(), steps.begin(), steps.end());
     } else {  // stored a -> b: reverse the walk
       for (auto it = steps.rbegin(); it != steps.rend(); ++it)
-        pathSteps_.push_back(static_cast<std::uint8_t>(oppositeDirection(*it)));
+        out.pathSteps.push_back(static_cast<std::uint8_t>(oppositeDirection(*it)));
     }
-    candidates_.push_back(e);
+    out.candidates.push_back(e);
+  }
+
+  // One cluster's edges after those of the clusters before it, as if searched in place.
+  void addClusterEdges(const ClusterEdges& edges) {
+    const auto pathBase = static_cast<std::uint32_t>(pathBegin_.size());
+    const auto stepBase = static_cast<std::uint32_t>(pathSteps_.size());
+    for (Candidate e : edges.candidates) {
+      e.path += pathBase;
+      candidates_.push_back(e);
+    }
+    for (const std::uint32_t begin : edges.pathBegin)
+      pathBegin_.push_back(begin + stepBase);
+    pathSteps_.insert(pathSteps_.end(), edges.pathSteps.begin(), edges.pathSteps.end());
+    expanded_ += edges.expanded;
   }
 
   // e2 serves every agent e1 serves: needs no terrain e1 does not and admits any size e1 does.

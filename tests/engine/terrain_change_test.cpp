@@ -136,6 +136,16 @@ TEST(BridgeDemolition, DeterministicAndTheChangeReachesTheHash) {
   EXPECT_NE(finalHash(loadDemolition(withoutDemolition())), first);
 }
 
+// Threads that search the graph's clusters (`rts run --threads`) build and repair the same
+// graph, so the run, the blown bridge included, ends in the same state.
+TEST(BridgeDemolition, TheSameRunOnAnyNumberOfBuildThreads) {
+  Scenario s = loadDemolition(scenarioText());
+  ASSERT_EQ(s.settings.pathing.buildThreads, 1);
+  const std::uint64_t oneThread = finalHash(s);
+  s.settings.pathing.buildThreads = 3;
+  EXPECT_EQ(finalHash(s), oneThread);
+}
+
 // Two worlds that differ only in a change that touches no unit's route hash differently.
 TEST(WorldTerrainChange, AChangeAloneChangesTheHash) {
   const Scenario s = loadDemolition(scenarioText());

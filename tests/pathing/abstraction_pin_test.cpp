@@ -124,5 +124,27 @@ TEST(AbstractionPin, WeightedGraphsBuiltAndRepaired) {
             7245523427445198578u);
 }
 
+// Clusters searched on several threads (AbstractionSpec::threads) give the graphs, repairs and
+// expansion counts pinned above, bit for bit: more threads than clusters to redo, fewer, and
+// a count that does not divide the work.
+TEST(AbstractionPin, TheSameOnAnyNumberOfThreads) {
+  for (const int threads : {2, 3, 8}) {
+    AbstractionSpec spec = catalogueSpec(8, AbstractionQuality::High);
+    spec.threads = threads;
+    EXPECT_EQ(fingerprintOfRepairs(1, spec), 4201646002708704147u) << threads << " threads";
+    spec = catalogueSpec(12, AbstractionQuality::Low);
+    spec.threads = threads;
+    EXPECT_EQ(fingerprintOfRepairs(4, spec), 15306790391871953827u) << threads << " threads";
+  }
+  TerrainCosts costs;
+  costs.perCell[static_cast<std::size_t>(Terrain::Ground)] = 1.0 / 1.5;
+  costs.perCell[static_cast<std::size_t>(Terrain::Swamp)] = 1.0 / 0.8;
+  costs.perCell[static_cast<std::size_t>(Terrain::Trees)] = 1.0;
+  AbstractionSpec weighted =
+      weightedAbstractionSpec({1, costs.capability()}, costs, 8, AbstractionQuality::High);
+  weighted.threads = 4;
+  EXPECT_EQ(fingerprintOfRepairs(5, weighted), 5683012086766148133u);
+}
+
 }  // namespace
 }  // namespace warpath::pathing

@@ -635,6 +635,11 @@ TEST(HaaStarTest, SpecsAreValidated) {
   check(spec, "capabilities must not be empty (got none)");
   spec.capabilities = {kGround, Capability{}};
   check(spec, "capabilities[1] must allow at least one terrain (got none)");
+  spec = completenessSpec(8, AbstractionQuality::High);
+  spec.threads = 0;
+  check(spec, "threads must be 1..256 (got 0)");
+  spec.threads = kMaxBuildThreads + 1;
+  check(spec, "threads must be 1..256 (got 257)");
 }
 
 TEST(HaaStarTest, HybridOptionsAndPlannerArgumentsAreValidated) {

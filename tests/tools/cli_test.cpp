@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -294,7 +295,22 @@ TEST(RtsCliTest, BenchScenRunsTheHierarchicalPlanners) {
     EXPECT_GT(json["abstract_nodes"].get<int>(), 0);
     EXPECT_EQ(json["abstract_edges"].get<int>(),
               json["abstract_inter_edges"].get<int>() + json["abstract_intra_edges"].get<int>());
+    EXPECT_GT(json["abstraction_build_ms"].get<double>(), 0.0);
   }
+  // Built on several threads, the same graph (`--threads` only changes how fast).
+  const auto graphOn = [&](int threads) {
+    const CommandRun run =
+        rts("bench scen " + fixture("small.map") + " " + fixture("small.map.scen") +
+            " --algo haa-hq --cluster-size 2 " + "--json --threads " + std::to_string(threads));
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    const auto json = nlohmann::json::parse(run.out);
+    return std::tuple{json["abstract_nodes"].get<int>(), json["abstract_edges"].get<int>(),
+                      json["cached_path_bytes"].get<int>(), json["total_expanded"].get<int>()};
+  };
+  EXPECT_EQ(graphOn(3), graphOn(1));
+  expectBadInput("bench scen " + fixture("small.map") + " " + fixture("small.map.scen") +
+                     " --algo haa-hq --threads 0",
+                 "--threads");
 }
 
 TEST(RtsCliTest, BenchScenBucketMinKeepsTheLongQueries) {

@@ -172,18 +172,35 @@ AbstractionSpec catalogueSpec(int clusterSize, AbstractionQuality quality) {
 }
 
 // Building the graph alone: the grid's clearance and agent layers are computed beforehand.
-void BM_AbstractionBuild(benchmark::State& state) {
+// Cluster size range(0), quality range(1), on `threads` (AbstractionSpec::threads).
+void timeAbstractionBuild(benchmark::State& state, int threads) {
   const AnnotatedGrid grid(benchmarkMap(512));
   const auto quality = static_cast<AbstractionQuality>(state.range(1));
-  const AbstractionSpec spec = catalogueSpec(static_cast<int>(state.range(0)), quality);
+  AbstractionSpec spec = catalogueSpec(static_cast<int>(state.range(0)), quality);
+  spec.threads = threads;
   ClusterAbstraction::build(grid, spec);  // warms the grid's caches
   for (auto _ : state) {
     benchmark::DoNotOptimize(ClusterAbstraction::build(grid, spec));
   }
 }
+void BM_AbstractionBuild(benchmark::State& state) {
+  timeAbstractionBuild(state, 1);
+}
+// Threads range(2).
+void BM_AbstractionBuildThreads(benchmark::State& state) {
+  timeAbstractionBuild(state, static_cast<int>(state.range(2)));
+}
 BENCHMARK(BM_AbstractionBuild)
     ->Args({16, static_cast<int>(AbstractionQuality::High)})
     ->Args({16, static_cast<int>(AbstractionQuality::Low)})
+    ->Unit(benchmark::kMillisecond);
+// The same on 1, 2 and 4 threads, timed by the wall clock (CPU time counts one thread).
+BENCHMARK(BM_AbstractionBuildThreads)
+    ->ArgsProduct({{16},
+                   {static_cast<int>(AbstractionQuality::High),
+                    static_cast<int>(AbstractionQuality::Low)},
+                   {1, 2, 4}})
+    ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
 // Random long queries (endpoints at least 256 cells apart) for infantry of sizes 1 and 3, by
@@ -397,11 +414,14 @@ BENCHMARK(BM_WeightedAbstractionBuild)->Arg(1)->Arg(3)->Unit(benchmark::kMillise
 // (clearance, agent layers of sizes 1-3 of the three capabilities) and the graph. Iterations
 // alternate placing an obstacle and clearing it at a spot that moves each pair, so the map
 // returns to what it was. Compare with BM_AbstractionBuild (a whole build of the same graph).
-void BM_TerrainRepair(benchmark::State& state) {
+// On `threads` (AbstractionSpec::threads).
+void timeTerrainRepair(benchmark::State& state, int threads) {
   const int side = static_cast<int>(state.range(0));
   const auto quality = static_cast<AbstractionQuality>(state.range(1));
   AnnotatedGrid grid(benchmarkMap(512));
-  ClusterAbstraction graph = ClusterAbstraction::build(grid, catalogueSpec(16, quality));
+  AbstractionSpec spec = catalogueSpec(16, quality);
+  spec.threads = threads;
+  ClusterAbstraction graph = ClusterAbstraction::build(grid, spec);
   SplitMix64 rng(14);
   CellRect area{};
   bool placed = false;
@@ -415,10 +435,26 @@ void BM_TerrainRepair(benchmark::State& state) {
   state.counters["nodes"] = static_cast<double>(graph.stats().nodes);
   state.counters["clusters"] = benchmark::Counter(clusters, benchmark::Counter::kAvgIterations);
 }
+void BM_TerrainRepair(benchmark::State& state) {
+  timeTerrainRepair(state, 1);
+}
+// Threads range(2).
+void BM_TerrainRepairThreads(benchmark::State& state) {
+  timeTerrainRepair(state, static_cast<int>(state.range(2)));
+}
 BENCHMARK(BM_TerrainRepair)
     ->ArgsProduct({{1, 4, 16, 64, 128},
                    {static_cast<int>(AbstractionQuality::High),
                     static_cast<int>(AbstractionQuality::Low)}})
+    ->Unit(benchmark::kMicrosecond);
+// The 16×16 and 64×64 changes with the clusters searched on 1, 2 and 4 threads, by the wall
+// clock.
+BENCHMARK(BM_TerrainRepairThreads)
+    ->ArgsProduct({{16, 64},
+                   {static_cast<int>(AbstractionQuality::High),
+                    static_cast<int>(AbstractionQuality::Low)},
+                   {1, 2, 4}})
+    ->UseRealTime()
     ->Unit(benchmark::kMicrosecond);
 
 // The same for one weighted graph (terrain costs: one graph per unit kind), infantry costs,

@@ -70,6 +70,11 @@ void addPlannerOptions(CLI::App& cmd, PlannerChoice& choice) {
                  "hierarchical algorithms with --levels 2: side of a level-2 cluster, in clusters")
       ->check(CLI::Range(2, 256))
       ->capture_default_str();
+  cmd.add_option("--threads", choice.threads,
+                 "hierarchical algorithms: threads that search the graph's clusters at once "
+                 "while it is built (the same graph for any count; counted in preprocess_ms)")
+      ->check(CLI::Range(1, pathing::kMaxBuildThreads))
+      ->capture_default_str();
   cmd.add_option("--tau", choice.tau,
                  "hybrid: node budget of the short-query AA* attempt; queries up to sqrt(tau)/2 "
                  "apart try it first")
@@ -169,7 +174,8 @@ PreparedPlanner preparePlanner(const AnnotatedGrid& grid, Algorithm algorithm,
                                                       .quality = *quality,
                                                       .cachePaths = true,
                                                       .levels = choice.levels,
-                                                      .levelTwoSize = choice.levelTwoSize}));
+                                                      .levelTwoSize = choice.levelTwoSize,
+                                                      .threads = choice.threads}));
   });
 }
 
@@ -182,6 +188,7 @@ PreparedPlanner prepareCostPlanner(const AnnotatedGrid& grid, Algorithm algorith
       AbstractionSpec spec = weightedAbstractionSpec(agent, costs, choice.clusterSize, *quality);
       spec.levels = choice.levels;
       spec.levelTwoSize = choice.levelTwoSize;
+      spec.threads = choice.threads;
       prepared.abstraction.emplace(buildAbstractionOrThrow(grid, std::move(spec)));
     } else {
       prepared.aaCosts.emplace(grid, agent, costs);
@@ -208,6 +215,7 @@ void writeAbstractionKeys(const AbstractionStats& stats, nlohmann::json& out) {
   out["abstract_intra_edges"] = stats.intraEdges;
   out["abstraction_bytes"] = stats.graphBytes;
   out["cached_path_bytes"] = stats.pathBytes;
+  out["abstraction_build_ms"] = stats.buildMilliseconds;
   if (stats.levelTwoNodes > 0) {
     out["level_two_nodes"] = stats.levelTwoNodes;
     out["level_two_edges"] = stats.levelTwoEdges;

@@ -39,6 +39,7 @@ struct PlannerChoice {
   int clusterSize = pathing::AbstractionSpec{}.clusterSize;
   int levels = pathing::AbstractionSpec{}.levels;
   int levelTwoSize = pathing::AbstractionSpec{}.levelTwoSize;
+  int threads = pathing::AbstractionSpec{}.threads;
   std::uint64_t tau = pathing::HybridOptions{}.tau;
   std::string attempt{pathing::kHybridAttemptNames.name(pathing::HybridOptions{}.attempt)};
   bool noSmooth = false;
@@ -46,8 +47,8 @@ struct PlannerChoice {
   std::string insertion{pathing::kInsertionModeNames.name(pathing::HaaOptions{}.insertion)};
 };
 
-// Adds --algo, --cluster-size, --levels, --level-two-size, --grid-search, --tau, --attempt and
-// --no-smooth to `cmd`, bound to `choice` (which must outlive the parse).
+// Adds --algo, --cluster-size, --levels, --level-two-size, --threads, --grid-search, --tau,
+// --attempt and --no-smooth to `cmd`, bound to `choice` (which must outlive the parse).
 void addPlannerOptions(CLI::App& cmd, PlannerChoice& choice);
 
 // The algorithm named by `name` ("aa", "haa-hq", "haa-lq", "hybrid"); throws BadInput.

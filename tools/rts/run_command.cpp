@@ -31,6 +31,7 @@ struct RunOptions {
   TraceOptions trace;
   std::string replay;
   std::int64_t replayEvery = 1;
+  int threads = 1;
 };
 
 int arrivedCount(const engine::World& world) {
@@ -179,8 +180,10 @@ engine::ReplayEnd endOf(const RunOutcome& outcome) {
 
 int runRun(const RunOptions& options) {
   engine::ReplaySource source;
-  const engine::Scenario scenario =
+  engine::Scenario scenario =
       loadScenarioOrThrow(options.scenario, options.replay.empty() ? nullptr : &source);
+  // Threads change how fast the graphs are built and repaired, never what they hold.
+  scenario.settings.pathing.buildThreads = options.threads;
   if (options.until && *options.until > scenario.durationTicks()) {
     throw BadInput{"--until: must be between 0 and " + std::to_string(scenario.durationTicks()) +
                    " (the scenario's duration in ticks), got " + std::to_string(*options.until)};
@@ -298,6 +301,11 @@ void registerRunCommand(CLI::App& app, CommandRunner& run) {
       "Run a scenario headless; exit 0 when every expectation holds, 1 when one fails", runRun);
   cmd->add_option("scenario", options->scenario, "Scenario YAML file")->required();
   cmd->add_option("--seed", options->seed, "Replace the scenario's seed");
+  cmd->add_option("--threads", options->threads,
+                  "Threads that search the HAA* graph's clusters at once when it is built at the "
+                  "start and repaired after terrain changes (the same run for any count)")
+      ->check(CLI::Range(1, pathing::kMaxBuildThreads))
+      ->capture_default_str();
   cmd->add_option("--report", options->report, "Write the report (JSON) to this file");
   cmd->add_option("--html", options->html,
                   "Write a self-contained HTML page: expectations, arrival curves, delays, battle, "

@@ -35,7 +35,11 @@ struct PathServiceSettings {
   // levelTwoSize × levelTwoSize clusters, crossed by exact level-2 edges (the same path costs;
   // fewer nodes expanded on long queries across large maps, more memory). [Limit: 1..2]
   int levels = 1;
-  int levelTwoSize = 4;                   // [Unit: clusters] [Limit: 2..256]
+  int levelTwoSize = 4;  // [Unit: clusters] [Limit: 2..256]
+  // Not a scenario key (`rts run --threads`): threads that search the HAA* graphs' clusters at
+  // once when they are built and repaired (pathing::AbstractionSpec::threads). Every graph,
+  // and so every run, is the same for any count. [Limit: 1..pathing::kMaxBuildThreads]
+  int buildThreads = 1;
   std::uint64_t expansionBudget = 20000;  // [Limit: >= 1] node expansions per tick
   std::size_t cacheCapacity = 4096;       // answers kept; the oldest go first
   // Cooperative movement (docs/cooperative.md): moving units plan space-time windows against

@@ -42,6 +42,9 @@ inline constexpr EnumNames<AbstractionQuality, 2> kAbstractionQualityNames{{{
 // Largest cluster side a spec may ask for (a cluster larger than the map is cut to the map).
 inline constexpr int kMaxClusterSize = 4096;
 
+// The most threads an AbstractionSpec may ask for.
+inline constexpr int kMaxBuildThreads = 256;
+
 struct AbstractionSpec {
   // [Unit: cells] [Limit: 2..kMaxClusterSize] side of a cluster; edge clusters may be smaller
   int clusterSize = 16;
@@ -68,6 +71,10 @@ struct AbstractionSpec {
   // gives (the level-2 edges are exact over level 1). [Limit: 1..2]
   int levels = 1;
   int levelTwoSize = 4;  // [Unit: clusters] [Limit: 2..256] side of a level-2 cluster
+  // Threads that search clusters' intra-edges at once, in a build and in every repair(). The
+  // graph is the same for any count: clusters are searched apart and joined in cluster order.
+  // [Limit: 1..kMaxBuildThreads]
+  int threads = 1;
 };
 
 // The smallest agent size a graph built from `spec` serves: 1, or maxAgentSize for a weighted
