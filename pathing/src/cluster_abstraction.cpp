@@ -1,18 +1,16 @@
 #include "pathing/cluster_abstraction.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <exception>
 #include <limits>
 #include <map>
 #include <numeric>
-#include <thread>
 
 #include "cluster_dijkstra.h"
 #include "limit_messages.h"
+#include "parallel_for.h"
 #include "pathing/invariant.h"
 #include "pathing/moves.h"
 
@@ -498,9 +496,7 @@ class AbstractionBuilder {
       for (std::size_t ci = 0; ci < fields_.size(); ++ci)
         todo.push_back({k, ci});
     }
-    const std::size_t threads =
-        std::min(todo.size(), static_cast<std::size_t>(std::max(1, g_.spec_.threads)));
-    if (threads <= 1) {
+    if (workersFor(todo.size(), g_.spec_.threads) == 1) {
       IntraScratch scratch;
       ClusterEdges found;
       for (const auto& [k, ci] : todo) {
@@ -509,32 +505,14 @@ class AbstractionBuilder {
       }
       return;
     }
-    // Each thread takes the next (cluster, capability) not taken; the results wait in order.
+    // The results wait in task order, each thread with its own scratch.
     std::vector<ClusterEdges> found(todo.size());
-    std::atomic<std::size_t> next{0};
-    std::vector<std::exception_ptr> failed(threads);
-    const auto work = [&](std::size_t worker) {
-      try {
-        IntraScratch scratch;
-        for (std::size_t i = next++; i < todo.size(); i = next++) {
-          const auto& [k, ci] = todo[i];
-          searchCluster(k, ci, members[static_cast<std::size_t>(k)], scratch, found[i]);
-        }
-      } catch (...) {
-        failed[worker] = std::current_exception();
-        next = todo.size();
-      }
-    };
-    {
-      std::vector<std::jthread> pool;
-      for (std::size_t t = 1; t < threads; ++t)
-        pool.emplace_back(work, t);
-      work(0);
-    }
-    for (const std::exception_ptr& e : failed) {
-      if (e) std::rethrow_exception(e);
-    }
-    for (ClusterEdges& edges : found)
+    std::vector<IntraScratch> scratch(workersFor(todo.size(), g_.spec_.threads));
+    parallelFor(todo.size(), g_.spec_.threads, [&](std::size_t worker, std::size_t i) {
+      const auto& [k, ci] = todo[i];
+      searchCluster(k, ci, members[static_cast<std::size_t>(k)], scratch[worker], found[i]);
+    });
+    for (const ClusterEdges& edges : found)
       addClusterEdges(edges);
   }
 

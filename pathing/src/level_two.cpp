@@ -17,6 +17,7 @@
 #include <functional>
 #include <queue>
 
+#include "parallel_for.h"
 #include "pathing/cluster_abstraction.h"
 #include "pathing/invariant.h"
 
@@ -112,10 +113,6 @@ class LevelTwoBuilder {
       }
     }
     if (localOf_.size() < g_.nodeCells_.size()) localOf_.resize(g_.nodeCells_.size(), kNone);
-    if (g_.levelTwoEdges_.size() < g_.nodeCells_.size())
-      g_.levelTwoEdges_.resize(g_.nodeCells_.size());
-    if (g_.nodeLevelTwo_.size() < g_.nodeCells_.size())
-      g_.nodeLevelTwo_.resize(g_.nodeCells_.size(), -1);
     entries_.clear();
     entryOf_.assign(nodes_.size(), kNone);
     for (std::uint32_t i = 0; i < nodes_.size(); ++i) {
@@ -290,24 +287,36 @@ std::uint64_t ClusterAbstraction::buildLevelTwo(const std::vector<bool>* levelTw
                                 (levelTwoPaths_[b].begin.size() + levelTwoPaths_[b].nodes.size()) *
                                     sizeof(std::uint32_t));
   };
-  LevelTwoBuilder builder(*this);
+  std::vector<std::size_t> todo;
   for (std::size_t b = 0; b < blocks; ++b) {
-    if (levelTwoClusters && !(*levelTwoClusters)[b]) continue;
+    if (!levelTwoClusters || (*levelTwoClusters)[b]) todo.push_back(b);
+  }
+  for (const std::size_t b : todo)
     count(b, -1);
-    builder.rebuild(static_cast<int>(b));
+  // A block's rebuild writes only what belongs to its own nodes, so blocks may be rebuilt on
+  // several threads (AbstractionSpec::threads) once the per-node arrays have their size.
+  if (levelTwoEdges_.size() < nodeCells_.size()) levelTwoEdges_.resize(nodeCells_.size());
+  if (nodeLevelTwo_.size() < nodeCells_.size()) nodeLevelTwo_.resize(nodeCells_.size(), -1);
+  std::vector<LevelTwoBuilder> builders(workersFor(todo.size(), spec_.threads),
+                                        LevelTwoBuilder(*this));
+  parallelFor(todo.size(), spec_.threads, [&](std::size_t worker, std::size_t i) {
+    builders[worker].rebuild(static_cast<int>(todo[i]));
+  });
+  std::uint64_t settled = 0;
+  for (const LevelTwoBuilder& builder : builders)
+    settled += builder.settled();
+  for (const std::size_t b : todo)
     count(b, +1);
-  }
 #if WARPATH_INVARIANTS_ON
-  for (std::size_t b = 0; b < blocks; ++b) {
-    if (!levelTwoClusters || (*levelTwoClusters)[b]) builder.check(static_cast<int>(b));
-  }
+  for (const std::size_t b : todo)
+    builders.front().check(static_cast<int>(b));
 #endif
   stats_.levelTwoBytes = nodeLevelTwo_.size() * (sizeof(int) + sizeof(std::vector<AbstractEdge>)) +
                          stats_.levelTwoEdges * sizeof(AbstractEdge) + levelTwoPathBytes_;
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
   if (!levelTwoClusters) stats_.levelTwoMilliseconds = ms;
-  return builder.settled();
+  return settled;
 }
 
 CellRect ClusterAbstraction::levelTwoClusterBounds(int levelTwoCluster) const {

@@ -53,6 +53,21 @@ void addGraph(Fingerprint& f, const ClusterAbstraction& g) {
     for (std::uint32_t n : g.nodesInCluster(k))
       f.add(n);
   }
+  if (g.spec().levels != 2) return;
+  std::vector<std::pair<std::uint32_t, const AbstractEdge*>> steps;
+  for (std::uint32_t n = 0; n < g.nodeCount(); ++n) {
+    for (const AbstractEdge& e : g.levelTwoEdgesOf(n)) {
+      std::uint64_t cost = 0;
+      std::memcpy(&cost, &e.cost, sizeof cost);
+      f.add(cost);
+      f.add(static_cast<std::uint64_t>(e.target) << 24 | std::uint64_t{e.capability.mask()} << 16 |
+            std::uint64_t{e.clearance} << 8 | (e.reversed ? 1u : 0u));
+      steps.clear();
+      g.appendLevelOneSteps(n, e, Agent{e.clearance, e.capability}, &steps);
+      for (const auto& [from, step] : steps)
+        f.add(static_cast<std::uint64_t>(from) << 32 | step->target);
+    }
+  }
 }
 
 constexpr Terrain kTerrains[] = {Terrain::Ground, Terrain::Swamp, Terrain::Trees, Terrain::Water,
@@ -144,6 +159,13 @@ TEST(AbstractionPin, TheSameOnAnyNumberOfThreads) {
       weightedAbstractionSpec({1, costs.capability()}, costs, 8, AbstractionQuality::High);
   weighted.threads = 4;
   EXPECT_EQ(fingerprintOfRepairs(5, weighted), 5683012086766148133u);
+  // Level 2's blocks are rebuilt on the threads too.
+  AbstractionSpec levels = catalogueSpec(4, AbstractionQuality::High);
+  levels.levels = 2;
+  levels.levelTwoSize = 2;
+  const std::uint64_t oneThread = fingerprintOfRepairs(7, levels);
+  levels.threads = 3;
+  EXPECT_EQ(fingerprintOfRepairs(7, levels), oneThread);
 }
 
 }  // namespace
