@@ -91,6 +91,7 @@ World::World(std::shared_ptr<const AnnotatedGrid> grid, std::vector<units::UnitT
   const bool wreckObstacles = settings_.combat.wrecksBlock && world::maxUnitSize(catalogue_) >= 2;
   if (settings_.terrainChanges || wreckObstacles) {
     ownGrid_ = std::make_shared<AnnotatedGrid>(grid_->map());
+    ownGrid_->setUpdateThreads(settings_.pathing.buildThreads);
     grid_ = ownGrid_;
   }
   const std::vector<Capability> capabilities = capabilitiesOf(catalogue_);

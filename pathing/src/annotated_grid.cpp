@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "parallel_for.h"
 #include "pathing/moves.h"
 
 namespace warpath::pathing {
@@ -426,13 +427,20 @@ void AnnotatedGrid::refresh(CellRect area) {
   changes_.push_back(area);
   if (changes_.size() > kChangesKept) changes_.pop_front();
   std::lock_guard lock(mutex_);
-  for (auto& [capability, field] : clearances_) {
+  // A capability's clearance and layers depend on no other capability's: one task each.
+  std::vector<std::pair<Capability, ClearanceField*>> fields;
+  for (auto& [capability, field] : clearances_)
+    fields.push_back({capability, field.get()});
+  while (scratch_.size() < workersFor(fields.size(), updateThreads_))
+    scratch_.push_back(std::make_unique<AgentLayer::Scratch>());
+  parallelFor(fields.size(), updateThreads_, [&](std::size_t worker, std::size_t i) {
+    const auto& [capability, field] = fields[i];
     const CellRect changed = field->update(map_, area);
-    if (!scratch_) scratch_ = std::make_unique<AgentLayer::Scratch>();
     for (auto& [agent, layer] : layers_) {
-      if (agent.capability == capability) layer->update(map_, *field, agent, changed, *scratch_);
+      if (agent.capability == capability)
+        layer->update(map_, *field, agent, changed, *scratch_[worker]);
     }
-  }
+  });
 }
 
 std::size_t AnnotatedGrid::cacheBytes() const {

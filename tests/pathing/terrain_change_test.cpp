@@ -82,6 +82,39 @@ TEST(TerrainChange, RepairedCachesEqualFreshOnes) {
   }
 }
 
+// Repaired on several threads (one capability each), the caches are those one thread repairs,
+// component ids included.
+TEST(TerrainChange, CachesRepairedOnThreadsEqualThoseOfOneThread) {
+  for (std::uint64_t seed = 5; seed <= 6; ++seed) {
+    const GridMap map = randomMap(seed, 47, 41, 6);
+    AnnotatedGrid one(map);
+    AnnotatedGrid three(map);
+    three.setUpdateThreads(3);
+    for (const Agent& agent : completenessAgents()) {
+      (void)one.layer(agent);
+      (void)three.layer(agent);
+    }
+    RandomChanges forOne{SplitMix64(seed), 9, {}};
+    RandomChanges forThree{SplitMix64(seed), 9, {}};
+    for (int step = 0; step < 30; ++step) {
+      ASSERT_EQ(forOne.apply(one).area, forThree.apply(three).area);
+      for (const Capability capability : completenessCapabilities()) {
+        ASSERT_TRUE(std::ranges::equal(one.clearance(capability).values(),
+                                       three.clearance(capability).values()))
+            << "seed " << seed << " step " << step;
+      }
+      for (const Agent& agent : completenessAgents()) {
+        ASSERT_TRUE(
+            std::ranges::equal(one.layer(agent).moveMasks(), three.layer(agent).moveMasks()))
+            << "seed " << seed << " step " << step;
+        ASSERT_TRUE(
+            std::ranges::equal(one.layer(agent).components(), three.layer(agent).components()))
+            << "seed " << seed << " step " << step;
+      }
+    }
+  }
+}
+
 // The grid keeps the areas of its last changes, so caches built at a revision can repair just
 // what changed since: the bounding box of those changes (clipped), empty when none (a call that
 // changed no cell is no change), and nullopt once more changes were made than it keeps.

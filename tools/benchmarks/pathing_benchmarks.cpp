@@ -421,6 +421,7 @@ void timeTerrainRepair(benchmark::State& state, int threads) {
   AnnotatedGrid grid(benchmarkMap(512));
   AbstractionSpec spec = catalogueSpec(16, quality);
   spec.threads = threads;
+  grid.setUpdateThreads(threads);
   ClusterAbstraction graph = ClusterAbstraction::build(grid, spec);
   SplitMix64 rng(14);
   CellRect area{};

@@ -108,13 +108,18 @@ class AnnotatedGrid {
   // (the last kChangesKept are), so the cache must find what changed itself.
   std::optional<CellRect> changedSince(std::uint64_t revision) const;
   static constexpr std::size_t kChangesKept = 64;
+  // Threads that repair the caches of different capabilities at once after a change (each
+  // capability's clearance with its agent layers); the caches come out the same for any count.
+  // At least 1 (the default).
+  void setUpdateThreads(int threads) { updateThreads_ = threads < 1 ? 1 : threads; }
 
  private:
   // Repairs the caches after the cells of `area` changed.
   void refresh(CellRect area);
 
   GridMap map_;
-  std::unique_ptr<AgentLayer::Scratch> scratch_;  // for layer updates
+  std::vector<std::unique_ptr<AgentLayer::Scratch>> scratch_;  // for layer updates, per thread
+  int updateThreads_ = 1;
   // Obstacles standing on each cell, and the terrain under them (allocated at the first one).
   std::vector<std::uint16_t> obstacles_;
   std::vector<Terrain> underneath_;
