@@ -346,6 +346,44 @@ const AgentLayer& AnnotatedGrid::layer(Agent agent) const {
   return *slot;
 }
 
+void AnnotatedGrid::prepare(std::span<const Agent> agents, int threads) const {
+  // What is missing, found under the lock; computed outside it (layer() holds it while it
+  // computes, which would make the threads take turns); stored under it.
+  std::vector<Capability> capabilities;
+  std::vector<Agent> missing;
+  {
+    std::lock_guard lock(mutex_);
+    for (const Agent& agent : agents) {
+      if (!clearances_.contains(agent.capability) &&
+          std::find(capabilities.begin(), capabilities.end(), agent.capability) ==
+              capabilities.end())
+        capabilities.push_back(agent.capability);
+      if (!layers_.contains(agent) &&
+          std::find(missing.begin(), missing.end(), agent) == missing.end())
+        missing.push_back(agent);
+    }
+  }
+  std::vector<std::unique_ptr<ClearanceField>> fields(capabilities.size());
+  parallelFor(capabilities.size(), threads, [&](std::size_t, std::size_t i) {
+    fields[i] = std::make_unique<ClearanceField>(ClearanceField::compute(map_, capabilities[i]));
+  });
+  {
+    std::lock_guard lock(mutex_);
+    for (std::size_t i = 0; i < capabilities.size(); ++i)
+      clearances_.try_emplace(capabilities[i], std::move(fields[i]));
+  }
+  std::vector<const ClearanceField*> fieldOf(missing.size());
+  for (std::size_t i = 0; i < missing.size(); ++i)
+    fieldOf[i] = &clearance(missing[i].capability);
+  std::vector<std::unique_ptr<AgentLayer>> layers(missing.size());
+  parallelFor(missing.size(), threads, [&](std::size_t, std::size_t i) {
+    layers[i] = std::make_unique<AgentLayer>(AgentLayer::compute(map_, *fieldOf[i], missing[i]));
+  });
+  std::lock_guard lock(mutex_);
+  for (std::size_t i = 0; i < missing.size(); ++i)
+    layers_.try_emplace(missing[i], std::move(layers[i]));
+}
+
 TerrainChange AnnotatedGrid::setTerrain(CellRect area, Terrain terrain) {
   area = map_.clip(area);
   bool changed = false;

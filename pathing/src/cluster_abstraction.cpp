@@ -136,6 +136,13 @@ class AbstractionBuilder {
 
   ClusterAbstraction build() {
     const auto began = std::chrono::steady_clock::now();
+    // The agent layers the searches read, computed on the threads before they start.
+    std::vector<Agent> agents;
+    for (const Capability capability : capabilities_) {
+      for (int size = minSize_; size <= maxSize_; ++size)
+        agents.push_back({size, capability});
+    }
+    grid_.prepare(agents, g_.spec_.threads);
     findTransitions();
     findIntraEdges();
     pruneSamePairDominance();

@@ -82,6 +82,24 @@ TEST(TerrainChange, RepairedCachesEqualFreshOnes) {
   }
 }
 
+// Layers prepared on several threads at once are those computed one at a time on demand.
+TEST(TerrainChange, LayersPreparedOnThreadsEqualOnesComputedOnDemand) {
+  const GridMap map = randomMap(8, 53, 45, 6);
+  const AnnotatedGrid lazy(map);
+  const AnnotatedGrid prepared(map);
+  const std::vector<Agent> agents = completenessAgents();
+  prepared.prepare(agents, 3);
+  prepared.prepare(agents, 3);  // nothing left to compute: the cached ones stay
+  for (const Agent& agent : agents) {
+    EXPECT_TRUE(std::ranges::equal(lazy.clearance(agent.capability).values(),
+                                   prepared.clearance(agent.capability).values()));
+    EXPECT_TRUE(
+        std::ranges::equal(lazy.layer(agent).moveMasks(), prepared.layer(agent).moveMasks()));
+    EXPECT_TRUE(
+        std::ranges::equal(lazy.layer(agent).components(), prepared.layer(agent).components()));
+  }
+}
+
 // Repaired on several threads (one capability each), the caches are those one thread repairs,
 // component ids included.
 TEST(TerrainChange, CachesRepairedOnThreadsEqualThoseOfOneThread) {

@@ -80,6 +80,9 @@ class AnnotatedGrid {
   // References stay valid for the grid's lifetime.
   const ClearanceField& clearance(Capability capability) const;
   const AgentLayer& layer(Agent agent) const;
+  // Computes the clearances and layers of `agents` not cached yet, on up to `threads` threads
+  // (each on its own; what layer() would compute, one at a time).
+  void prepare(std::span<const Agent> agents, int threads) const;
 
   bool canStand(Agent agent, Cell c) const {
     return agent.size >= 1 && clearance(agent.capability).at(c) >= agent.size;
