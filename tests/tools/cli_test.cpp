@@ -304,6 +304,7 @@ TEST(RtsCliTest, BenchScenRunsTheHierarchicalPlanners) {
             " --algo haa-hq --cluster-size 2 " + "--json --threads " + std::to_string(threads));
     EXPECT_EQ(run.exitCode, 0) << run.err;
     const auto json = nlohmann::json::parse(run.out);
+    EXPECT_EQ(json["build_threads"], threads);
     return std::tuple{json["abstract_nodes"].get<int>(), json["abstract_edges"].get<int>(),
                       json["cached_path_bytes"].get<int>(), json["total_expanded"].get<int>()};
   };

@@ -206,6 +206,8 @@ double prepareAgents(Planner& planner, std::span<const Agent> agents) {
 
 void writeAbstractionKeys(const ClusterAbstraction* abstraction, nlohmann::json& out) {
   writeAbstractionKeys(abstraction ? abstraction->stats() : AbstractionStats{}, out);
+  // How the graph was built, beside how long it took (abstraction_build_ms).
+  out["build_threads"] = abstraction ? abstraction->spec().threads : 1;
 }
 
 void writeAbstractionKeys(const AbstractionStats& stats, nlohmann::json& out) {

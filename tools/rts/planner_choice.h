@@ -122,7 +122,8 @@ pathing::ClusterAbstraction buildAbstractionOrThrow(const pathing::AnnotatedGrid
                                                     pathing::AbstractionSpec spec);
 
 // abstract_nodes, abstract_edges (inter + intra), abstract_inter_edges, abstract_intra_edges,
-// abstraction_bytes, cached_path_bytes: zeros without an abstraction (AA* searches the grid).
+// abstraction_bytes, cached_path_bytes, abstraction_build_ms: zeros without an abstraction (AA*
+// searches the grid); and build_threads (AbstractionSpec::threads; 1 without one).
 void writeAbstractionKeys(const pathing::ClusterAbstraction* abstraction, nlohmann::json& out);
 // The same keys for graph statistics (e.g. summed over several graphs).
 void writeAbstractionKeys(const pathing::AbstractionStats& stats, nlohmann::json& out);
