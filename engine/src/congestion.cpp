@@ -232,10 +232,20 @@ std::size_t Congestion::queuesAt(double now) {
   return queues;
 }
 
+Congestion::Layer& Congestion::Surcharge::layer() const {
+  // The layers are found again after a terrain change, maybe in another order.
+  std::vector<Layer>& layers = congestion_.layers_;
+  if (layer_ < layers.size() && layers[layer_].capability == agent_.capability.mask())
+    return layers[layer_];
+  Layer& found = congestion_.layerFor(agent_.capability);
+  layer_ = static_cast<std::size_t>(&found - layers.data());
+  return found;
+}
+
 double Congestion::Surcharge::on(const pathing::ClusterAbstraction& graph, std::uint32_t from,
                                  const pathing::AbstractEdge& edge, double g) const {
   Congestion& c = congestion_;
-  Layer& layer = c.layerFor(agent_.capability);
+  Layer& layer = this->layer();
   if (layer.places.empty()) return 0.0;
   const Cell a = graph.nodeCell(from);
   const Cell b = graph.nodeCell(edge.target);
@@ -258,7 +268,7 @@ double Congestion::Surcharge::on(const pathing::ClusterAbstraction& graph, std::
 bool Congestion::Surcharge::freeWithin(const pathing::ClusterAbstraction& graph,
                                        int levelTwoCluster) const {
   Congestion& c = congestion_;
-  Layer& layer = c.layerFor(agent_.capability);
+  Layer& layer = this->layer();
   if (layer.places.empty()) return true;
   const pathing::CellRect r = graph.levelTwoClusterBounds(levelTwoCluster);
   for (int y = r.y; y < r.y + r.height; y += c.clusterSize_) {

@@ -16,6 +16,7 @@
 // path's and dropped when it dies; a booking leaves the queue once the queue has served it.
 // Everything is in booking order and simulated seconds, so it is deterministic.
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <unordered_map>
@@ -31,6 +32,8 @@ namespace warpath::engine {
 inline constexpr int kNarrowWidth = 8;
 
 class Congestion {
+  struct Layer;  // (defined below; Surcharge keeps a reference to its agent's)
+
  public:
   // The grid must outlive this; `clusterSize` is the HAA* graph's.
   Congestion(const pathing::AnnotatedGrid& grid, int clusterSize);
@@ -61,11 +64,15 @@ class Congestion {
     bool freeWithin(const pathing::ClusterAbstraction& graph, int levelTwoCluster) const override;
 
    private:
+    // The agent's layer: looked up once, not on every edge the search relaxes.
+    Layer& layer() const;
+
     Congestion& congestion_;
     pathing::Agent agent_;
     double speed_;
     double now_;
     bool seconds_;
+    mutable std::size_t layer_ = SIZE_MAX;  // index into layers_, checked before each use
   };
 
   // Places with a queue not yet served at `now` (for the report and tests).
