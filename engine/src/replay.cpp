@@ -429,6 +429,8 @@ Result<Scenario> replayScenario(const Replay& replay) {
   }
   if (replay.version < kFirstInsideGoesFirstReplayVersion) defaults.pathing.insideGoesFirst = false;
   if (replay.version < kFirstParkedMoveOnReplayVersion) defaults.pathing.parkedMoveOn = false;
+  if (replay.version < kFirstTurnsWithinWaypointsReplayVersion)
+    defaults.pathing.turnsWithinWaypoints = false;
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

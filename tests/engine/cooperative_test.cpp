@@ -400,7 +400,8 @@ TEST(Cooperative, AStoppedTankClaimsItsLaneThroughAnOncomingStream) {
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.standingVehicleLanes);  // the default
   s.settings.pathing.laneApproaches = false;
-  s.settings.pathing.headOnKeepRight = false;  // which spares that tank too (format 21)
+  s.settings.pathing.headOnKeepRight = false;       // which spares that tank too (format 21)
+  s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
   EXPECT_TRUE(runToEnd(s, 15).passed());
   s.settings.pathing.standingVehicleLanes = false;
   EXPECT_FALSE(runToEnd(s, 15).passed());
@@ -439,6 +440,7 @@ TEST(Cooperative, VehiclesMeetingHeadOnInTheOpenVeerRight) {
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.headOnKeepRight);  // the default
   s.settings.pathing.wideLaneDetours = false;       // which spares those tanks too (format 22)
+  s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
   for (const bool keepRight : {true, false}) {
     s.settings.pathing.headOnKeepRight = keepRight;
     for (const std::uint64_t seed : {6, 44, 46, 47})
@@ -457,6 +459,7 @@ TEST(Cooperative, JeepsKeepRightAcrossABridgeSixteenWide) {
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.wideLaneDetours);  // the default
   s.settings.pathing.headOnByIntent = false;        // which spares those jeeps too (format 22)
+  s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
   for (const bool wide : {true, false}) {
     s.settings.pathing.wideLaneDetours = wide;
     for (const std::uint64_t seed : {73, 79})
@@ -473,7 +476,8 @@ TEST(Cooperative, VehiclesVeerFromLighterOnesSteeringTheirWay) {
   Result<Scenario> loaded = loadChokepoint("variations/bridge16_mixed.yaml");
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.headOnByIntent);  // the default
+  ASSERT_TRUE(s.settings.pathing.headOnByIntent);   // the default
+  s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
   for (const bool byIntent : {true, false}) {
     s.settings.pathing.headOnByIntent = byIntent;
     for (const std::uint64_t seed : {15, 35})
@@ -491,6 +495,7 @@ TEST(Cooperative, AUnitCaughtInsideAPassageGoesFirst) {
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.insideGoesFirst);  // the default
+  s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
   EXPECT_TRUE(runToEnd(s, 4).passed());
   s.settings.pathing.insideGoesFirst = false;
   EXPECT_FALSE(runToEnd(s, 4).passed());
@@ -505,7 +510,8 @@ TEST(Cooperative, AParkedTeammateInTheWayMovesOn) {
   Result<Scenario> loaded = loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/demo.yaml");
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.parkedMoveOn);  // the default
+  ASSERT_TRUE(s.settings.pathing.parkedMoveOn);     // the default
+  s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
   EXPECT_TRUE(runToEnd(s, 22).passed());
   s.settings.pathing.parkedMoveOn = false;
   EXPECT_FALSE(runToEnd(s, 22).passed());
@@ -685,6 +691,43 @@ TEST(Cooperative, OpenGroundNeedsNoWindows) {
 }
 
 // A unit that holds its position is not driven through: a tank ordered through it goes around.
+// The turning-circle cap lets a unit pass within its waypoint's radius (replay format 25). Two
+// crowds of 16 jeeps cross open ground head on through each other: jostled a little off their
+// lines, with the cap made to pass through each waypoint's centre (a cell ahead) they drove at
+// about 2/3 of their speed (delay p50 1.45 here; stress_2000's jeeps 1.23 and 1.45), within the
+// radius nearer their full speed (1.14).
+TEST(CooperativeMovementRules, VehiclesJostledInACrowdKeepTheirSpeed) {
+  std::string rows;
+  for (int y = 0; y < 24; ++y)
+    rows += (y > 0 ? ", '" : "'") + std::string(72, '.') + "'";
+  Scenario s = parse(
+      "map: {rows: [" + rows +
+      "]}\n"
+      "catalogue: ../assets/units.yaml\n"
+      "duration: 40\n"
+      "combat: {enabled: false}\n"
+      "pathing: {cooperative: true}\n"
+      "teams: [blue, red]\n"
+      "groups:\n"
+      "  - {name: east, team: blue, type: jeep, count: 16, spawn: {x: 2, y: 4, w: 12, h: 16},\n"
+      "     goal: {x: 58, y: 4, w: 12, h: 16}}\n"
+      "  - {name: west, team: red, type: jeep, count: 16, spawn: {x: 58, y: 4, w: 12, h: 16},\n"
+      "     goal: {x: 2, y: 4, w: 12, h: 16}}\n");
+  ASSERT_TRUE(s.settings.pathing.turnsWithinWaypoints);  // the default
+  double p50[2] = {0.0, 0.0};                            // through the centre, within the radius
+  for (const bool within : {false, true}) {
+    s.settings.pathing.turnsWithinWaypoints = within;
+    const Report r = runToEnd(s, 1);
+    EXPECT_TRUE(r.passed());
+    for (const DelayStats& d : r.movement.delay) {
+      EXPECT_EQ(d.arrived, 16) << d.team;
+      p50[within ? 1 : 0] += d.p50 / 2.0;
+    }
+  }
+  EXPECT_GT(p50[0], 1.35);
+  EXPECT_LT(p50[1], 1.2);
+}
+
 TEST(CooperativeMovementRules, HoldingUnitsAreNotDrivenThrough) {
   const Scenario s = parse(
       "map: {rows: ['....................', '....................', '....................',\n"

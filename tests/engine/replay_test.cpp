@@ -346,7 +346,7 @@ Result<Scenario> loadRecordedChokepoint(const std::string& file, ReplaySource& s
 // the mouth (18), queued windows not counted toward the stuck flag (19), lanes held farther
 // beyond wide passages (20), veering right head on (21), lanes across wide passages and veering
 // from lighter vehicles (22), the unit inside a passage going first (23), parked teammates
-// moving on (24).
+// moving on (24), turning within the waypoint's radius (25).
 void useRulesOfFormat(Scenario& s, std::uint32_t format) {
   if (format < 11) {
     s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;
@@ -372,6 +372,7 @@ void useRulesOfFormat(Scenario& s, std::uint32_t format) {
   }
   if (format < 23) s.settings.pathing.insideGoesFirst = false;
   if (format < 24) s.settings.pathing.parkedMoveOn = false;
+  if (format < 25) s.settings.pathing.turnsWithinWaypoints = false;
 }
 
 void expectVerifiesOnlyAsItsFormat(const Scenario& s, const ReplaySource& source,
@@ -671,6 +672,21 @@ TEST_F(Replays, AFormat23ReplayPlaysBackWithParkedTeammatesStaying) {
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format23.rpl", 23, 2700);
 }
 
+// Format 24 was recorded when the turning-circle cap slowed a vehicle until it could pass
+// through the centre of its waypoint: it plays back so, and read as format 25 (within the
+// waypoint's radius) the same records do not verify. The two-way bridge at its own seed, where
+// tanks and infantry cross in lanes.
+TEST_F(Replays, AFormat24ReplayPlaysBackTurningThroughWaypointCentres) {
+  ReplaySource source;
+  Result<Scenario> loaded = loadRecordedChokepoint("bridge_two_way.yaml", source);
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.turnsWithinWaypoints);
+  useRulesOfFormat(s, 24);
+  source.seed = s.settings.seed;
+  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format24.rpl", 24, 1500);
+}
+
 // Format 18 was recorded when a unit queued behind another going its way counted its windows
 // without progress toward the stuck flag (a count the state hash covers): it plays back so, and
 // read as format 19 the same records do not verify. The door's two crowds at seed 10, where a
@@ -695,21 +711,21 @@ TEST_F(Replays, AnotherVersionIsRefused) {
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
                                  ": replay format version 1 is not supported (this build reads "
-                                 "versions 2 to 24); it was written before battles were recorded: "
+                                 "versions 2 to 25); it was written before battles were recorded: "
                                  "record it again with rts run --replay");
   RtsResult r = rts("replay verify " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(file.string() + ": replay format version 1 is not supported"),
             std::string::npos)
       << r.out;
-  bytes[8] = 25;
+  bytes[8] = 26;
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
-                                 ": replay format version 25 is not supported (this build reads "
-                                 "versions 2 to 24)");
+                                 ": replay format version 26 is not supported (this build reads "
+                                 "versions 2 to 25)");
   r = rts("replay info " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_NE(r.out.find("version 25 is not supported"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("version 26 is not supported"), std::string::npos) << r.out;
   EXPECT_EQ(rts("replay verify " + (dir_ / "none.rpl").string()).status, 2);
 }
 
@@ -818,7 +834,7 @@ TEST_F(Replays, ABattleRecordsAndVerifies) {
 
   const RtsResult info = rts("replay info " + file.string());
   EXPECT_EQ(info.status, 0) << info.out;
-  EXPECT_NE(info.out.find("format version: 24\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("format version: 25\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("orders: 4 (2 attack_move, 1 attack, 1 reinforce)\n"), std::string::npos)
       << info.out;
   const RtsResult verify = rts("replay verify " + file.string());

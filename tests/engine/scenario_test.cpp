@@ -139,7 +139,10 @@ struct Golden {
   // outside timed windows came to veer right (format 21); every expectation still holds. The
   // demo's, river_ambush's and forest_battle's were pinned again when a unit's planned time (in
   // the state) came to be taken along its lane (format 22): their units move as before; and the
-  // demo's again when vehicles came to veer from lighter ones steering their way (format 22).
+  // demo's again when vehicles came to veer from lighter ones steering their way (format 22). All
+  // five again when the turning-circle cap came to let a unit pass within its waypoint's radius
+  // (format 25); river_ambush's three with its seed then moved from 606 to 612 (at 606 red no
+  // longer killed anything).
   const char* hash;
   // The run with cooperative movement off, as formats 2-6 play back a scenario that does not
   // mention it, hashed as format 7 laid the state out: unchanged since cooperation became the
@@ -149,7 +152,8 @@ struct Golden {
   // unchanged since that release, so the simulation without cooperation still behaves as then
   // — except river_ambush's, re-pinned with format 6: its tanks' wrecks now block planning
   // (docs/terrain_changes.md), which changes the battle; its old replays still verify (they
-  // play back without the rule).
+  // play back without the rule); and again with its seed at format 25 (the run at 606 is
+  // WreckRule.OffItRunsRiverAmbushAsBefore's).
   const char* format3Hash;
 };
 
@@ -178,11 +182,11 @@ TEST_P(GoldenHash, OfTheWholeRun) {
 INSTANTIATE_TEST_SUITE_P(
     BundledScenarios, GoldenHash,
     ::testing::Values(
-        Golden{"demo", "08bf2398c4175e64", "94f004afe1cb75f5", "268efd7eedf339cb"},
-        Golden{"river_ambush", "9f99ee0850bd08e4", "04a782fbee634f61", "440f53b59841d600"},
-        Golden{"forest_battle", "5a9e4e0e4fc595fb", "418269f9132f682d", "1e2811529b35473b"},
-        Golden{"amphibious_landing", "bf2e055edd98fd9b", "a0c07a636b15d90d", "7bb81fc9f3a1784e"},
-        Golden{"bridge_demolition", "ca33b4fe90b2f394", "87e5a21810de3f77", "e92b92a84829b703"}),
+        Golden{"demo", "ebb21e6c325bce08", "94f004afe1cb75f5", "268efd7eedf339cb"},
+        Golden{"river_ambush", "c4db7fa6bedec403", "8d15e4db56fd0933", "6f82927b1abd8338"},
+        Golden{"forest_battle", "ea80eb66a3d9f627", "418269f9132f682d", "1e2811529b35473b"},
+        Golden{"amphibious_landing", "8293bd349dff1162", "a0c07a636b15d90d", "7bb81fc9f3a1784e"},
+        Golden{"bridge_demolition", "d81baaaa235c87e4", "87e5a21810de3f77", "e92b92a84829b703"}),
     [](const auto& golden) { return std::string(golden.param.scenario); });
 
 // The field list format-2 replays recorded (World::legacyStateHash) still gives the demo's

@@ -115,6 +115,43 @@ TEST(Steering, VelocityLimitedByTurnRateAndAcceleration) {
   EXPECT_NEAR(b.x, 0.8, 1e-12);
 }
 
+// The cap keeps the point outside the turning circle (through it, or within `within` of it):
+// at the capped speed the circle of radius speed / turnRate tangent to the heading, on the
+// point's side, passes exactly through the point (or exactly `within` from it).
+TEST(Steering, TurnLimitedSpeedKeepsThePointOutsideTheTurningCircle) {
+  const double turnRate = 2.0;  // [rad/s]
+  const Vec2 heading{1.0, 0.0};
+  // 45° off, √2 away: through it on a circle of radius 1; within 0.6 of it on one of 2.05.
+  EXPECT_NEAR(turnLimitedSpeed(heading, {1.0, 1.0}, turnRate), 2.0, 1e-12);
+  EXPECT_NEAR(turnLimitedSpeed(heading, {1.0, 1.0}, turnRate, 0.6), 4.1, 1e-12);
+  // Behind: the tightest circle, whose diameter is the distance.
+  EXPECT_NEAR(turnLimitedSpeed(heading, {-1.0, 0.0}, turnRate), 1.0, 1e-12);
+  EXPECT_NEAR(turnLimitedSpeed(heading, {-1.0, 0.0}, turnRate, 0.6), 1.6, 1e-12);
+  // No limit at rest, straight ahead, or where the straight course passes within `within`.
+  EXPECT_TRUE(std::isinf(turnLimitedSpeed({}, {1.0, 1.0}, turnRate)));
+  EXPECT_TRUE(std::isinf(turnLimitedSpeed(heading, {3.0, 0.0}, turnRate)));
+  EXPECT_TRUE(std::isinf(turnLimitedSpeed(heading, {1.0, 0.5}, turnRate, 0.6)));
+  EXPECT_TRUE(std::isinf(turnLimitedSpeed(heading, {-0.3, 0.4}, turnRate, 0.6)));
+  EXPECT_NEAR(turnLimitedSpeed(heading, {1.0, 0.5}, turnRate), 2.5, 1e-12);
+  // The geometry, over points ahead and headings of any length (behind, the cap is that of a
+  // point abeam: the tightest circle).
+  for (int i = 0; i < 24; ++i) {
+    const double angle = 0.3 + i * std::numbers::pi / 12;
+    const Vec2 velocity{0.5 + 0.1 * i, 0.2};
+    const Vec2 offset{2.0 * std::cos(angle), 2.0 * std::sin(angle)};
+    if (velocity.dot(offset) <= 0.0) continue;
+    for (const double within : {0.0, 0.2, 0.6}) {
+      const double speed = turnLimitedSpeed(velocity, offset, turnRate, within);
+      if (std::isinf(speed)) continue;
+      const double radius = speed / turnRate;
+      const Vec2 forward = velocity * (1.0 / velocity.length());
+      const double side = forward.x * offset.y - forward.y * offset.x >= 0.0 ? 1.0 : -1.0;
+      const Vec2 centre = Vec2{-forward.y, forward.x} * (side * radius);
+      EXPECT_NEAR(radius - (offset - centre).length(), within, 1e-9) << i << " " << within;
+    }
+  }
+}
+
 TEST(Stuck, FiresAfterAWindowWithoutProgress) {
   StuckRule rule;
   rule.windowSeconds = 1.0;

@@ -35,7 +35,7 @@ SteeringResult steer(std::span<const pathing::Cell> path, std::size_t next, int 
   return result;
 }
 
-double turnLimitedSpeed(Vec2 velocity, Vec2 offset, double turnRate) {
+double turnLimitedSpeed(Vec2 velocity, Vec2 offset, double turnRate, double within) {
   const double speed = velocity.length();
   const double distance = offset.length();
   if (speed < 1e-6 || distance < 1e-9) return INFINITY;
@@ -44,6 +44,10 @@ double turnLimitedSpeed(Vec2 velocity, Vec2 offset, double turnRate) {
   const bool ahead = velocity.dot(offset) > 0.0;
   // Behind the unit the needed circle is the tightest one (θ near 180° has sin near 0).
   const double s = ahead ? sinTheta : 1.0;
+  if (within > 0.0) {
+    if (distance <= within || distance * s <= within) return INFINITY;
+    return turnRate * (distance * distance - within * within) / (2.0 * (distance * s - within));
+  }
   if (s < 0.0175) return INFINITY;  // within a degree of straight ahead
   return turnRate * distance / (2.0 * s);
 }

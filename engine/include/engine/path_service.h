@@ -165,6 +165,11 @@ struct PathServiceSettings {
   // on waiting, instead of taking the parked one's goal cell and sending it on to its own, which
   // lies beyond (docs/cooperative.md, "Parked teammates move on").
   bool parkedMoveOn = true;
+  // Not a scenario key: false plays back replays before format 25, when the turning-circle cap
+  // slowed a cooperating unit until it could pass through the centre of its waypoint, not just
+  // within the waypoint's radius, which held vehicles jostled in a crowd to 2/3 of their speed
+  // (units::turnLimitedSpeed's `within`; docs/cooperative.md, "Turning within the waypoint").
+  bool turnsWithinWaypoints = true;
   pathing::LaneRules laneRules() const {
     return {lanesThroughJunctions, laneApproaches, widerLaneApproaches, wideLaneDetours};
   }

@@ -73,9 +73,11 @@ namespace warpath::engine {
 // entered yet (older files play back with it waiting there, pushed back by the holder). 24: the
 // same records and hashes; a unit waiting in its window on a teammate parked on the way into
 // their goal area takes that one's goal cell and sends it on to its own (older files play back
-// with it waiting on).
+// with it waiting on). 25: the same records and hashes; the turning-circle cap lets a unit pass
+// within its waypoint's radius (older files play back slowing until it could pass through the
+// waypoint's centre).
 // Version-1 files (move orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 24;
+inline constexpr std::uint32_t kReplayVersion = 25;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -142,6 +144,9 @@ inline constexpr std::uint32_t kFirstInsideGoesFirstReplayVersion = 23;
 // Formats before this one were recorded when a unit waiting on a teammate parked in its way
 // went on waiting: they play back so (PathServiceSettings::parkedMoveOn off).
 inline constexpr std::uint32_t kFirstParkedMoveOnReplayVersion = 24;
+// Formats before this one were recorded when the turning-circle cap made a unit pass through the
+// centre of its waypoint: they play back so (PathServiceSettings::turnsWithinWaypoints off).
+inline constexpr std::uint32_t kFirstTurnsWithinWaypointsReplayVersion = 25;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

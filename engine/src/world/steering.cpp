@@ -416,6 +416,9 @@ void steerAll(Refs& w, SteeringScratch& scratch) {
     const units::UnitType& type = w.typeOf(unit);
     Vec2 desired;
     Vec2 toward;  // where the unit heads, for the turning-circle limit
+    // [Unit: cells] How near `toward` the unit must pass: its waypoint's radius (or the
+    // arrival radius at the last one); 0 for a point of a timed window's schedule.
+    double tolerance = 0.0;
     if (unit.engaged) {
       // Halted to fight: the stall is on purpose, not a jam.
       unit.progress.restartWindow(unit.position, w.state.tick);
@@ -426,6 +429,7 @@ void steerAll(Refs& w, SteeringScratch& scratch) {
           units::steer(goal, 0, type.size, unit.position, type.maxSpeed(), w.settings.steering);
       desired = r.desiredVelocity;
       toward = units::anchorToCentre(unit.goalCell, type.size) - unit.position;
+      tolerance = w.settings.steering.arrivalRadius;
     } else if (unit.state == UnitState::Moving && unit.path) {
       const double speed = speedHere(w, unit, type);
       const units::SteeringResult r = units::steer(unit.path->cells, unit.next, type.size,
@@ -435,6 +439,8 @@ void steerAll(Refs& w, SteeringScratch& scratch) {
       if (!cooperative || (unit.plan && !unit.plan->timed)) {
         desired = r.desiredVelocity;
         toward = units::anchorToCentre(unit.path->cells[r.next], type.size) - unit.position;
+        tolerance = r.next + 1 == unit.path->cells.size() ? w.settings.steering.arrivalRadius
+                                                          : w.settings.steering.waypointRadius;
         // With cooperation a unit that shoved its way onto a goal cell another holds does not
         // park on top of it: it goes on pushing, and the stuck rule reports it.
         if (r.reachedEnd && (!cooperative || w.state.goals.freeFor(GoalLayer::Parked, unit.goalCell,
@@ -456,7 +462,9 @@ void steerAll(Refs& w, SteeringScratch& scratch) {
     if (cooperative) {
       // (The cap, never negative, limits only a unit that wants to move.)
       if (const double speed = desired.length(); speed > 0.0) {
-        const double turnCap = units::turnLimitedSpeed(unit.velocity, toward, type.turnRate);
+        const double within = w.settings.pathing.turnsWithinWaypoints ? tolerance : 0.0;
+        const double turnCap =
+            units::turnLimitedSpeed(unit.velocity, toward, type.turnRate, within);
         if (speed > turnCap) desired = desired * (turnCap / speed);
       }
       // Mass grows with area: only a unit heavier than the lightest kind can drive another.

@@ -59,7 +59,11 @@ SteeringResult steer(std::span<const pathing::Cell> path, std::size_t next, int 
 // through the point has radius |offset| / (2 sin θ), θ the angle between heading and offset, and
 // speed = turnRate · radius. Without this a vehicle whose turning circle is wider than the
 // waypoint radius orbits its waypoint forever. +inf when at rest or heading at the point.
-double turnLimitedSpeed(Vec2 velocity, Vec2 offset, double turnRate);
+// With `within` > 0 [Unit: cells] the unit need only pass that near the point (a waypoint's
+// radius): the circle may hold the point up to `within` inside its rim, so speed = turnRate ·
+// (d² − within²) / (2 (d sin θ − within)), d = |offset|, and +inf where d sin θ <= within (the
+// straight course passes near enough) or d <= within. Behind the unit θ counts as 90°.
+double turnLimitedSpeed(Vec2 velocity, Vec2 offset, double turnRate, double within = 0.0);
 
 // Following a cooperative plan (timed anchor cells, pathing/cooperative_search.h): the unit
 // steers toward where the plan puts it `lookaheadSeconds` from now, at the speed that gets it
