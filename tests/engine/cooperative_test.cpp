@@ -226,6 +226,7 @@ TEST(Cooperative, OneWayPassagesLetTheWholeCrowdThrough) {
     // Counted as when the rule came (format 16): walkers pressed in at the door's sides were
     // flagged.
     s.settings.pathing.queuesExcused = false;
+    s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
     const std::uint64_t lastSeed = fullOrSanitized(4, 2);
     int passed[2] = {0, 0};
     for (const bool oneWay : {true, false}) {
