@@ -44,6 +44,8 @@ double turnLimitedSpeed(Vec2 velocity, Vec2 offset, double turnRate, double with
   const bool ahead = velocity.dot(offset) > 0.0;
   // Behind the unit the needed circle is the tightest one (θ near 180° has sin near 0).
   const double s = ahead ? sinTheta : 1.0;
+  // (At within = 0 this is the formula below, which is kept apart: older replays' state hashes
+  // hold its rounding and its one-degree dead zone.)
   if (within > 0.0) {
     if (distance <= within || distance * s <= within) return INFINITY;
     return turnRate * (distance * distance - within * within) / (2.0 * (distance * s - within));
