@@ -431,6 +431,10 @@ Result<Scenario> replayScenario(const Replay& replay) {
   if (replay.version < kFirstParkedMoveOnReplayVersion) defaults.pathing.parkedMoveOn = false;
   if (replay.version < kFirstTurnsWithinWaypointsReplayVersion)
     defaults.pathing.turnsWithinWaypoints = false;
+  if (replay.version < kFirstLighterVehiclesStepAsideReplayVersion) {
+    defaults.pathing.lighterVehiclesStepAside = false;
+    defaults.pathing.turnAwayFromWalls = false;
+  }
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

@@ -197,6 +197,7 @@ TEST(Cooperative, AQueueHeldUpIsNoJam) {
   Scenario s = std::move(loaded).value();
   s.duration = 45.0;
   ASSERT_TRUE(s.settings.pathing.queuesExcused);  // the default
+  s.settings.pathing.turnAwayFromWalls = false;   // measured before format 26
   const std::uint64_t seeds[] = {10, 28};
   for (const std::uint64_t seed : std::span(seeds).first(fullOrSanitized(2u, 1u))) {
     const Report excused = runToEnd(s, seed);
@@ -400,6 +401,7 @@ TEST(Cooperative, AStoppedTankClaimsItsLaneThroughAnOncomingStream) {
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.standingVehicleLanes);  // the default
+  s.settings.pathing.turnAwayFromWalls = false;          // measured before format 26
   s.settings.pathing.laneApproaches = false;
   s.settings.pathing.headOnKeepRight = false;       // which spares that tank too (format 21)
   s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
@@ -440,6 +442,7 @@ TEST(Cooperative, VehiclesMeetingHeadOnInTheOpenVeerRight) {
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.headOnKeepRight);  // the default
+  s.settings.pathing.turnAwayFromWalls = false;     // measured before format 26
   s.settings.pathing.wideLaneDetours = false;       // which spares those tanks too (format 22)
   s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
   for (const bool keepRight : {true, false}) {
@@ -458,9 +461,11 @@ TEST(Cooperative, JeepsKeepRightAcrossABridgeSixteenWide) {
   Result<Scenario> loaded = loadChokepoint("variations/bridge16_mixed.yaml");
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.wideLaneDetours);  // the default
-  s.settings.pathing.headOnByIntent = false;        // which spares those jeeps too (format 22)
-  s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
+  ASSERT_TRUE(s.settings.pathing.wideLaneDetours);      // the default
+  s.settings.pathing.headOnByIntent = false;            // which spares those jeeps too (format 22)
+  s.settings.pathing.turnsWithinWaypoints = false;      // measured before format 25
+  s.settings.pathing.lighterVehiclesStepAside = false;  // and before format 26
+  s.settings.pathing.turnAwayFromWalls = false;
   for (const bool wide : {true, false}) {
     s.settings.pathing.wideLaneDetours = wide;
     for (const std::uint64_t seed : {73, 79})
@@ -477,8 +482,9 @@ TEST(Cooperative, VehiclesVeerFromLighterOnesSteeringTheirWay) {
   Result<Scenario> loaded = loadChokepoint("variations/bridge16_mixed.yaml");
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.headOnByIntent);   // the default
-  s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
+  ASSERT_TRUE(s.settings.pathing.headOnByIntent);       // the default
+  s.settings.pathing.turnsWithinWaypoints = false;      // measured before format 25
+  s.settings.pathing.lighterVehiclesStepAside = false;  // and before format 26
   for (const bool byIntent : {true, false}) {
     s.settings.pathing.headOnByIntent = byIntent;
     for (const std::uint64_t seed : {15, 35})
@@ -512,10 +518,42 @@ TEST(Cooperative, AParkedTeammateInTheWayMovesOn) {
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.parkedMoveOn);     // the default
+  s.settings.pathing.turnAwayFromWalls = false;     // measured before format 26
   s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
   EXPECT_TRUE(runToEnd(s, 22).passed());
   s.settings.pathing.parkedMoveOn = false;
   EXPECT_FALSE(runToEnd(s, 22).passed());
+}
+
+// A vehicle that a heavier one drives into steps off its course, as infantry do (replay format
+// 26). At bridge16_mixed seeds 18 and 24 a jeep a few cells from its goal met the other side's
+// tank column leaving the jeep's goal area, kept driving at the tank in front, and was pushed
+// back 20 cells onto the bridge: late past its bound.
+TEST(Cooperative, LighterVehiclesStepAsideForHeavierOnes) {
+  Result<Scenario> loaded = loadChokepoint("variations/bridge16_mixed.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.lighterVehiclesStepAside);  // the default
+  for (const bool stepAside : {true, false}) {
+    s.settings.pathing.lighterVehiclesStepAside = stepAside;
+    for (const std::uint64_t seed : {18, 24})
+      EXPECT_EQ(runToEnd(s, seed).passed(), stepAside) << "seed " << seed << " " << stepAside;
+  }
+}
+
+// A vehicle turning about turns away from a wall rather than into it (replay format 26). The
+// two-way bridge at seed 11: a red tank nudged back by its teammates at the bridge's east mouth,
+// its waypoint behind it, turned the shorter way, toward the river; the bank cancelled the turn
+// each tick and it drove north along the bank at full speed, 13 cells away from its waypoint,
+// and arrived after its bound.
+TEST(Cooperative, VehiclesTurnAboutAwayFromWalls) {
+  Result<Scenario> loaded = loadChokepoint("bridge_two_way.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+  Scenario s = std::move(loaded).value();
+  ASSERT_TRUE(s.settings.pathing.turnAwayFromWalls);  // the default
+  EXPECT_TRUE(runToEnd(s, 11).passed());
+  s.settings.pathing.turnAwayFromWalls = false;
+  EXPECT_FALSE(runToEnd(s, 11).passed());
 }
 
 // At the crossroads the paths of opposite arms cross over in the 8×8 crossing, toward goal

@@ -182,8 +182,8 @@ TEST_P(GoldenHash, OfTheWholeRun) {
 INSTANTIATE_TEST_SUITE_P(
     BundledScenarios, GoldenHash,
     ::testing::Values(
-        Golden{"demo", "ebb21e6c325bce08", "94f004afe1cb75f5", "268efd7eedf339cb"},
-        Golden{"river_ambush", "c4db7fa6bedec403", "8d15e4db56fd0933", "6f82927b1abd8338"},
+        Golden{"demo", "c4179defce0adf62", "94f004afe1cb75f5", "268efd7eedf339cb"},
+        Golden{"river_ambush", "044d9bb3bb02076c", "8d15e4db56fd0933", "6f82927b1abd8338"},
         Golden{"forest_battle", "ea80eb66a3d9f627", "418269f9132f682d", "1e2811529b35473b"},
         Golden{"amphibious_landing", "8293bd349dff1162", "a0c07a636b15d90d", "7bb81fc9f3a1784e"},
         Golden{"bridge_demolition", "d81baaaa235c87e4", "87e5a21810de3f77", "e92b92a84829b703"}),

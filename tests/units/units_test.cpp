@@ -115,6 +115,27 @@ TEST(Steering, VelocityLimitedByTurnRateAndAcceleration) {
   EXPECT_NEAR(b.x, 0.8, 1e-12);
 }
 
+// A unit turns the shorter way round unless told which way (the engine's choice when the shorter
+// way is into a wall).
+TEST(Steering, TurnsTheWayItIsToldOrElseTheShorterWay) {
+  const double dt = 0.1;
+  const double step = std::numbers::pi / 2 * dt;
+  // Heading +x, wanting 135° to negative angles: the shorter way is negative.
+  const Vec2 desired{-1.0, -1.0};
+  EXPECT_EQ(shorterTurn({1.0, 0.0}, desired), -1);
+  EXPECT_EQ(shorterTurn({1.0, 0.0}, {-1.0, 1.0}), 1);
+  EXPECT_EQ(shorterTurn({1.0, 0.0}, {-1.0, 0.0}), 1);  // straight behind: as atan2 turns
+  EXPECT_EQ(shorterTurn({1.0, 0.0}, {2.0, 0.0}), 0);
+  EXPECT_EQ(shorterTurn({}, desired), 0);
+  const auto angle = [&](int side) {
+    const Vec2 v = limitVelocity({1.0, 0.0}, desired, 100.0, std::numbers::pi / 2, dt, side);
+    return std::atan2(v.y, v.x);
+  };
+  EXPECT_NEAR(angle(0), -step, 1e-9);
+  EXPECT_NEAR(angle(-1), -step, 1e-9);
+  EXPECT_NEAR(angle(1), step, 1e-9);  // the long way round, 225°
+}
+
 // The cap keeps the point outside the turning circle (through it, or within `within` of it):
 // at the capped speed the circle of radius speed / turnRate tangent to the heading, on the
 // point's side, passes exactly through the point (or exactly `within` from it).

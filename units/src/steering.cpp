@@ -101,7 +101,16 @@ ScheduleResult followPlan(std::span<const pathing::TimedCell> steps, std::int64_
   return result;
 }
 
-Vec2 limitVelocity(Vec2 current, Vec2 desired, double acceleration, double turnRate, double dt) {
+int shorterTurn(Vec2 current, Vec2 desired) {
+  const double cross = current.x * desired.y - current.y * desired.x;
+  if (cross > 0.0) return 1;
+  if (cross < 0.0) return -1;
+  // Straight behind: atan2's difference is +pi (limitVelocity turns toward positive angles).
+  return current.dot(desired) < 0.0 ? 1 : 0;
+}
+
+Vec2 limitVelocity(Vec2 current, Vec2 desired, double acceleration, double turnRate, double dt,
+                   int turnSide) {
   const double currentSpeed = current.length();
   const double desiredSpeed = desired.length();
   const double maxDelta = acceleration * dt;
@@ -117,6 +126,8 @@ Vec2 limitVelocity(Vec2 current, Vec2 desired, double acceleration, double turnR
     double turn = heading - from;
     if (turn > std::numbers::pi) turn -= 2.0 * std::numbers::pi;
     if (turn < -std::numbers::pi) turn += 2.0 * std::numbers::pi;
+    if (turnSide > 0 && turn < 0.0) turn += 2.0 * std::numbers::pi;
+    if (turnSide < 0 && turn > 0.0) turn -= 2.0 * std::numbers::pi;
     const double maxTurn = turnRate * dt;
     heading = from + std::clamp(turn, -maxTurn, maxTurn);
   }

@@ -170,6 +170,15 @@ struct PathServiceSettings {
   // within the waypoint's radius, which held vehicles jostled in a crowd to 2/3 of their speed
   // (units::turnLimitedSpeed's `within`; docs/cooperative.md, "Turning within the waypoint").
   bool turnsWithinWaypoints = true;
+  // Not a scenario key: false plays back replays before format 26, when only units of the
+  // lightest kind stepped off the course of a vehicle driving into them, and a jeep a heavier
+  // tank drove into kept driving at it, pushed back (docs/cooperative.md, "Lighter vehicles step
+  // aside").
+  bool lighterVehiclesStepAside = true;
+  // Not a scenario key: false plays back replays before format 26, when a unit turning about
+  // always turned the shorter way round, even into a wall or a river's bank, which cancelled the
+  // turn (docs/cooperative.md, "Turning away from walls").
+  bool turnAwayFromWalls = true;
   pathing::LaneRules laneRules() const {
     return {lanesThroughJunctions, laneApproaches, widerLaneApproaches, wideLaneDetours};
   }

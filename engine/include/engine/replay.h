@@ -75,9 +75,12 @@ namespace warpath::engine {
 // their goal area takes that one's goal cell and sends it on to its own (older files play back
 // with it waiting on). 25: the same records and hashes; the turning-circle cap lets a unit pass
 // within its waypoint's radius (older files play back slowing until it could pass through the
-// waypoint's centre).
+// waypoint's centre). 26: the same records and hashes; a vehicle a heavier one drives into steps
+// off its course, and a unit turning about turns away from a wall when the shorter way is into
+// it (older files play back with only the lightest kind stepping aside, turning the shorter
+// way).
 // Version-1 files (move orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 25;
+inline constexpr std::uint32_t kReplayVersion = 26;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -147,6 +150,10 @@ inline constexpr std::uint32_t kFirstParkedMoveOnReplayVersion = 24;
 // Formats before this one were recorded when the turning-circle cap made a unit pass through the
 // centre of its waypoint: they play back so (PathServiceSettings::turnsWithinWaypoints off).
 inline constexpr std::uint32_t kFirstTurnsWithinWaypointsReplayVersion = 25;
+// Formats before this one were recorded when only the lightest kind stepped off a vehicle's
+// course and units always turned the shorter way: they play back so
+// (PathServiceSettings::lighterVehiclesStepAside and turnAwayFromWalls off).
+inline constexpr std::uint32_t kFirstLighterVehiclesStepAsideReplayVersion = 26;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

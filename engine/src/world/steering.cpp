@@ -177,9 +177,14 @@ Vec2 stepAside(const Refs& w, const Unit& unit, const Unit& vehicle, Vec2 desire
 }
 
 // Each vehicle's contacts (Box2D's, after the last step) into s.touching, and for each moving
-// unit of the lightest kind the first vehicle (by id) that drives into it.
+// unit of the lightest kind the first vehicle (by id) that drives into it; with
+// PathServiceSettings::lighterVehiclesStepAside (replay format 26), for each moving vehicle too
+// the first heavier one that drives into it. At bridge16_mixed a jeep a few cells from its goal
+// met the other side's tank column leaving its area and was pushed back 20 cells onto the
+// bridge, driving at the tank in front all the way (11 of seeds 1-200 had a jeep late so).
 void findContacts(const Refs& w, double lightest, SteeringScratch& s) {
   const std::vector<Unit>& all = w.state.units;
+  const bool lighterVehicles = w.settings.pathing.lighterVehiclesStepAside;
   s.start.assign(all.size() + 1, 0);
   s.touching.clear();
   s.stepAsideFor.assign(all.size(), SteeringScratch::kNone);
@@ -192,8 +197,10 @@ void findContacts(const Refs& w, double lightest, SteeringScratch& s) {
     for (const std::uint32_t index : s.contact) {
       if (index >= all.size() || s.stepAsideFor[index] != SteeringScratch::kNone) continue;
       const Unit& other = all[index];
+      const double radius = w.typeOf(other).radius;
       if (other.alive() && other.state == UnitState::Moving && !other.engaged &&
-          !(w.typeOf(other).radius > lightest) && drivesInto(vehicle, other))
+          (!(radius > lightest) || (lighterVehicles && radius < w.typeOf(vehicle).radius)) &&
+          drivesInto(vehicle, other))
         s.stepAsideFor[index] = static_cast<std::uint32_t>(i);
     }
   }
@@ -398,6 +405,28 @@ double speedHere(const Refs& w, const Unit& unit, const units::UnitType& type) {
 
 }  // namespace
 
+// [Unit: cells] How far beside itself a vehicle turning about looks for ground to turn on.
+constexpr double kTurnRoom = 1.0;
+
+// The way a vehicle turning about (more than 90°) turns when the shorter way is into ground it
+// cannot stand on and the other way is not (PathServiceSettings::turnAwayFromWalls, replay
+// format 26); 0: the shorter way. Turned the shorter way, a tank pushed onto a river's bank
+// with its waypoint behind it steered into the water, the bank cancelled the turn, and it drove
+// along the bank at full speed away from its waypoint (bridge_two_way seed 11: 13 cells, 7 s).
+int turnSideAway(const Refs& w, const Unit& unit, Vec2 desired) {
+  if (!w.settings.pathing.turnAwayFromWalls || unit.velocity.dot(desired) >= 0.0) return 0;
+  const int shorter = units::shorterTurn(unit.velocity, desired);
+  if (shorter == 0) return 0;
+  const units::UnitType& type = w.typeOf(unit);
+  const double speed = unit.velocity.length();
+  // The side the shorter turn swings toward: the velocity rotated a quarter turn that way.
+  const Vec2 toward = Vec2{-unit.velocity.y, unit.velocity.x} * (shorter * kTurnRoom / speed);
+  const auto roomAt = [&](Vec2 shift) {
+    return w.grid.canStand(type.agent(), units::centreToAnchor(unit.position + shift, type.size));
+  };
+  return !roomAt(toward) && roomAt(toward * -1.0) ? -shorter : 0;
+}
+
 void steerAll(Refs& w, SteeringScratch& scratch) {
   const double dt = 1.0 / w.settings.tickRate;
   const bool cooperative = w.settings.pathing.cooperative;
@@ -473,6 +502,8 @@ void steerAll(Refs& w, SteeringScratch& scratch) {
         const std::span<const std::uint32_t> touching(scratch.touching.data() + scratch.start[i],
                                                       scratch.start[i + 1] - scratch.start[i]);
         desired = limitPushing(w, touching, unit, desired, lightest);
+        if (scratch.stepAsideFor[i] != SteeringScratch::kNone)
+          desired = stepAside(w, unit, w.state.units[scratch.stepAsideFor[i]], desired);
       } else if (scratch.stepAsideFor[i] != SteeringScratch::kNone) {
         desired = stepAside(w, unit, w.state.units[scratch.stepAsideFor[i]], desired);
       } else if (scratch.laneSide[i] != 0.0) {
@@ -485,8 +516,8 @@ void steerAll(Refs& w, SteeringScratch& scratch) {
         unit.progress.restartWindow(unit.position, w.state.tick);
       }
     }
-    const Vec2 v =
-        units::limitVelocity(unit.velocity, desired, type.acceleration, type.turnRate, dt);
+    const Vec2 v = units::limitVelocity(unit.velocity, desired, type.acceleration, type.turnRate,
+                                        dt, cooperative ? turnSideAway(w, unit, desired) : 0);
     w.state.physics->setVelocity(unit.body, v);
   }
 }

@@ -86,7 +86,13 @@ ScheduleResult followPlan(std::span<const pathing::TimedCell> steps, std::int64_
                           double lookaheadSeconds);
 
 // The velocity a unit reaches in `dt` seconds going from `current` toward `desired`, turning
-// by at most turnRate·dt and changing speed by at most acceleration·dt.
-Vec2 limitVelocity(Vec2 current, Vec2 desired, double acceleration, double turnRate, double dt);
+// by at most turnRate·dt and changing speed by at most acceleration·dt. It turns the shorter
+// way round, unless `turnSide` (+1: toward positive angles, -1: negative) says which way: the
+// caller's choice when the shorter way is into a wall.
+Vec2 limitVelocity(Vec2 current, Vec2 desired, double acceleration, double turnRate, double dt,
+                   int turnSide = 0);
+// The way (+1: toward positive angles, -1: negative) that turns `current` toward `desired` the
+// shorter way round; 0 when either is zero or they point the same way.
+int shorterTurn(Vec2 current, Vec2 desired);
 
 }  // namespace warpath::units
