@@ -169,6 +169,7 @@ TEST(Cooperative, ThoseKeptOutNearestTheDoorGoFirst) {
   ASSERT_TRUE(s.settings.pathing.nearestKeptOutFirst);  // the default
   // Counted as when the rule came (format 11): those pushing through the crowd were flagged.
   s.settings.pathing.queuesExcused = false;
+  s.settings.pathing.turnAwayFromWalls = false;  // measured before format 26
   const std::uint64_t lastSeed = fullOrSanitized(8, 6);
   int passed[2] = {0, 0};
   double p90[2] = {0.0, 0.0};  // summed over the seeds and both sides
@@ -228,6 +229,7 @@ TEST(Cooperative, OneWayPassagesLetTheWholeCrowdThrough) {
     // flagged.
     s.settings.pathing.queuesExcused = false;
     s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
+    s.settings.pathing.turnAwayFromWalls = false;     // and before format 26
     const std::uint64_t lastSeed = fullOrSanitized(4, 2);
     int passed[2] = {0, 0};
     for (const bool oneWay : {true, false}) {
