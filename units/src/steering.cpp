@@ -105,7 +105,7 @@ int shorterTurn(Vec2 current, Vec2 desired) {
   const double cross = current.x * desired.y - current.y * desired.x;
   if (cross > 0.0) return 1;
   if (cross < 0.0) return -1;
-  // Straight behind: atan2's difference is +pi (limitVelocity turns toward positive angles).
+  // Straight behind: either way is as short.
   return current.dot(desired) < 0.0 ? 1 : 0;
 }
 

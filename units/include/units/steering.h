@@ -92,7 +92,8 @@ ScheduleResult followPlan(std::span<const pathing::TimedCell> steps, std::int64_
 Vec2 limitVelocity(Vec2 current, Vec2 desired, double acceleration, double turnRate, double dt,
                    int turnSide = 0);
 // The way (+1: toward positive angles, -1: negative) that turns `current` toward `desired` the
-// shorter way round; 0 when either is zero or they point the same way.
+// shorter way round (+1 when straight behind); 0 when either is zero or they point the same
+// way.
 int shorterTurn(Vec2 current, Vec2 desired);
 
 }  // namespace warpath::units
