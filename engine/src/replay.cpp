@@ -368,18 +368,8 @@ Result<Replay> readReplay(const fs::path& file) {
   return replay;
 }
 
-Result<Scenario> replayScenario(const Replay& replay) {
-  std::map<std::string, const std::string*> embedded;
-  for (const ReplayFile& f : replay.source.files)
-    embedded[f.path] = &f.contents;
-  const FileReader fromReplay = [&embedded](const fs::path& f,
-                                            FileLimit limit) -> Result<std::string> {
-    const auto it = embedded.find(f.generic_string());
-    if (it == embedded.end()) return Error{f.string(), 0, 0, std::string(kNoSuchFile)};
-    if (it->second->size() > limit.maxBytes) return fileTooLarge(f.string(), limit);
-    return *it->second;
-  };
-  // A scenario that does not say `pathing: cooperative` plays back as it was recorded: with
+void rulesOfReplayFormat(PathServiceSettings& rules, std::uint32_t version) {
+  // A scenario that does not name these settings plays back as it was recorded: with
   // cooperation off before it became the default, without congestion-aware routes before they
   // came (no older scenario can name them), with window searches unsliced before they were,
   // with jump point searches taking every side turn before they took only forced ones, and
@@ -396,45 +386,60 @@ Result<Scenario> replayScenario(const Replay& replay) {
   // vehicles dropping lanes that cost more than a fixed allowance before it grew with the shift,
   // and planned times taken before the lane, and vehicles veering only from vehicles moving at
   // them before they veered from lighter ones steering their way too, and units kept out of a
-  // passage waiting inside it before they took the turn from a holder not yet in.
+  // passage waiting inside it before they took the turn from a holder not yet in, and units
+  // waiting on a parked teammate before it moved on, and units slowing to pass through their
+  // waypoint's centre before they passed within its radius, and only the lightest kind
+  // stepping off a vehicle's course, turning the shorter way, before lighter vehicles stepped
+  // aside too and units turned away from walls.
+  if (version < kCooperativeByDefaultReplayVersion) rules.cooperative = false;
+  if (version < kFirstCongestionReplayVersion) rules.congestion = false;
+  if (version < kFirstSlicedWindowsReplayVersion) rules.slicedWindows = false;
+  if (version < kFirstForcedJumpsReplayVersion)
+    rules.jumpSuccessors = pathing::JumpSuccessors::EverySide;
+  if (version < kFirstKeptOutRulesReplayVersion) {
+    rules.keepOutExit = pathing::KeepOutExit::HighestLevel;
+    rules.nearestKeptOutFirst = false;
+  }
+  if (version < kFirstJunctionRulesReplayVersion) {
+    rules.lanesThroughJunctions = false;
+    rules.stepAsideToRoom = false;
+  }
+  if (version < kFirstJamDetoursReplayVersion) rules.jamDetours = false;
+  if (version < kFirstStandingLanesReplayVersion) rules.standingVehicleLanes = false;
+  if (version < kFirstParkWhenFullReplayVersion) rules.parkWhenAreaFull = false;
+  if (version < kFirstOneWayPassagesReplayVersion) rules.oneWayPassages = false;
+  if (version < kFirstOpenDentsReplayVersion) rules.openDents = false;
+  if (version < kFirstLaneApproachesReplayVersion) rules.laneApproaches = false;
+  if (version < kFirstQueuesExcusedReplayVersion) rules.queuesExcused = false;
+  if (version < kFirstWiderLaneApproachesReplayVersion) rules.widerLaneApproaches = false;
+  if (version < kFirstHeadOnKeepRightReplayVersion) rules.headOnKeepRight = false;
+  if (version < kFirstWideLaneDetoursReplayVersion) {
+    rules.wideLaneDetours = false;
+    rules.plannedTimeWithLanes = false;
+    rules.headOnByIntent = false;
+  }
+  if (version < kFirstInsideGoesFirstReplayVersion) rules.insideGoesFirst = false;
+  if (version < kFirstParkedMoveOnReplayVersion) rules.parkedMoveOn = false;
+  if (version < kFirstTurnsWithinWaypointsReplayVersion) rules.turnsWithinWaypoints = false;
+  if (version < kFirstLighterVehiclesStepAsideReplayVersion) {
+    rules.lighterVehiclesStepAside = false;
+    rules.turnAwayFromWalls = false;
+  }
+}
+
+Result<Scenario> replayScenario(const Replay& replay) {
+  std::map<std::string, const std::string*> embedded;
+  for (const ReplayFile& f : replay.source.files)
+    embedded[f.path] = &f.contents;
+  const FileReader fromReplay = [&embedded](const fs::path& f,
+                                            FileLimit limit) -> Result<std::string> {
+    const auto it = embedded.find(f.generic_string());
+    if (it == embedded.end()) return Error{f.string(), 0, 0, std::string(kNoSuchFile)};
+    if (it->second->size() > limit.maxBytes) return fileTooLarge(f.string(), limit);
+    return *it->second;
+  };
   WorldSettings defaults;
-  if (replay.version < kCooperativeByDefaultReplayVersion) defaults.pathing.cooperative = false;
-  if (replay.version < kFirstCongestionReplayVersion) defaults.pathing.congestion = false;
-  if (replay.version < kFirstSlicedWindowsReplayVersion) defaults.pathing.slicedWindows = false;
-  if (replay.version < kFirstForcedJumpsReplayVersion)
-    defaults.pathing.jumpSuccessors = pathing::JumpSuccessors::EverySide;
-  if (replay.version < kFirstKeptOutRulesReplayVersion) {
-    defaults.pathing.keepOutExit = pathing::KeepOutExit::HighestLevel;
-    defaults.pathing.nearestKeptOutFirst = false;
-  }
-  if (replay.version < kFirstJunctionRulesReplayVersion) {
-    defaults.pathing.lanesThroughJunctions = false;
-    defaults.pathing.stepAsideToRoom = false;
-  }
-  if (replay.version < kFirstJamDetoursReplayVersion) defaults.pathing.jamDetours = false;
-  if (replay.version < kFirstStandingLanesReplayVersion)
-    defaults.pathing.standingVehicleLanes = false;
-  if (replay.version < kFirstParkWhenFullReplayVersion) defaults.pathing.parkWhenAreaFull = false;
-  if (replay.version < kFirstOneWayPassagesReplayVersion) defaults.pathing.oneWayPassages = false;
-  if (replay.version < kFirstOpenDentsReplayVersion) defaults.pathing.openDents = false;
-  if (replay.version < kFirstLaneApproachesReplayVersion) defaults.pathing.laneApproaches = false;
-  if (replay.version < kFirstQueuesExcusedReplayVersion) defaults.pathing.queuesExcused = false;
-  if (replay.version < kFirstWiderLaneApproachesReplayVersion)
-    defaults.pathing.widerLaneApproaches = false;
-  if (replay.version < kFirstHeadOnKeepRightReplayVersion) defaults.pathing.headOnKeepRight = false;
-  if (replay.version < kFirstWideLaneDetoursReplayVersion) {
-    defaults.pathing.wideLaneDetours = false;
-    defaults.pathing.plannedTimeWithLanes = false;
-    defaults.pathing.headOnByIntent = false;
-  }
-  if (replay.version < kFirstInsideGoesFirstReplayVersion) defaults.pathing.insideGoesFirst = false;
-  if (replay.version < kFirstParkedMoveOnReplayVersion) defaults.pathing.parkedMoveOn = false;
-  if (replay.version < kFirstTurnsWithinWaypointsReplayVersion)
-    defaults.pathing.turnsWithinWaypoints = false;
-  if (replay.version < kFirstLighterVehiclesStepAsideReplayVersion) {
-    defaults.pathing.lighterVehiclesStepAside = false;
-    defaults.pathing.turnAwayFromWalls = false;
-  }
+  rulesOfReplayFormat(defaults.pathing, replay.version);
   return parseScenario(replay.source.scenarioText, replay.source.scenarioPath, fromReplay,
                        defaults);
 }

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <ostream>
 #include <string>
 
 #include "engine/scenario_run.h"
@@ -309,15 +310,10 @@ TEST_F(Replays, AFormat2ReplayOfThePreviousReleaseVerifies) {
   EXPECT_NE(r.out.find("verified 1978 ticks, 66 state hashes match"), std::string::npos) << r.out;
 }
 
-// Records `s` as replay format `format` (hashes laid out as that format's) until `lastTick` or
-// its end, then checks that the file verifies as that format and does not read as the next
-// (which plays the scenario back under a later default).
-// A bundled scenario (under scenarios/) copied into `dir` with its map and catalogue paths made
-// absolute and `pathing` set to `settings`, loaded for recording.
-Result<Scenario> copyWithPathing(const fs::path& dir, const std::string& scenario,
+// A scenario file copied into `dir` with its map and catalogue paths made absolute and `pathing`
+// set to `settings`, loaded for recording.
+Result<Scenario> copyWithPathing(const fs::path& dir, const fs::path& original,
                                  const std::string& settings, ReplaySource& source) {
-  const fs::path root = WARPATH_SOURCE_DIR;
-  const fs::path original = root / "scenarios" / scenario;
   std::string text = slurp(original);
   // Paths in the file are relative to its folder.
   for (const std::string key : {"map: ", "catalogue: "}) {
@@ -333,53 +329,9 @@ Result<Scenario> copyWithPathing(const fs::path& dir, const std::string& scenari
   return loadRecordedScenario(file, source);
 }
 
-// A bundled chokepoint scenario (scenarios/chokepoints/FILE) as a replay records it.
-Result<Scenario> loadRecordedChokepoint(const std::string& file, ReplaySource& source) {
-  return loadRecordedScenario(fs::path(WARPATH_SOURCE_DIR) / "scenarios/chokepoints" / file,
-                              source);
-}
-
-// The rules that formats after `format` brought, set back as files of `format` play back: the
-// kept-out rules (format 11), lanes through junctions and stepping aside to the side with room
-// (12), detours after a jam (13), lanes of stopped vehicles (14), parking where one stands in a
-// full goal area (15), one-way passages (16), notches with passing room (17), lanes held beyond
-// the mouth (18), queued windows not counted toward the stuck flag (19), lanes held farther
-// beyond wide passages (20), veering right head on (21), lanes across wide passages and veering
-// from lighter vehicles (22), the unit inside a passage going first (23), parked teammates
-// moving on (24), turning within the waypoint's radius (25), lighter vehicles stepping aside and
-// turning away from walls (26).
-void useRulesOfFormat(Scenario& s, std::uint32_t format) {
-  if (format < 11) {
-    s.settings.pathing.keepOutExit = warpath::pathing::KeepOutExit::HighestLevel;
-    s.settings.pathing.nearestKeptOutFirst = false;
-  }
-  if (format < 12) {
-    s.settings.pathing.lanesThroughJunctions = false;
-    s.settings.pathing.stepAsideToRoom = false;
-  }
-  if (format < 13) s.settings.pathing.jamDetours = false;
-  if (format < 14) s.settings.pathing.standingVehicleLanes = false;
-  if (format < 15) s.settings.pathing.parkWhenAreaFull = false;
-  if (format < 16) s.settings.pathing.oneWayPassages = false;
-  if (format < 17) s.settings.pathing.openDents = false;
-  if (format < 18) s.settings.pathing.laneApproaches = false;
-  if (format < 19) s.settings.pathing.queuesExcused = false;
-  if (format < 20) s.settings.pathing.widerLaneApproaches = false;
-  if (format < 21) s.settings.pathing.headOnKeepRight = false;
-  if (format < 22) {
-    s.settings.pathing.wideLaneDetours = false;
-    s.settings.pathing.plannedTimeWithLanes = false;
-    s.settings.pathing.headOnByIntent = false;
-  }
-  if (format < 23) s.settings.pathing.insideGoesFirst = false;
-  if (format < 24) s.settings.pathing.parkedMoveOn = false;
-  if (format < 25) s.settings.pathing.turnsWithinWaypoints = false;
-  if (format < 26) {
-    s.settings.pathing.lighterVehiclesStepAside = false;
-    s.settings.pathing.turnAwayFromWalls = false;
-  }
-}
-
+// Records `s` as replay format `format` (hashes laid out as that format's) until `lastTick` or
+// its end, then checks that the file verifies as that format and does not read as the next
+// (which plays the scenario back under a later default).
 void expectVerifiesOnlyAsItsFormat(const Scenario& s, const ReplaySource& source,
                                    const fs::path& file, std::uint32_t format,
                                    std::int64_t lastTick) {
@@ -413,316 +365,154 @@ TEST_F(Replays, AFormat6ReplayPlaysBackWithCooperationOff) {
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
   ASSERT_TRUE(s.settings.pathing.cooperative);  // the default now
-  s.settings.pathing.cooperative = false;       // format 6's
-  useRulesOfFormat(s, 6);
+  rulesOfReplayFormat(s.settings.pathing, 6);
+  ASSERT_FALSE(s.settings.pathing.cooperative);
   source.seed = s.settings.seed;
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format6.rpl", 6, INT64_MAX);
 }
 
-// Format 7 was recorded before congestion-aware routes: it plays back without them, so such a
-// file verifies; read as format 8 (routes around queues) the same records do not. The two
-// bridges scenario's crowd makes queues at once; 300 ticks are enough to part the runs.
-TEST_F(Replays, AFormat7ReplayPlaysBackWithoutCongestionAwareRoutes) {
+TEST_F(Replays, OnlyFormatsThisBuildReadsAsItsOwnAreWritten) {
   ReplaySource source;
-  Result<Scenario> loaded = loadRecordedChokepoint("two_bridges.yaml", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.cooperative && s.settings.pathing.congestion);  // the defaults
-  s.settings.pathing.congestion = false;                                         // format 7's
-  useRulesOfFormat(s, 7);
-  source.seed = s.settings.seed;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format7.rpl", 7, 300);
   // Formats before 3 hash another way, and none after this build's can be written.
   EXPECT_FALSE(ReplayWriter::open(dir_ / "x.rpl", source, 2).ok());
   EXPECT_FALSE(ReplayWriter::open(dir_ / "x.rpl", source, kReplayVersion + 1).ok());
+  EXPECT_TRUE(ReplayWriter::open(dir_ / "x.rpl", source, kReplayVersion).ok());
 }
 
-// Format 8 sliced only the spatial searches: a sliced run plays back with window searches run
-// to their end, so such a file verifies; read as format 9 (window searches sliced too) the same
-// records do not. At the door with a small budget windows pause within the first seconds.
-TEST_F(Replays, AFormat8ReplayPlaysBackWithoutSlicedWindows) {
-  ReplaySource source;
-  Result<Scenario> loaded =
-      copyWithPathing(dir_, "chokepoints/door_30v30.yaml", "{sliced: true, budget: 400}", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.sliced && s.settings.pathing.slicedWindows);
-  s.settings.pathing.slicedWindows = false;  // format 8's
-  useRulesOfFormat(s, 8);
-  source.seed = s.settings.seed;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format8.rpl", 8, 300);
-}
-
-// Format 9 was recorded when jump point searches took every side turn of a straight jump point:
-// a run with `algo: jps+` plays back so, and such a file verifies; read as format 10 (forced
-// turns only, and the goal alone once in sight) the same records do not. In the narrow pass the
-// two rules pick other cells of equal length within the first seconds.
-TEST_F(Replays, AFormat9ReplayPlaysBackWithJumpPointsTakingEverySideTurn) {
-  ReplaySource source;
-  Result<Scenario> loaded = copyWithPathing(dir_, "narrow_pass.yaml", "{algo: jps+}", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_EQ(s.settings.pathing.jumpSuccessors, warpath::pathing::JumpSuccessors::ForcedOnly);
-  s.settings.pathing.jumpSuccessors = warpath::pathing::JumpSuccessors::EverySide;  // format 9's
-  useRulesOfFormat(s, 9);
-  source.seed = s.settings.seed;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format9.rpl", 9, 300);
-}
-
-// Format 10 was recorded when a unit kept out of a passage left its stream and mouth only by
-// moves that lowered its footprint's highest level, and could wait where it started, and when
-// units kept out were let through in the priority order of all: a run plays back so, and such
-// a file verifies; read as format 11 (stepping out a row at a time, no wait there, the nearest
-// let through first) the same records do not. At seed 5 of the 4-wide corridor the red tank,
-// waiting in the blue tank's stream out of the corridor, steps out of it (or not) at 11.4 s; at
-// the door the crowds wait their turns from the first seconds.
-TEST_F(Replays, AFormat10ReplayPlaysBackWithTheKeptOutRulesOfThen) {
-  for (const auto& [scenario, lastTick] :
-       {std::pair{"corridor_tanks_4.yaml", 400}, std::pair{"door_30v30.yaml", 600}}) {
-    ReplaySource source;
-    Result<Scenario> loaded = loadRecordedChokepoint(scenario, source);
-    ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-    Scenario s = std::move(loaded).value();
-    ASSERT_EQ(s.settings.pathing.keepOutExit, warpath::pathing::KeepOutExit::Stepwise);
-    ASSERT_TRUE(s.settings.pathing.nearestKeptOutFirst);
-    useRulesOfFormat(s, 10);
-    s.settings.seed = 5;
-    source.seed = s.settings.seed;
-    expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format10.rpl", 10, lastTick);
+// The rules that came with each format, written out here apart from rulesOfReplayFormat: each
+// is on by default, set back for every format before its own and left on from its own on. (The
+// runs below show that a format's rules part its runs from the next format's; this shows that
+// none of the rules is left out.)
+TEST_F(Replays, EachRuleIsSetBackForTheFormatsBeforeIt) {
+  using Settings = PathServiceSettings;
+  const std::vector<std::pair<bool Settings::*, std::uint32_t>> rules = {
+      {&Settings::cooperative, 7},
+      {&Settings::congestion, 8},
+      {&Settings::slicedWindows, 9},
+      {&Settings::nearestKeptOutFirst, 11},
+      {&Settings::lanesThroughJunctions, 12},
+      {&Settings::stepAsideToRoom, 12},
+      {&Settings::jamDetours, 13},
+      {&Settings::standingVehicleLanes, 14},
+      {&Settings::parkWhenAreaFull, 15},
+      {&Settings::oneWayPassages, 16},
+      {&Settings::openDents, 17},
+      {&Settings::laneApproaches, 18},
+      {&Settings::queuesExcused, 19},
+      {&Settings::widerLaneApproaches, 20},
+      {&Settings::headOnKeepRight, 21},
+      {&Settings::wideLaneDetours, 22},
+      {&Settings::plannedTimeWithLanes, 22},
+      {&Settings::headOnByIntent, 22},
+      {&Settings::insideGoesFirst, 23},
+      {&Settings::parkedMoveOn, 24},
+      {&Settings::turnsWithinWaypoints, 25},
+      {&Settings::lighterVehiclesStepAside, 26},
+      {&Settings::turnAwayFromWalls, 26},
+  };
+  for (std::uint32_t format = kOldestReplayVersion; format <= kReplayVersion; ++format) {
+    Settings set;
+    rulesOfReplayFormat(set, format);
+    for (std::size_t i = 0; i < rules.size(); ++i) {
+      const auto& [rule, since] = rules[i];
+      EXPECT_TRUE(Settings{}.*rule) << "rule " << i << " is on by default";
+      EXPECT_EQ(set.*rule, format >= since) << "rule " << i << " at format " << format;
+    }
+    EXPECT_EQ(set.jumpSuccessors, format >= 10 ? warpath::pathing::JumpSuccessors::ForcedOnly
+                                               : warpath::pathing::JumpSuccessors::EverySide)
+        << format;
+    EXPECT_EQ(set.keepOutExit, format >= 11 ? warpath::pathing::KeepOutExit::Stepwise
+                                            : warpath::pathing::KeepOutExit::HighestLevel)
+        << format;
   }
 }
 
-// Format 11 was recorded when a vehicle's lane ended where the passage grew too wide for lanes,
-// a junction included, and a walker stepping off a vehicle's course stepped to the side it was
-// on: a run plays back so, and such a file verifies; read as format 12 (lanes go on through
-// junctions, walkers step to the side with room) the same records do not. At the crossroads the
-// tanks reach the crossing within 10 s.
-TEST_F(Replays, AFormat11ReplayPlaysBackWithTheJunctionRulesOfThen) {
+// A run recorded as an older format, with the rules of then, where the next format's rules part
+// from them within its first `lastTick` ticks.
+struct OlderFormat {
+  std::uint32_t format;
+  const char* scenario;   // under the source tree
+  const char* pathing;    // `pathing:` settings of a copy of it, or null for the file itself
+  std::uint64_t seed;     // 0: the file's own
+  std::int64_t lastTick;  // INT64_MAX: the whole run
+};
+
+// Each format whose rules changed plays back as it was recorded, so a file of it verifies; read
+// as the next format (whose rules differ) the same records do not. Where the runs part:
+// - 7, congestion-aware routes: the two bridges' crowd queues at once;
+// - 8, sliced window searches: at the door with a small budget windows pause within seconds;
+// - 9, jump points taking every side turn (`algo: jps+`): the narrow pass picks other cells of
+//   equal length within seconds;
+// - 10, the kept-out rules: at seed 5 of the 4-wide corridor the red tank, waiting in the blue
+//   tank's stream, steps out of it (or not) at 11.4 s; at the door the crowds wait from the start;
+// - 11, lanes through junctions and stepping aside to the side with room: the crossroads' tanks
+//   reach the crossing within 10 s;
+// - 12, detours after a jam: in the narrow pass the first unit jams at about 28 s;
+// - 13, stopped vehicles claiming their lane: the crossroads before 15 s;
+// - 14, parking where one stands in a full goal area: the last three of twelve walkers sent to a
+//   3x3 area;
+// - 15, one-way passages: thirty walkers through a door, all one way;
+// - 16, notches as chokepoints; 17, lanes ending at the mouth (the two-way bridge);
+// - 18, queued windows counted toward the stuck flag: the door at seed 10, where a rifleman
+//   queued behind its side's stream was flagged at 18.8 s;
+// - 19, lanes held two footprints beyond a wide bridge; 20, vehicles pushing head on: 20 tanks a
+//   side on a bridge 16 wide;
+// - 21, dropping wide lanes: bridge16_mixed at seed 73, where four of blue's jeeps lost theirs;
+// - 22, waiting inside the passage: three tanks a side through a 5-wide corridor at seed 4;
+// - 23, parked teammates staying: `demo` at seed 22, red's tanks behind the first one parked;
+// - 24, turning through waypoint centres: the two-way bridge at its own seed;
+// - 25, only the lightest stepping aside: bridge16_mixed at seed 18, a red jeep meeting blue's
+//   tanks leaving its goal area.
+void PrintTo(const OlderFormat& f, std::ostream* out) {
+  *out << "format " << f.format << ", " << f.scenario;
+}
+
+class OlderFormats : public Replays, public ::testing::WithParamInterface<OlderFormat> {};
+
+TEST_P(OlderFormats, PlayBackWithTheRulesOfThen) {
+  const OlderFormat& f = GetParam();
   ReplaySource source;
-  Result<Scenario> loaded = loadRecordedChokepoint("crossroads.yaml", source);
+  const fs::path file = fs::path(WARPATH_SOURCE_DIR) / f.scenario;
+  Result<Scenario> loaded = f.pathing != nullptr ? copyWithPathing(dir_, file, f.pathing, source)
+                                                 : loadRecordedScenario(file, source);
   ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
   Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.lanesThroughJunctions && s.settings.pathing.stepAsideToRoom);
-  useRulesOfFormat(s, 11);
+  rulesOfReplayFormat(s.settings.pathing, f.format);
+  if (f.seed != 0) s.settings.seed = f.seed;
   source.seed = s.settings.seed;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format11.rpl", 11, 450);
+  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "older.rpl", f.format, f.lastTick);
 }
 
-// Format 12 was recorded when a unit that jammed against units standing on its path asked for
-// its path again (or planned its window again): a run plays back so, and such a file verifies;
-// read as format 13 (a detour around them) the same records do not. In the narrow pass the first
-// unit to jam so does at about 28 s.
-TEST_F(Replays, AFormat12ReplayPlaysBackWithoutDetoursAfterAJam) {
-  ReplaySource source;
-  Result<Scenario> loaded =
-      loadRecordedScenario(fs::path(WARPATH_SOURCE_DIR) / "scenarios" / "narrow_pass.yaml", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.jamDetours);
-  useRulesOfFormat(s, 12);
-  source.seed = s.settings.seed;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format12.rpl", 12, 900);
-}
-
-// Format 13 was recorded when a vehicle stopped in the traffic claimed no lane: a run plays back
-// so, and such a file verifies; read as format 14 (a stopped vehicle claims its lane unless its
-// window holds it or a gate keeps it out) the same records do not. At the crossroads the runs
-// part before 15 s.
-TEST_F(Replays, AFormat13ReplayPlaysBackWithStoppedVehiclesClaimingNoLane) {
-  ReplaySource source;
-  Result<Scenario> loaded = loadRecordedChokepoint("crossroads.yaml", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.standingVehicleLanes);
-  useRulesOfFormat(s, 13);
-  source.seed = s.settings.seed;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format13.rpl", 13, 450);
-}
-
-// Format 14 was recorded when a cooperating unit whose goal area had no free cell left for it
-// pushed on into the parked crowd: a run plays back so, and such a file verifies; read as format
-// 15 (it parks where it stands) the same records do not. Of twelve walkers sent to a 3x3 area
-// the last three find it full within the run's 30 s.
-TEST_F(Replays, AFormat14ReplayPlaysBackWithUnitsPushingOnInAFullGoalArea) {
-  ReplaySource source;
-  Result<Scenario> loaded = loadRecordedScenario(
-      fs::path(WARPATH_SOURCE_DIR) / "tests/fixtures/full_goal_area.yaml", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.parkWhenAreaFull);
-  useRulesOfFormat(s, 14);
-  source.seed = s.settings.seed;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format14.rpl", 14, INT64_MAX);
-}
-
-// Format 15 was recorded when a passage's gate let at most 8 through at a time and walkers
-// crossed it in timed windows even while nobody came the other way: a run plays back so, and
-// such a file verifies; read as format 16 (walkers cross a one-way passage without windows) the
-// same records do not. Thirty walkers through a door, all one way, part within seconds.
-TEST_F(Replays, AFormat15ReplayPlaysBackWithEightAtATimeThroughAOneWayDoor) {
-  ReplaySource source;
-  Result<Scenario> loaded = loadRecordedScenario(
-      fs::path(WARPATH_SOURCE_DIR) / "tests/fixtures/one_way_door.yaml", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.oneWayPassages);
-  useRulesOfFormat(s, 15);
-  source.seed = s.settings.seed;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format15.rpl", 15, 900);
-}
-
-// Format 16 was recorded when a notch in an edge was a chokepoint like a door: it plays back so,
-// and read as format 17 (no windows at the notches) the same records do not verify.
-TEST_F(Replays, AFormat16ReplayPlaysBackWithNotchesAsChokepoints) {
-  ReplaySource source;
-  Result<Scenario> loaded = loadRecordedScenario(
-      fs::path(WARPATH_SOURCE_DIR) / "tests/fixtures/notched_edge.yaml", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.openDents);
-  useRulesOfFormat(s, 16);
-  source.seed = s.settings.seed;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format16.rpl", 16, 600);
-}
-
-// Format 17 was recorded when a vehicle's lane ended at its passage's mouth: it plays back so,
-// and read as format 18 (lanes held two footprints beyond the bridge) the same records do not
-// verify.
-TEST_F(Replays, AFormat17ReplayPlaysBackWithLanesEndingAtTheMouth) {
-  ReplaySource source;
-  Result<Scenario> loaded = loadRecordedScenario(
-      fs::path(WARPATH_SOURCE_DIR) / "scenarios/chokepoints/bridge_two_way.yaml", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.laneApproaches);
-  useRulesOfFormat(s, 17);
-  source.seed = s.settings.seed;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format17.rpl", 17, 600);
-}
-
-// Format 19 was recorded when a vehicle's lane held two footprints beyond its passage however
-// wide: it plays back so, and read as format 20 (five footprints beyond a bridge with room for
-// two tanks each way) the same records do not verify. 20 tanks a side on a bridge 16 wide.
-TEST_F(Replays, AFormat19ReplayPlaysBackWithLanesHeldTwoFootprintsBeyondAWideBridge) {
-  ReplaySource source;
-  Result<Scenario> loaded = loadRecordedChokepoint("variations/bridge16_tanks.yaml", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.widerLaneApproaches);
-  useRulesOfFormat(s, 19);
-  source.seed = s.settings.seed;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format19.rpl", 19, 600);
-}
-
-// Format 20 was recorded when two vehicles meeting head on outside timed windows pushed nose to
-// nose: it plays back so, and read as format 21 (each veers to its right) the same records do
-// not verify. 20 tanks a side on a bridge 16 wide, meeting at its mouths.
-TEST_F(Replays, AFormat20ReplayPlaysBackWithVehiclesPushingHeadOn) {
-  ReplaySource source;
-  Result<Scenario> loaded = loadRecordedChokepoint("variations/bridge16_tanks.yaml", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.headOnKeepRight);
-  useRulesOfFormat(s, 20);
-  source.seed = s.settings.seed;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format20.rpl", 20, 900);
-}
-
-// Format 21 was recorded when a vehicle's lane that cost more than the fixed allowance was dropped
-// however far it shifted: it plays back so, and read as format 22 the same records do not verify.
-// bridge16_mixed at seed 73, where four of blue's jeeps lost their lanes across the bridge.
-TEST_F(Replays, AFormat21ReplayPlaysBackDroppingWideLanes) {
-  ReplaySource source;
-  Result<Scenario> loaded = loadRecordedChokepoint("variations/bridge16_mixed.yaml", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.wideLaneDetours);
-  useRulesOfFormat(s, 21);
-  s.settings.seed = 73;
-  source.seed = 73;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format21.rpl", 21, 300);
-}
-
-// Format 22 was recorded when a unit kept out of a passage waited where it stood even inside it:
-// it plays back so, and read as format 23 (it takes the turn from the holder not yet in) the
-// same records do not verify. Three tanks a side through a 5-wide corridor at seed 4, where
-// blue's last tank, let through at the west mouth, pushed red's last, caught in the mouth, back
-// along the corridor.
-TEST_F(Replays, AFormat22ReplayPlaysBackWaitingInsideThePassage) {
-  ReplaySource source;
-  Result<Scenario> loaded = loadRecordedChokepoint("variations/corridor5_tanks_3v3.yaml", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.insideGoesFirst);
-  useRulesOfFormat(s, 22);
-  s.settings.seed = 4;
-  source.seed = 4;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format22.rpl", 22, 2400);
-}
-
-// Format 23 was recorded when a unit waiting in its window on a teammate parked in its way into
-// their goal area went on waiting: it plays back so, and read as format 24 (the parked one moves
-// on to the other's goal cell) the same records do not verify. `demo` at seed 22, where
-// red's tanks bound deeper in their area waited behind the first one parked in a passage.
-TEST_F(Replays, AFormat23ReplayPlaysBackWithParkedTeammatesStaying) {
-  ReplaySource source;
-  Result<Scenario> loaded =
-      loadRecordedScenario(fs::path(WARPATH_SOURCE_DIR) / "scenarios/demo.yaml", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.parkedMoveOn);
-  useRulesOfFormat(s, 23);
-  s.settings.seed = 22;
-  source.seed = 22;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format23.rpl", 23, 2700);
-}
-
-// Format 24 was recorded when the turning-circle cap slowed a vehicle until it could pass
-// through the centre of its waypoint: it plays back so, and read as format 25 (within the
-// waypoint's radius) the same records do not verify. The two-way bridge at its own seed, where
-// tanks and infantry cross in lanes.
-TEST_F(Replays, AFormat24ReplayPlaysBackTurningThroughWaypointCentres) {
-  ReplaySource source;
-  Result<Scenario> loaded = loadRecordedChokepoint("bridge_two_way.yaml", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.turnsWithinWaypoints);
-  useRulesOfFormat(s, 24);
-  source.seed = s.settings.seed;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format24.rpl", 24, 1500);
-}
-
-// Format 25 was recorded when only units of the lightest kind stepped off the course of a
-// vehicle driving into them: it plays back so, and read as format 26 (a jeep steps off a
-// tank's course too) the same records do not verify. bridge16_mixed at seed 18, where a red
-// jeep met blue's tanks leaving its goal area; its first 20 s.
-TEST_F(Replays, AFormat25ReplayPlaysBackWithOnlyTheLightestSteppingAside) {
-  ReplaySource source;
-  Result<Scenario> loaded = loadRecordedChokepoint("variations/bridge16_mixed.yaml", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.lighterVehiclesStepAside);
-  useRulesOfFormat(s, 25);
-  s.settings.seed = 18;
-  source.seed = 18;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format25.rpl", 25, 600);
-}
-
-// Format 18 was recorded when a unit queued behind another going its way counted its windows
-// without progress toward the stuck flag (a count the state hash covers): it plays back so, and
-// read as format 19 the same records do not verify. The door's two crowds at seed 10, where a
-// rifleman queued at the door's mouth behind its side's stream was flagged at 18.8 s.
-TEST_F(Replays, AFormat18ReplayPlaysBackCountingQueuedWindows) {
-  ReplaySource source;
-  Result<Scenario> loaded = loadRecordedChokepoint("door_30v30.yaml", source);
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
-  ASSERT_TRUE(s.settings.pathing.queuesExcused);
-  useRulesOfFormat(s, 18);
-  s.settings.seed = 10;
-  source.seed = 10;
-  expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format18.rpl", 18, 600);
-}
+INSTANTIATE_TEST_SUITE_P(
+    Replays, OlderFormats,
+    ::testing::Values(
+        OlderFormat{7, "scenarios/chokepoints/two_bridges.yaml", nullptr, 0, 300},
+        OlderFormat{8, "scenarios/chokepoints/door_30v30.yaml", "{sliced: true, budget: 400}", 0,
+                    300},
+        OlderFormat{9, "scenarios/narrow_pass.yaml", "{algo: jps+}", 0, 300},
+        OlderFormat{10, "scenarios/chokepoints/corridor_tanks_4.yaml", nullptr, 5, 400},
+        OlderFormat{10, "scenarios/chokepoints/door_30v30.yaml", nullptr, 5, 600},
+        OlderFormat{11, "scenarios/chokepoints/crossroads.yaml", nullptr, 0, 450},
+        OlderFormat{12, "scenarios/narrow_pass.yaml", nullptr, 0, 900},
+        OlderFormat{13, "scenarios/chokepoints/crossroads.yaml", nullptr, 0, 450},
+        OlderFormat{14, "tests/fixtures/full_goal_area.yaml", nullptr, 0, INT64_MAX},
+        OlderFormat{15, "tests/fixtures/one_way_door.yaml", nullptr, 0, 900},
+        OlderFormat{16, "tests/fixtures/notched_edge.yaml", nullptr, 0, 600},
+        OlderFormat{17, "scenarios/chokepoints/bridge_two_way.yaml", nullptr, 0, 600},
+        OlderFormat{18, "scenarios/chokepoints/door_30v30.yaml", nullptr, 10, 600},
+        OlderFormat{19, "scenarios/chokepoints/variations/bridge16_tanks.yaml", nullptr, 0, 600},
+        OlderFormat{20, "scenarios/chokepoints/variations/bridge16_tanks.yaml", nullptr, 0, 900},
+        OlderFormat{21, "scenarios/chokepoints/variations/bridge16_mixed.yaml", nullptr, 73, 300},
+        OlderFormat{22, "scenarios/chokepoints/variations/corridor5_tanks_3v3.yaml", nullptr, 4,
+                    2400},
+        OlderFormat{23, "scenarios/demo.yaml", nullptr, 22, 2700},
+        OlderFormat{24, "scenarios/chokepoints/bridge_two_way.yaml", nullptr, 0, 1500},
+        OlderFormat{25, "scenarios/chokepoints/variations/bridge16_mixed.yaml", nullptr, 18, 600}),
+    [](const ::testing::TestParamInfo<OlderFormat>& param) {
+      // Format25_bridge16_mixed: the format and the scenario file's stem.
+      return "Format" + std::to_string(param.param.format) + "_" +
+             fs::path(param.param.scenario).stem().string();
+    });
 
 TEST_F(Replays, AnotherVersionIsRefused) {
   const fs::path file = record(1);

@@ -215,8 +215,16 @@ Result<Scenario> loadRecordedScenario(const std::filesystem::path& file, ReplayS
 // a tick past the embedded scenario's duration: "FILE: record N: problem".
 Result<Replay> readReplay(const std::filesystem::path& file);
 
-// The embedded scenario, its map and catalogue read from the replay, never from disk.
+// The embedded scenario, its map and catalogue read from the replay, never from disk. It is
+// parsed with the path service's defaults of the replay's format (rulesOfReplayFormat): keys
+// the scenario sets keep their values.
 Result<Scenario> replayScenario(const Replay& replay);
+
+// `rules` with every rule that came after replay format `version` set back as files of that
+// format play back (the kFirst...ReplayVersion constants above say which rule came when).
+// replayScenario applies it to the defaults; the replay tests record files of older formats with
+// it.
+void rulesOfReplayFormat(PathServiceSettings& rules, std::uint32_t version);
 
 // Appends a replay while a ScenarioRun runs: record() after construction and after every step,
 // finish() at the end. Each call flushes. Errors name the file.
