@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <span>
+#include <stdexcept>
 #include <string>
 
 #include "engine/scenario.h"
@@ -27,9 +28,17 @@ Scenario parse(const std::string& text) {
 using testing::fullOrSanitized;
 using testing::runToEnd;
 
+// A scenario file of the source tree (FILE relative to its root). One that does not load fails
+// the test (the exception reaches GoogleTest with the error).
+Scenario bundled(const std::string& file) {
+  Result<Scenario> r = loadScenario(std::string(WARPATH_SOURCE_DIR) + "/" + file);
+  if (!r.ok()) throw std::runtime_error(r.error().describe());
+  return std::move(r).value();
+}
+
 // A bundled chokepoint scenario (scenarios/chokepoints/FILE).
-Result<Scenario> loadChokepoint(const std::string& file) {
-  return loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/chokepoints/" + file);
+Scenario chokepoint(const std::string& file) {
+  return bundled("scenarios/chokepoints/" + file);
 }
 
 // A 1-cell door in a wall, two infantry on each side swapping sides.
@@ -120,9 +129,7 @@ TEST(Cooperative, ReportsDelayAgainstThePlannedTime) {
 // meet inside and one shoves the other back, too late at every seed.
 TEST(Cooperative, TanksHeadOnInACorridorWhatCooperationChanges) {
   for (const char* file : {"corridor_tanks_4.yaml", "corridor_tanks_5.yaml"}) {
-    Result<Scenario> loaded = loadChokepoint(file);
-    ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-    Scenario s = std::move(loaded).value();
+    Scenario s = chokepoint(file);
     for (const bool cooperative : {true, false}) {
       s.settings.pathing.cooperative = cooperative;
       for (std::uint64_t seed = 1; seed <= 3; ++seed) {
@@ -144,9 +151,7 @@ TEST(Cooperative, TanksHeadOnInACorridorWhatCooperationChanges) {
 // and some arrive too late. The run stops at the bound, where the expectations are decided.
 // Seeds 1-3 (seed 1 under the sanitizers, support/sanitized.h).
 TEST(Cooperative, ThirtyAsideSwapThroughADoorTakingTurns) {
-  Result<Scenario> loaded = loadChokepoint("door_30v30.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
+  Scenario s = chokepoint("door_30v30.yaml");
   s.duration = 100.0;
   const std::uint64_t lastSeed = fullOrSanitized(3, 1);
   for (const bool cooperative : {true, false}) {
@@ -163,9 +168,7 @@ TEST(Cooperative, ThirtyAsideSwapThroughADoorTakingTurns) {
 // 6 and 8 when the longest wait went first), and the last ones arrive sooner. Seeds 5-8 keep
 // the test short (8 runs of 60 units), and seeds 5-6 under the sanitizers (78 s at seeds 5-8).
 TEST(Cooperative, ThoseKeptOutNearestTheDoorGoFirst) {
-  Result<Scenario> loaded = loadChokepoint("door_30v30.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
+  Scenario s = chokepoint("door_30v30.yaml");
   ASSERT_TRUE(s.settings.pathing.nearestKeptOutFirst);  // the default
   // Counted as when the rule came (format 11): those pushing through the crowd were flagged.
   s.settings.pathing.queuesExcused = false;
@@ -193,9 +196,7 @@ TEST(Cooperative, ThoseKeptOutNearestTheDoorGoFirst) {
 // rule changes the count alone (a queued unit still looks for a way round), every unit moves
 // and arrives exactly as before. Seed 10 alone under the sanitizers.
 TEST(Cooperative, AQueueHeldUpIsNoJam) {
-  Result<Scenario> loaded = loadChokepoint("door_30v30.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
+  Scenario s = chokepoint("door_30v30.yaml");
   s.duration = 45.0;
   ASSERT_TRUE(s.settings.pathing.queuesExcused);  // the default
   s.settings.pathing.turnAwayFromWalls = false;   // measured before format 26
@@ -220,10 +221,7 @@ TEST(Cooperative, AQueueHeldUpIsNoJam) {
 TEST(Cooperative, OneWayPassagesLetTheWholeCrowdThrough) {
   for (const char* fixture : {"one_way_door.yaml", "one_way_gap.yaml"}) {
     SCOPED_TRACE(fixture);
-    Result<Scenario> loaded =
-        loadScenario(std::string(WARPATH_SOURCE_DIR) + "/tests/fixtures/" + fixture);
-    ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-    Scenario s = std::move(loaded).value();
+    Scenario s = bundled(std::string("tests/fixtures/") + fixture);
     ASSERT_TRUE(s.settings.pathing.oneWayPassages);  // the default
     // Counted as when the rule came (format 16): walkers pressed in at the door's sides were
     // flagged.
@@ -246,10 +244,7 @@ TEST(Cooperative, OneWayPassagesLetTheWholeCrowdThrough) {
 // chokepoint (traffic goes by just below it), so since replay format 17 nobody plans timed
 // windows there; before, every jeep near the edge did, and all arrived just the same.
 TEST(Cooperative, NotchesInAnEdgeAreNoChokepoints) {
-  Result<Scenario> loaded =
-      loadScenario(std::string(WARPATH_SOURCE_DIR) + "/tests/fixtures/notched_edge.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
+  Scenario s = bundled("tests/fixtures/notched_edge.yaml");
   ASSERT_TRUE(s.settings.pathing.openDents);  // the default
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     SCOPED_TRACE(seed);
@@ -349,12 +344,10 @@ TEST(Cooperative, AVehiclePassesSlowerUnitsGoingItsWay) {
 // arbitrating the pass between them: every seed passes (1-5 here; 3 of them failed when the
 // tanks' ways were judged by their goals).
 TEST(Cooperative, TanksFromAWideFieldQueueThroughAPassTogether) {
-  Result<Scenario> loaded =
-      loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/narrow_pass.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  ASSERT_TRUE(loaded.value().settings.pathing.cooperative);
+  const Scenario s = bundled("scenarios/narrow_pass.yaml");
+  ASSERT_TRUE(s.settings.pathing.cooperative);
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-    const Report r = runToEnd(loaded.value(), seed);
+    const Report r = runToEnd(s, seed);
     EXPECT_TRUE(r.passed()) << "seed " << seed;
     EXPECT_EQ(r.movement.counters.deadlocksBroken, 0) << "seed " << seed;
   }
@@ -365,11 +358,10 @@ TEST(Cooperative, TanksFromAWideFieldQueueThroughAPassTogether) {
 // 1-3 (u_trap's jeeps pass the infantry going their way round the U).
 TEST(Cooperative, TheUTrapAndTheGapPassAtEverySeed) {
   for (const char* file : {"u_trap.yaml", "gap_200.yaml"}) {
-    Result<Scenario> loaded = loadChokepoint(file);
-    ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-    ASSERT_TRUE(loaded.value().settings.pathing.cooperative);
+    const Scenario s = chokepoint(file);
+    ASSERT_TRUE(s.settings.pathing.cooperative);
     for (std::uint64_t seed = 1; seed <= 3; ++seed)
-      EXPECT_TRUE(runToEnd(loaded.value(), seed).passed()) << file << " seed " << seed;
+      EXPECT_TRUE(runToEnd(s, seed).passed()) << file << " seed " << seed;
   }
 }
 
@@ -382,11 +374,10 @@ TEST(Cooperative, TheUTrapAndTheGapPassAtEverySeed) {
 TEST(Cooperative, InfantryGiveWayToVehiclesAtTheBridgeAndTheCrossroads) {
   for (const auto& [file, atLeast] :
        {std::pair{"bridge_two_way.yaml", 14}, std::pair{"crossroads.yaml", 18}}) {
-    Result<Scenario> loaded = loadChokepoint(file);
-    ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
+    const Scenario s = chokepoint(file);
     int passed = 0;
     for (std::uint64_t seed = 1; seed <= 20; ++seed)
-      passed += runToEnd(loaded.value(), seed).passed() ? 1 : 0;
+      passed += runToEnd(s, seed).passed() ? 1 : 0;
     EXPECT_GE(passed, atLeast) << file;
   }
 }
@@ -399,9 +390,7 @@ TEST(Cooperative, InfantryGiveWayToVehiclesAtTheBridgeAndTheCrossroads) {
 // it had passed, and it arrived at 47.7 s. Measured with lanes that end at the bridge's mouth
 // (format 17): with lanes held beyond it (format 18) that tank is not caught either way.
 TEST(Cooperative, AStoppedTankClaimsItsLaneThroughAnOncomingStream) {
-  Result<Scenario> loaded = loadChokepoint("bridge_two_way.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
+  Scenario s = chokepoint("bridge_two_way.yaml");
   ASSERT_TRUE(s.settings.pathing.standingVehicleLanes);  // the default
   s.settings.pathing.turnAwayFromWalls = false;          // measured before format 26
   s.settings.pathing.laneApproaches = false;
@@ -418,9 +407,7 @@ TEST(Cooperative, AStoppedTankClaimsItsLaneThroughAnOncomingStream) {
 // off pushed those waiting back into the box they park in: seeds 1-20 passed 15 times, 19 with
 // the hold (seeds 1-100: 65 against 97).
 TEST(Cooperative, LanesHeldBeyondTheBridgeKeepTheMouthsApart) {
-  Result<Scenario> loaded = loadChokepoint("bridge_two_way.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
+  Scenario s = chokepoint("bridge_two_way.yaml");
   ASSERT_TRUE(s.settings.pathing.laneApproaches);  // the default
   // Measured as when the rule came: vehicles meeting head on veering right (format 21) also
   // part the tanks at the mouths, with lanes that end there too.
@@ -440,9 +427,7 @@ TEST(Cooperative, LanesHeldBeyondTheBridgeKeepTheMouthsApart) {
 // together in the open by a mouth, sliding off sideways with neither making way, and a tank
 // arrived after its bound at seeds 6, 44, 46 and 47; with the rule all arrive in time.
 TEST(Cooperative, VehiclesMeetingHeadOnInTheOpenVeerRight) {
-  Result<Scenario> loaded = loadChokepoint("variations/bridge16_tanks.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
+  Scenario s = chokepoint("variations/bridge16_tanks.yaml");
   ASSERT_TRUE(s.settings.pathing.headOnKeepRight);  // the default
   s.settings.pathing.turnAwayFromWalls = false;     // measured before format 26
   s.settings.pathing.wideLaneDetours = false;       // which spares those tanks too (format 22)
@@ -460,9 +445,7 @@ TEST(Cooperative, VehiclesMeetingHeadOnInTheOpenVeerRight) {
 // was dropped, the jeep drove along the edge the other side's tanks came down, and one of blue's
 // jeeps was held among them past its bound at seeds 73 and 79 of bridge16_mixed.
 TEST(Cooperative, JeepsKeepRightAcrossABridgeSixteenWide) {
-  Result<Scenario> loaded = loadChokepoint("variations/bridge16_mixed.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
+  Scenario s = chokepoint("variations/bridge16_mixed.yaml");
   ASSERT_TRUE(s.settings.pathing.wideLaneDetours);      // the default
   s.settings.pathing.headOnByIntent = false;            // which spares those jeeps too (format 22)
   s.settings.pathing.turnsWithinWaypoints = false;      // measured before format 25
@@ -481,9 +464,7 @@ TEST(Cooperative, JeepsKeepRightAcrossABridgeSixteenWide) {
 // pushed back at their speed it was not "coming at" them, so the column pushed it back over the
 // bridge and it arrived after its bound.
 TEST(Cooperative, VehiclesVeerFromLighterOnesSteeringTheirWay) {
-  Result<Scenario> loaded = loadChokepoint("variations/bridge16_mixed.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
+  Scenario s = chokepoint("variations/bridge16_mixed.yaml");
   ASSERT_TRUE(s.settings.pathing.headOnByIntent);       // the default
   s.settings.pathing.turnsWithinWaypoints = false;      // measured before format 25
   s.settings.pathing.lighterVehiclesStepAside = false;  // and before format 26
@@ -500,9 +481,7 @@ TEST(Cooperative, VehiclesVeerFromLighterOnesSteeringTheirWay) {
 // window blocked, it lost the turn to blue's, which pushed it back in and along the corridor, the
 // two standing nose to nose for the last 50 s (one tank of each side never arrived).
 TEST(Cooperative, AUnitCaughtInsideAPassageGoesFirst) {
-  Result<Scenario> loaded = loadChokepoint("variations/corridor5_tanks_3v3.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
+  Scenario s = chokepoint("variations/corridor5_tanks_3v3.yaml");
   ASSERT_TRUE(s.settings.pathing.insideGoesFirst);  // the default
   s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
   EXPECT_TRUE(runToEnd(s, 4).passed());
@@ -516,9 +495,7 @@ TEST(Cooperative, AUnitCaughtInsideAPassageGoesFirst) {
 // with them, is flagged stuck. Each held up takes the parked tank's goal cell and sends it on
 // to its own.
 TEST(Cooperative, AParkedTeammateInTheWayMovesOn) {
-  Result<Scenario> loaded = loadScenario(std::string(WARPATH_SOURCE_DIR) + "/scenarios/demo.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
+  Scenario s = bundled("scenarios/demo.yaml");
   ASSERT_TRUE(s.settings.pathing.parkedMoveOn);     // the default
   s.settings.pathing.turnAwayFromWalls = false;     // measured before format 26
   s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
@@ -532,9 +509,7 @@ TEST(Cooperative, AParkedTeammateInTheWayMovesOn) {
 // tank column leaving the jeep's goal area, kept driving at the tank in front, and was pushed
 // back 20 cells onto the bridge: late past its bound.
 TEST(Cooperative, LighterVehiclesStepAsideForHeavierOnes) {
-  Result<Scenario> loaded = loadChokepoint("variations/bridge16_mixed.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
+  Scenario s = chokepoint("variations/bridge16_mixed.yaml");
   ASSERT_TRUE(s.settings.pathing.lighterVehiclesStepAside);  // the default
   for (const bool stepAside : {true, false}) {
     s.settings.pathing.lighterVehiclesStepAside = stepAside;
@@ -549,9 +524,7 @@ TEST(Cooperative, LighterVehiclesStepAsideForHeavierOnes) {
 // each tick and it drove north along the bank at full speed, 13 cells away from its waypoint,
 // and arrived after its bound.
 TEST(Cooperative, VehiclesTurnAboutAwayFromWalls) {
-  Result<Scenario> loaded = loadChokepoint("bridge_two_way.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
+  Scenario s = chokepoint("bridge_two_way.yaml");
   ASSERT_TRUE(s.settings.pathing.turnAwayFromWalls);  // the default
   EXPECT_TRUE(runToEnd(s, 11).passed());
   s.settings.pathing.turnAwayFromWalls = false;
@@ -567,9 +540,7 @@ TEST(Cooperative, VehiclesTurnAboutAwayFromWalls) {
 // (format 18) reach across the 8-cell crossing from both arms by themselves, so the rule is
 // measured with lanes that end at their passage, as in format 17.
 TEST(Cooperative, TanksKeepTheirLanesThroughTheCrossroads) {
-  Result<Scenario> loaded = loadChokepoint("crossroads.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
+  Scenario s = chokepoint("crossroads.yaml");
   ASSERT_TRUE(s.settings.pathing.lanesThroughJunctions);  // the default
   s.settings.pathing.laneApproaches = false;
   int late[2] = {0, 0};  // seeds with a tank later than its bound, without and with
@@ -681,9 +652,7 @@ TEST(Cooperative, AJammedTankTakesADetourAroundASquadHoldingItsRoad) {
 // than the detour, go over the far bridge: 90 % arrive by 62 s. Everyone over the near bridge
 // (congestion off) arrives in 67-69 s for 90 %.
 TEST(Cooperative, CrowdsTakeAFreeBridgeWhenTheQueueCostsMoreThanTheDetour) {
-  Result<Scenario> loaded = loadChokepoint("two_bridges.yaml");
-  ASSERT_TRUE(loaded.ok()) << loaded.error().describe();
-  Scenario s = std::move(loaded).value();
+  Scenario s = chokepoint("two_bridges.yaml");
   ASSERT_TRUE(s.settings.pathing.congestion);  // the default
   for (const bool congestion : {true, false}) {
     s.settings.pathing.congestion = congestion;
