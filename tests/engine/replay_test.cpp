@@ -371,7 +371,7 @@ TEST_F(Replays, AFormat6ReplayPlaysBackWithCooperationOff) {
   expectVerifiesOnlyAsItsFormat(s, source, dir_ / "format6.rpl", 6, INT64_MAX);
 }
 
-TEST_F(Replays, OnlyFormatsThisBuildReadsAsItsOwnAreWritten) {
+TEST_F(Replays, WritesFormatsFrom3ToItsOwn) {
   ReplaySource source;
   // Formats before 3 hash another way, and none after this build's can be written.
   EXPECT_FALSE(ReplayWriter::open(dir_ / "x.rpl", source, 2).ok());
