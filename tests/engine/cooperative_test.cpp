@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <initializer_list>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -39,6 +40,19 @@ Scenario bundled(const std::string& file) {
 // A bundled chokepoint scenario (scenarios/chokepoints/FILE).
 Scenario chokepoint(const std::string& file) {
   return bundled("scenarios/chokepoints/" + file);
+}
+
+// A movement rule against the seeds it was made for: each of `seeds` passes with `rule` on (its
+// default) and fails with it off.
+void expectTheRuleMendsTheSeeds(Scenario s, bool PathServiceSettings::*rule,
+                                std::initializer_list<std::uint64_t> seeds) {
+  ASSERT_TRUE(s.settings.pathing.*rule) << "the rule is on by default";
+  for (const bool on : {true, false}) {
+    s.settings.pathing.*rule = on;
+    for (const std::uint64_t seed : seeds)
+      EXPECT_EQ(runToEnd(s, seed).passed(), on)
+          << "seed " << seed << (on ? " with" : " without") << " the rule";
+  }
 }
 
 // A 1-cell door in a wall, two infantry on each side swapping sides.
@@ -391,14 +405,11 @@ TEST(Cooperative, InfantryGiveWayToVehiclesAtTheBridgeAndTheCrossroads) {
 // (format 17): with lanes held beyond it (format 18) that tank is not caught either way.
 TEST(Cooperative, AStoppedTankClaimsItsLaneThroughAnOncomingStream) {
   Scenario s = chokepoint("bridge_two_way.yaml");
-  ASSERT_TRUE(s.settings.pathing.standingVehicleLanes);  // the default
-  s.settings.pathing.turnAwayFromWalls = false;          // measured before format 26
+  s.settings.pathing.turnAwayFromWalls = false;  // measured before format 26
   s.settings.pathing.laneApproaches = false;
   s.settings.pathing.headOnKeepRight = false;       // which spares that tank too (format 21)
   s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
-  EXPECT_TRUE(runToEnd(s, 15).passed());
-  s.settings.pathing.standingVehicleLanes = false;
-  EXPECT_FALSE(runToEnd(s, 15).passed());
+  expectTheRuleMendsTheSeeds(s, &PathServiceSettings::standingVehicleLanes, {15});
 }
 
 // A vehicle's lane holds its full shift for two footprints beyond the bridge (replay format
@@ -428,15 +439,10 @@ TEST(Cooperative, LanesHeldBeyondTheBridgeKeepTheMouthsApart) {
 // arrived after its bound at seeds 6, 44, 46 and 47; with the rule all arrive in time.
 TEST(Cooperative, VehiclesMeetingHeadOnInTheOpenVeerRight) {
   Scenario s = chokepoint("variations/bridge16_tanks.yaml");
-  ASSERT_TRUE(s.settings.pathing.headOnKeepRight);  // the default
   s.settings.pathing.turnAwayFromWalls = false;     // measured before format 26
   s.settings.pathing.wideLaneDetours = false;       // which spares those tanks too (format 22)
   s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
-  for (const bool keepRight : {true, false}) {
-    s.settings.pathing.headOnKeepRight = keepRight;
-    for (const std::uint64_t seed : {6, 44, 46, 47})
-      EXPECT_EQ(runToEnd(s, seed).passed(), keepRight) << "seed " << seed << " " << keepRight;
-  }
+  expectTheRuleMendsTheSeeds(s, &PathServiceSettings::headOnKeepRight, {6, 44, 46, 47});
 }
 
 // A vehicle's lane may detour as many cells as its largest shift (replay format 22). On a bridge
@@ -446,16 +452,11 @@ TEST(Cooperative, VehiclesMeetingHeadOnInTheOpenVeerRight) {
 // jeeps was held among them past its bound at seeds 73 and 79 of bridge16_mixed.
 TEST(Cooperative, JeepsKeepRightAcrossABridgeSixteenWide) {
   Scenario s = chokepoint("variations/bridge16_mixed.yaml");
-  ASSERT_TRUE(s.settings.pathing.wideLaneDetours);      // the default
   s.settings.pathing.headOnByIntent = false;            // which spares those jeeps too (format 22)
   s.settings.pathing.turnsWithinWaypoints = false;      // measured before format 25
   s.settings.pathing.lighterVehiclesStepAside = false;  // and before format 26
   s.settings.pathing.turnAwayFromWalls = false;
-  for (const bool wide : {true, false}) {
-    s.settings.pathing.wideLaneDetours = wide;
-    for (const std::uint64_t seed : {73, 79})
-      EXPECT_EQ(runToEnd(s, seed).passed(), wide) << "seed " << seed << " " << wide;
-  }
+  expectTheRuleMendsTheSeeds(s, &PathServiceSettings::wideLaneDetours, {73, 79});
 }
 
 // A vehicle veers right from a lighter vehicle that steers its way, however that one moves
@@ -465,14 +466,9 @@ TEST(Cooperative, JeepsKeepRightAcrossABridgeSixteenWide) {
 // bridge and it arrived after its bound.
 TEST(Cooperative, VehiclesVeerFromLighterOnesSteeringTheirWay) {
   Scenario s = chokepoint("variations/bridge16_mixed.yaml");
-  ASSERT_TRUE(s.settings.pathing.headOnByIntent);       // the default
   s.settings.pathing.turnsWithinWaypoints = false;      // measured before format 25
   s.settings.pathing.lighterVehiclesStepAside = false;  // and before format 26
-  for (const bool byIntent : {true, false}) {
-    s.settings.pathing.headOnByIntent = byIntent;
-    for (const std::uint64_t seed : {15, 35})
-      EXPECT_EQ(runToEnd(s, seed).passed(), byIntent) << "seed " << seed << " " << byIntent;
-  }
+  expectTheRuleMendsTheSeeds(s, &PathServiceSettings::headOnByIntent, {15, 35});
 }
 
 // A unit kept out of a passage that stands inside it takes the turn from a holder going the
@@ -482,11 +478,8 @@ TEST(Cooperative, VehiclesVeerFromLighterOnesSteeringTheirWay) {
 // two standing nose to nose for the last 50 s (one tank of each side never arrived).
 TEST(Cooperative, AUnitCaughtInsideAPassageGoesFirst) {
   Scenario s = chokepoint("variations/corridor5_tanks_3v3.yaml");
-  ASSERT_TRUE(s.settings.pathing.insideGoesFirst);  // the default
   s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
-  EXPECT_TRUE(runToEnd(s, 4).passed());
-  s.settings.pathing.insideGoesFirst = false;
-  EXPECT_FALSE(runToEnd(s, 4).passed());
+  expectTheRuleMendsTheSeeds(s, &PathServiceSettings::insideGoesFirst, {4});
 }
 
 // A teammate parked in the way into the goal area moves on (replay format 24). `demo` at seed 22:
@@ -496,12 +489,9 @@ TEST(Cooperative, AUnitCaughtInsideAPassageGoesFirst) {
 // to its own.
 TEST(Cooperative, AParkedTeammateInTheWayMovesOn) {
   Scenario s = bundled("scenarios/demo.yaml");
-  ASSERT_TRUE(s.settings.pathing.parkedMoveOn);     // the default
   s.settings.pathing.turnAwayFromWalls = false;     // measured before format 26
   s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
-  EXPECT_TRUE(runToEnd(s, 22).passed());
-  s.settings.pathing.parkedMoveOn = false;
-  EXPECT_FALSE(runToEnd(s, 22).passed());
+  expectTheRuleMendsTheSeeds(s, &PathServiceSettings::parkedMoveOn, {22});
 }
 
 // A vehicle that a heavier one drives into steps off its course, as infantry do (replay format
@@ -509,13 +499,8 @@ TEST(Cooperative, AParkedTeammateInTheWayMovesOn) {
 // tank column leaving the jeep's goal area, kept driving at the tank in front, and was pushed
 // back 20 cells onto the bridge: late past its bound.
 TEST(Cooperative, LighterVehiclesStepAsideForHeavierOnes) {
-  Scenario s = chokepoint("variations/bridge16_mixed.yaml");
-  ASSERT_TRUE(s.settings.pathing.lighterVehiclesStepAside);  // the default
-  for (const bool stepAside : {true, false}) {
-    s.settings.pathing.lighterVehiclesStepAside = stepAside;
-    for (const std::uint64_t seed : {18, 24})
-      EXPECT_EQ(runToEnd(s, seed).passed(), stepAside) << "seed " << seed << " " << stepAside;
-  }
+  expectTheRuleMendsTheSeeds(chokepoint("variations/bridge16_mixed.yaml"),
+                             &PathServiceSettings::lighterVehiclesStepAside, {18, 24});
 }
 
 // A vehicle turning about turns away from a wall rather than into it (replay format 26). The
@@ -524,11 +509,8 @@ TEST(Cooperative, LighterVehiclesStepAsideForHeavierOnes) {
 // each tick and it drove north along the bank at full speed, 13 cells away from its waypoint,
 // and arrived after its bound.
 TEST(Cooperative, VehiclesTurnAboutAwayFromWalls) {
-  Scenario s = chokepoint("bridge_two_way.yaml");
-  ASSERT_TRUE(s.settings.pathing.turnAwayFromWalls);  // the default
-  EXPECT_TRUE(runToEnd(s, 11).passed());
-  s.settings.pathing.turnAwayFromWalls = false;
-  EXPECT_FALSE(runToEnd(s, 11).passed());
+  expectTheRuleMendsTheSeeds(chokepoint("bridge_two_way.yaml"),
+                             &PathServiceSettings::turnAwayFromWalls, {11});
 }
 
 // At the crossroads the paths of opposite arms cross over in the 8×8 crossing, toward goal
