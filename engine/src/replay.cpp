@@ -390,7 +390,8 @@ void rulesOfReplayFormat(PathServiceSettings& rules, std::uint32_t version) {
   // waiting on a parked teammate before it moved on, and units slowing to pass through their
   // waypoint's centre before they passed within its radius, and only the lightest kind
   // stepping off a vehicle's course, turning the shorter way, before lighter vehicles stepped
-  // aside too and units turned away from walls.
+  // aside too and units turned away from walls, and units kept out of a passage but caught
+  // inside it with the holder waiting to be pushed before they backed out ahead of it.
   if (version < kCooperativeByDefaultReplayVersion) rules.cooperative = false;
   if (version < kFirstCongestionReplayVersion) rules.congestion = false;
   if (version < kFirstSlicedWindowsReplayVersion) rules.slicedWindows = false;
@@ -425,6 +426,7 @@ void rulesOfReplayFormat(PathServiceSettings& rules, std::uint32_t version) {
     rules.lighterVehiclesStepAside = false;
     rules.turnAwayFromWalls = false;
   }
+  if (version < kFirstKeptOutBacksOutReplayVersion) rules.keptOutBacksOut = false;
 }
 
 Result<Scenario> replayScenario(const Replay& replay) {

@@ -479,6 +479,7 @@ TEST(Cooperative, VehiclesVeerFromLighterOnesSteeringTheirWay) {
 TEST(Cooperative, AUnitCaughtInsideAPassageGoesFirst) {
   Scenario s = chokepoint("variations/corridor5_tanks_3v3.yaml");
   s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
+  s.settings.pathing.keptOutBacksOut = false;       // which spares that tank too (format 27)
   expectTheRuleMendsTheSeeds(s, &PathServiceSettings::insideGoesFirst, {4});
 }
 
@@ -511,6 +512,16 @@ TEST(Cooperative, LighterVehiclesStepAsideForHeavierOnes) {
 TEST(Cooperative, VehiclesTurnAboutAwayFromWalls) {
   expectTheRuleMendsTheSeeds(chokepoint("bridge_two_way.yaml"),
                              &PathServiceSettings::turnAwayFromWalls, {11});
+}
+
+// A unit kept out of a passage but caught inside it with the holder of its turn, who comes the
+// other way, backs out ahead of the holder (replay format 27). Three tanks a side through a
+// corridor 5 wide at seed 15: blue's first, parked at the east mouth, is pushed back into the
+// corridor by red's last; it kept its window, which had ended at its goal, and waited to be
+// pushed, and the two pressed together in the corridor at 0.05 cells/s until the run ended.
+TEST(Cooperative, AUnitCaughtInsideBacksOutAheadOfTheHolder) {
+  expectTheRuleMendsTheSeeds(chokepoint("variations/corridor5_tanks_3v3.yaml"),
+                             &PathServiceSettings::keptOutBacksOut, {15});
 }
 
 // At the crossroads the paths of opposite arms cross over in the 8×8 crossing, toward goal

@@ -409,6 +409,7 @@ TEST_F(Replays, EachRuleIsSetBackForTheFormatsBeforeIt) {
       {&Settings::turnsWithinWaypoints, 25},
       {&Settings::lighterVehiclesStepAside, 26},
       {&Settings::turnAwayFromWalls, 26},
+      {&Settings::keptOutBacksOut, 27},
   };
   for (std::uint32_t format = kOldestReplayVersion; format <= kReplayVersion; ++format) {
     Settings set;
@@ -462,7 +463,9 @@ struct OlderFormat {
 // - 23, parked teammates staying: `demo` at seed 22, red's tanks behind the first one parked;
 // - 24, turning through waypoint centres: the two-way bridge at its own seed;
 // - 25, only the lightest stepping aside: bridge16_mixed at seed 18, a red jeep meeting blue's
-//   tanks leaving its goal area.
+//   tanks leaving its goal area;
+// - 26, waiting to be pushed inside a passage: three tanks a side through a 5-wide corridor at
+//   seed 15, where blue's first, parked at the east mouth, is pushed back in by red's last.
 void PrintTo(const OlderFormat& f, std::ostream* out) {
   *out << "format " << f.format << ", " << f.scenario;
 }
@@ -507,7 +510,9 @@ INSTANTIATE_TEST_SUITE_P(
                     2400},
         OlderFormat{23, "scenarios/demo.yaml", nullptr, 22, 2700},
         OlderFormat{24, "scenarios/chokepoints/bridge_two_way.yaml", nullptr, 0, 1500},
-        OlderFormat{25, "scenarios/chokepoints/variations/bridge16_mixed.yaml", nullptr, 18, 600}),
+        OlderFormat{25, "scenarios/chokepoints/variations/bridge16_mixed.yaml", nullptr, 18, 600},
+        OlderFormat{26, "scenarios/chokepoints/variations/corridor5_tanks_3v3.yaml", nullptr, 15,
+                    2400}),
     [](const ::testing::TestParamInfo<OlderFormat>& param) {
       // Format25_bridge16_mixed: the format and the scenario file's stem.
       return "Format" + std::to_string(param.param.format) + "_" +
@@ -522,21 +527,21 @@ TEST_F(Replays, AnotherVersionIsRefused) {
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
                                  ": replay format version 1 is not supported (this build reads "
-                                 "versions 2 to 26); it was written before battles were recorded: "
+                                 "versions 2 to 27); it was written before battles were recorded: "
                                  "record it again with rts run --replay");
   RtsResult r = rts("replay verify " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(file.string() + ": replay format version 1 is not supported"),
             std::string::npos)
       << r.out;
-  bytes[8] = 27;
+  bytes[8] = 28;
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
-                                 ": replay format version 27 is not supported (this build reads "
-                                 "versions 2 to 26)");
+                                 ": replay format version 28 is not supported (this build reads "
+                                 "versions 2 to 27)");
   r = rts("replay info " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_NE(r.out.find("version 27 is not supported"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("version 28 is not supported"), std::string::npos) << r.out;
   EXPECT_EQ(rts("replay verify " + (dir_ / "none.rpl").string()).status, 2);
 }
 
@@ -645,7 +650,7 @@ TEST_F(Replays, ABattleRecordsAndVerifies) {
 
   const RtsResult info = rts("replay info " + file.string());
   EXPECT_EQ(info.status, 0) << info.out;
-  EXPECT_NE(info.out.find("format version: 26\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("format version: 27\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("orders: 4 (2 attack_move, 1 attack, 1 reinforce)\n"), std::string::npos)
       << info.out;
   const RtsResult verify = rts("replay verify " + file.string());

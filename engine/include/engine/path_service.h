@@ -179,6 +179,11 @@ struct PathServiceSettings {
   // always turned the shorter way round, even into a wall or a river's bank, which cancelled the
   // turn (docs/cooperative.md, "Turning away from walls").
   bool turnAwayFromWalls = true;
+  // Not a scenario key: false plays back replays before format 27, when a unit kept out of a
+  // passage but standing inside it, with the holder inside too and coming at it, kept the window
+  // it had (ending at its goal, say) and waited to be pushed, and the two could press together
+  // in a corridor until the run ended (docs/cooperative.md, "Backing out ahead of the holder").
+  bool keptOutBacksOut = true;
   pathing::LaneRules laneRules() const {
     return {lanesThroughJunctions, laneApproaches, widerLaneApproaches, wideLaneDetours};
   }

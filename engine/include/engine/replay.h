@@ -78,9 +78,11 @@ namespace warpath::engine {
 // waypoint's centre). 26: the same records and hashes; a vehicle a heavier one drives into steps
 // off its course, and a unit turning about turns away from a wall when the shorter way is into
 // it (older files play back with only the lightest kind stepping aside, turning the shorter
-// way).
+// way). 27: the same records and hashes; a unit kept out of a passage but standing inside it with
+// the holder of its turn, who comes the other way, plans windows that back it out ahead of the
+// holder (older files play back with it keeping its window and waiting to be pushed).
 // Version-1 files (move orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 26;
+inline constexpr std::uint32_t kReplayVersion = 27;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -154,6 +156,10 @@ inline constexpr std::uint32_t kFirstTurnsWithinWaypointsReplayVersion = 25;
 // course and units always turned the shorter way: they play back so
 // (PathServiceSettings::lighterVehiclesStepAside and turnAwayFromWalls off).
 inline constexpr std::uint32_t kFirstLighterVehiclesStepAsideReplayVersion = 26;
+// Formats before this one were recorded when a unit kept out of a passage but caught inside it
+// with the holder kept its window and waited to be pushed: they play back so
+// (PathServiceSettings::keptOutBacksOut off).
+inline constexpr std::uint32_t kFirstKeptOutBacksOutReplayVersion = 27;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

@@ -246,6 +246,16 @@ class Traffic {
   // through: it cannot wait inside, and the holder cannot pass it
   // (PathServiceSettings::insideGoesFirst).
   void letOutFromInside(Refs& w);
+  // The unit's anchor lies in passage `p`.
+  bool insidePassage(const Refs& w, const Unit& unit, std::int32_t p);
+  // The unit, a vehicle kept out of passage `p`, stands inside it with the holder of its turn,
+  // who comes the other way: it backs out ahead of the holder
+  // (PathServiceSettings::keptOutBacksOut).
+  bool backsOut(const Refs& w, const Unit& unit, std::int32_t p);
+  // Passage `p`'s keep-out levels for a unit that backs out ahead of its holder: inside the
+  // passage the levels rise toward the holder, so each move lowers them only away from it.
+  void appendBackingOutLevels(const Refs& w, std::int32_t p,
+                              std::vector<std::pair<std::uint32_t, std::uint8_t>>& closed);
   // The gate of passage `p` lets the unit through now: it is free, or held by units going the
   // unit's way and not turning.
   bool admits(std::int32_t p, const Unit& unit) const;
@@ -329,6 +339,8 @@ class Traffic {
   std::vector<Gate> gates_;                          // per passage
   std::vector<std::vector<std::uint32_t>> streams_;  // per passage: cells of the stream out
   std::vector<std::uint8_t> keepOut_;  // per cell: a request's keepOut, zero between searches
+  std::vector<std::int32_t> backOutDistance_;  // per cell: -1 but while ranking a passage
+  std::vector<std::uint32_t> backOutOrder_;    // the cells ranked, in the order reached
   std::vector<std::uint32_t> candidates_;
   // Per unit index, this tick: unit vector toward its goal, or the way it crosses the passage
   // ahead.

@@ -338,6 +338,11 @@ bool Traffic::needsWindow(const Refs& w, const Unit& unit) {
       if (now >= end) return true;
       break;
   }
+  // One kept out of a passage but caught inside it with the holder backs out ahead of the holder:
+  // a window that ended (at its goal, say) is planned again.
+  if (now >= end && keptOut(plan) && w.settings.pathing.keptOutBacksOut &&
+      backsOut(w, unit, plan.gate))
+    return true;
   // One kept out of a passage waits where it is pushed (steering.cpp), on its schedule or not.
   return plan.timed && !keptOut(plan) && !onSchedule(w, unit);
 }
@@ -383,8 +388,12 @@ void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent, std::uint64_
   if (keptOut) {
     for (const std::uint32_t cell : streams_[static_cast<std::size_t>(gate)])
       closed.emplace_back(cell, 1);
-    const auto& passage = passages_[static_cast<std::size_t>(gate)].keepOut;
-    closed.insert(closed.end(), passage.begin(), passage.end());
+    if (w.settings.pathing.keptOutBacksOut && backsOut(w, unit, gate)) {
+      appendBackingOutLevels(w, gate, closed);
+    } else {
+      const auto& passage = passages_[static_cast<std::size_t>(gate)].keepOut;
+      closed.insert(closed.end(), passage.begin(), passage.end());
+    }
     request.keepOut = &keepOut_;
   }
   DistanceField& field = fieldFor(w, unit);
@@ -522,6 +531,7 @@ void Traffic::findPassages(const Refs& w) {
   passageOf_.assign(cells, -1);
   passages_.clear();
   keepOut_.assign(cells, 0);
+  backOutDistance_.assign(cells, -1);
   // Connected (8 ways) sets of tracked cells, by a flood from each unlabelled one in index order;
   // then each one's mouth, by rings of Chebyshev distance around it.
   std::vector<std::uint32_t> frontier;
@@ -704,13 +714,8 @@ void Traffic::addStream(const Refs& w, const Unit& unit, std::vector<std::uint32
 
 void Traffic::letOutFromInside(Refs& w) {
   std::vector<Unit>& all = w.state.units;
-  const GridMap& map = w.map();
   const Tick now = w.state.tick;
-  const auto inside = [&](const Unit& u, std::int32_t p) {
-    const units::UnitType& type = w.typeOf(u);
-    return passageAt(map, passingRoom(w, type.agent()),
-                     units::centreToAnchor(u.position, type.size)) == p;
-  };
+  const auto inside = [&](const Unit& u, std::int32_t p) { return insidePassage(w, u, p); };
   for (Unit& unit : all) {
     if (!following(unit) || !unit.plan || unit.plan->admitted || unit.plan->gate < 0) continue;
     const std::int32_t p = unit.plan->gate;
@@ -731,6 +736,70 @@ void Traffic::letOutFromInside(Refs& w) {
     stream.clear();
     addStream(w, unit, stream);
   }
+}
+
+bool Traffic::insidePassage(const Refs& w, const Unit& unit, std::int32_t p) {
+  const units::UnitType& type = w.typeOf(unit);
+  return passageAt(w.map(), passingRoom(w, type.agent()),
+                   units::centreToAnchor(unit.position, type.size)) == p;
+}
+
+bool Traffic::backsOut(const Refs& w, const Unit& unit, std::int32_t p) {
+  // Vehicles only: walkers in a one-wide corridor with a passing bay halfway backed out of it
+  // all the way instead of pulling over (bay_3v3: 27 of seeds 1-200 failing against none).
+  if (w.typeOf(unit).size < 2 || p < 0 || static_cast<std::size_t>(p) >= gates_.size())
+    return false;
+  const std::uint32_t holder = gates_[static_cast<std::size_t>(p)].holder;
+  if (holder == kNone || holder == unit.id.index) return false;
+  const Unit& other = w.state.units[holder];
+  return !sameWay(headings_[unit.id.index], headings_[holder]) && insidePassage(w, unit, p) &&
+         insidePassage(w, other, p);
+}
+
+void Traffic::appendBackingOutLevels(const Refs& w, std::int32_t p,
+                                     std::vector<std::pair<std::uint32_t, std::uint8_t>>& closed) {
+  const GridMap& map = w.map();
+  const auto& levels = passages_[static_cast<std::size_t>(p)].keepOut;
+  // The passage's own cells are those at the top level (its mouth's rings lie below).
+  std::vector<std::uint32_t>& order = backOutOrder_;
+  order.clear();
+  const Unit& holder = w.state.units[gates_[static_cast<std::size_t>(p)].holder];
+  const int size = w.typeOf(holder).size;
+  const Cell anchor = units::centreToAnchor(holder.position, size);
+  for (const auto& [cell, level] : levels) {
+    if (level != kMouth + 1) continue;
+    const Cell at = cellAt(map, cell);
+    if (at.x >= anchor.x && at.x < anchor.x + size && at.y >= anchor.y && at.y < anchor.y + size) {
+      backOutDistance_[cell] = 0;
+      order.push_back(cell);
+    }
+  }
+  // Moves from the holder's footprint through the passage's cells, breadth first.
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const Cell at = cellAt(map, order[i]);
+    for (const Direction& d : kDirections) {
+      const Cell next{at.x + d.dx, at.y + d.dy};
+      if (!map.contains(next)) continue;
+      const std::uint32_t index = map.indexOf(next);
+      if (passageOf_[index] != p || backOutDistance_[index] >= 0) continue;
+      backOutDistance_[index] = backOutDistance_[order[i]] + 1;
+      order.push_back(index);
+    }
+  }
+  int farthest = 0;
+  for (const std::uint32_t cell : order)
+    farthest = std::max(farthest, backOutDistance_[cell]);
+  for (const auto& [cell, level] : levels) {
+    if (level != kMouth + 1 || backOutDistance_[cell] < 0) {
+      closed.emplace_back(cell, level);
+      continue;
+    }
+    // Highest next to the holder, kMouth + 1 farthest from it; capped where a level must fit.
+    const int rank = std::min(farthest - backOutDistance_[cell], 255 - (kMouth + 1));
+    closed.emplace_back(cell, static_cast<std::uint8_t>(kMouth + 1 + rank));
+  }
+  for (const std::uint32_t cell : order)
+    backOutDistance_[cell] = -1;
 }
 
 bool Traffic::admits(std::int32_t p, const Unit& unit) const {
