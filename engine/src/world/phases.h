@@ -248,9 +248,9 @@ class Traffic {
   void letOutFromInside(Refs& w);
   // The unit's anchor lies in passage `p`.
   bool insidePassage(const Refs& w, const Unit& unit, std::int32_t p);
-  // The unit, a vehicle kept out of passage `p`, stands inside it with the holder of its turn,
-  // who comes the other way: it backs out ahead of the holder
-  // (PathServiceSettings::keptOutBacksOut).
+  // With PathServiceSettings::keptOutBacksOut: the unit, a vehicle kept out of passage `p`,
+  // stands inside it with the holder of its turn, who comes the other way, and backs out ahead
+  // of the holder.
   bool backsOut(const Refs& w, const Unit& unit, std::int32_t p);
   // Passage `p`'s keep-out levels for a unit that backs out ahead of its holder: inside the
   // passage the levels rise toward the holder, so each move lowers them only away from it.

@@ -340,9 +340,7 @@ bool Traffic::needsWindow(const Refs& w, const Unit& unit) {
   }
   // One kept out of a passage but caught inside it with the holder backs out ahead of the holder:
   // a window that ended (at its goal, say) is planned again.
-  if (now >= end && keptOut(plan) && w.settings.pathing.keptOutBacksOut &&
-      backsOut(w, unit, plan.gate))
-    return true;
+  if (now >= end && keptOut(plan) && backsOut(w, unit, plan.gate)) return true;
   // One kept out of a passage waits where it is pushed (steering.cpp), on its schedule or not.
   return plan.timed && !keptOut(plan) && !onSchedule(w, unit);
 }
@@ -388,7 +386,7 @@ void Traffic::planWindow(Refs& w, Unit& unit, std::uint64_t& spent, std::uint64_
   if (keptOut) {
     for (const std::uint32_t cell : streams_[static_cast<std::size_t>(gate)])
       closed.emplace_back(cell, 1);
-    if (w.settings.pathing.keptOutBacksOut && backsOut(w, unit, gate)) {
+    if (backsOut(w, unit, gate)) {
       appendBackingOutLevels(w, gate, closed);
     } else {
       const auto& passage = passages_[static_cast<std::size_t>(gate)].keepOut;
@@ -715,15 +713,15 @@ void Traffic::addStream(const Refs& w, const Unit& unit, std::vector<std::uint32
 void Traffic::letOutFromInside(Refs& w) {
   std::vector<Unit>& all = w.state.units;
   const Tick now = w.state.tick;
-  const auto inside = [&](const Unit& u, std::int32_t p) { return insidePassage(w, u, p); };
   for (Unit& unit : all) {
     if (!following(unit) || !unit.plan || unit.plan->admitted || unit.plan->gate < 0) continue;
     const std::int32_t p = unit.plan->gate;
     if (static_cast<std::size_t>(p) >= gates_.size() || aheadOf(w, unit) != p) continue;
     Gate& gate = gates_[static_cast<std::size_t>(p)];
-    if (gate.holder == kNone || gate.inFlight != 1 || !inside(unit, p)) continue;
+    if (gate.holder == kNone || gate.inFlight != 1 || !insidePassage(w, unit, p)) continue;
     Unit& holder = all[gate.holder];
-    if (sameWay(headings_[unit.id.index], headings_[holder.id.index]) || inside(holder, p))
+    if (sameWay(headings_[unit.id.index], headings_[holder.id.index]) ||
+        insidePassage(w, holder, p))
       continue;
     // Each plans its next window under its new turn: the holder around the passage, its mouth
     // and the stream coming out, the unit out of it.
@@ -747,7 +745,8 @@ bool Traffic::insidePassage(const Refs& w, const Unit& unit, std::int32_t p) {
 bool Traffic::backsOut(const Refs& w, const Unit& unit, std::int32_t p) {
   // Vehicles only: walkers in a one-wide corridor with a passing bay halfway backed out of it
   // all the way instead of pulling over (bay_3v3: 27 of seeds 1-200 failing against none).
-  if (w.typeOf(unit).size < 2 || p < 0 || static_cast<std::size_t>(p) >= gates_.size())
+  if (!w.settings.pathing.keptOutBacksOut || w.typeOf(unit).size < 2 || p < 0 ||
+      static_cast<std::size_t>(p) >= gates_.size())
     return false;
   const std::uint32_t holder = gates_[static_cast<std::size_t>(p)].holder;
   if (holder == kNone || holder == unit.id.index) return false;
@@ -786,9 +785,8 @@ void Traffic::appendBackingOutLevels(const Refs& w, std::int32_t p,
       order.push_back(index);
     }
   }
-  int farthest = 0;
-  for (const std::uint32_t cell : order)
-    farthest = std::max(farthest, backOutDistance_[cell]);
+  // Breadth first, the last cell reached is the farthest.
+  const int farthest = order.empty() ? 0 : backOutDistance_[order.back()];
   for (const auto& [cell, level] : levels) {
     if (level != kMouth + 1 || backOutDistance_[cell] < 0) {
       closed.emplace_back(cell, level);
