@@ -391,7 +391,9 @@ void rulesOfReplayFormat(PathServiceSettings& rules, std::uint32_t version) {
   // waypoint's centre before they passed within its radius, and only the lightest kind
   // stepping off a vehicle's course, turning the shorter way, before lighter vehicles stepped
   // aside too and units turned away from walls, and units kept out of a passage but caught
-  // inside it with the holder waiting to be pushed before they backed out ahead of it.
+  // inside it with the holder waiting to be pushed before they backed out ahead of it, and
+  // units pushed back along their paths going on from the waypoint they had reached before they
+  // went on from where they stood.
   if (version < kCooperativeByDefaultReplayVersion) rules.cooperative = false;
   if (version < kFirstCongestionReplayVersion) rules.congestion = false;
   if (version < kFirstSlicedWindowsReplayVersion) rules.slicedWindows = false;
@@ -427,6 +429,7 @@ void rulesOfReplayFormat(PathServiceSettings& rules, std::uint32_t version) {
     rules.turnAwayFromWalls = false;
   }
   if (version < kFirstKeptOutBacksOutReplayVersion) rules.keptOutBacksOut = false;
+  if (version < kFirstRewindPushedBackReplayVersion) rules.rewindPushedBack = false;
 }
 
 Result<Scenario> replayScenario(const Replay& replay) {

@@ -236,6 +236,7 @@ TEST(Cooperative, OneWayPassagesLetTheWholeCrowdThrough) {
   for (const char* fixture : {"one_way_door.yaml", "one_way_gap.yaml"}) {
     SCOPED_TRACE(fixture);
     Scenario s = bundled(std::string("tests/fixtures/") + fixture);
+    s.settings.pathing.rewindPushedBack = false;     // measured before format 28
     ASSERT_TRUE(s.settings.pathing.oneWayPassages);  // the default
     // Counted as when the rule came (format 16): walkers pressed in at the door's sides were
     // flagged.
@@ -405,6 +406,7 @@ TEST(Cooperative, InfantryGiveWayToVehiclesAtTheBridgeAndTheCrossroads) {
 // (format 17): with lanes held beyond it (format 18) that tank is not caught either way.
 TEST(Cooperative, AStoppedTankClaimsItsLaneThroughAnOncomingStream) {
   Scenario s = chokepoint("bridge_two_way.yaml");
+  s.settings.pathing.rewindPushedBack = false;   // measured before format 28
   s.settings.pathing.turnAwayFromWalls = false;  // measured before format 26
   s.settings.pathing.laneApproaches = false;
   s.settings.pathing.headOnKeepRight = false;       // which spares that tank too (format 21)
@@ -452,6 +454,7 @@ TEST(Cooperative, VehiclesMeetingHeadOnInTheOpenVeerRight) {
 // jeeps was held among them past its bound at seeds 73 and 79 of bridge16_mixed.
 TEST(Cooperative, JeepsKeepRightAcrossABridgeSixteenWide) {
   Scenario s = chokepoint("variations/bridge16_mixed.yaml");
+  s.settings.pathing.rewindPushedBack = false;          // measured before format 28
   s.settings.pathing.headOnByIntent = false;            // which spares those jeeps too (format 22)
   s.settings.pathing.turnsWithinWaypoints = false;      // measured before format 25
   s.settings.pathing.lighterVehiclesStepAside = false;  // and before format 26
@@ -478,6 +481,7 @@ TEST(Cooperative, VehiclesVeerFromLighterOnesSteeringTheirWay) {
 // two standing nose to nose for the last 50 s (one tank of each side never arrived).
 TEST(Cooperative, AUnitCaughtInsideAPassageGoesFirst) {
   Scenario s = chokepoint("variations/corridor5_tanks_3v3.yaml");
+  s.settings.pathing.rewindPushedBack = false;      // measured before format 28
   s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
   s.settings.pathing.keptOutBacksOut = false;       // which spares that tank too (format 27)
   expectTheRuleMendsTheSeeds(s, &PathServiceSettings::insideGoesFirst, {4});
@@ -490,6 +494,7 @@ TEST(Cooperative, AUnitCaughtInsideAPassageGoesFirst) {
 // to its own.
 TEST(Cooperative, AParkedTeammateInTheWayMovesOn) {
   Scenario s = bundled("scenarios/demo.yaml");
+  s.settings.pathing.rewindPushedBack = false;      // measured before format 28
   s.settings.pathing.turnAwayFromWalls = false;     // measured before format 26
   s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
   expectTheRuleMendsTheSeeds(s, &PathServiceSettings::parkedMoveOn, {22});
@@ -520,8 +525,22 @@ TEST(Cooperative, VehiclesTurnAboutAwayFromWalls) {
 // corridor by red's last; it kept its window, which had ended at its goal, and waited to be
 // pushed, and the two pressed together in the corridor at 0.05 cells/s until the run ended.
 TEST(Cooperative, AUnitCaughtInsideBacksOutAheadOfTheHolder) {
+  Scenario s = chokepoint("variations/corridor5_tanks_3v3.yaml");
+  s.settings.pathing.rewindPushedBack = false;  // measured before format 28
+  expectTheRuleMendsTheSeeds(s, &PathServiceSettings::keptOutBacksOut, {15});
+}
+
+// A unit pushed back along its path goes on from where it stands (replay format 28): what lies
+// ahead on its path is read from there, and pushed back farther than its own length it heads for
+// the path from there. Three tanks a side through a corridor 5 wide at seed 165: red's column,
+// let through, pushes blue's last tank from the east mouth back through the whole corridor.
+// Read from the waypoint it still steered to, at the east mouth, its path had no passage
+// ahead, so it drove back into the corridor without asking for its turn, head on into red's
+// last tank, and neither arrived in time. At seed 237 the same push left it circling in the
+// west box for 20 s, ungated, until it was flagged stuck.
+TEST(Cooperative, APushedBackUnitGoesOnFromWhereItStands) {
   expectTheRuleMendsTheSeeds(chokepoint("variations/corridor5_tanks_3v3.yaml"),
-                             &PathServiceSettings::keptOutBacksOut, {15});
+                             &PathServiceSettings::rewindPushedBack, {165, 237});
 }
 
 // At the crossroads the paths of opposite arms cross over in the 8×8 crossing, toward goal

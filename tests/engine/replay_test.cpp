@@ -410,6 +410,7 @@ TEST_F(Replays, EachRuleIsSetBackForTheFormatsBeforeIt) {
       {&Settings::lighterVehiclesStepAside, 26},
       {&Settings::turnAwayFromWalls, 26},
       {&Settings::keptOutBacksOut, 27},
+      {&Settings::rewindPushedBack, 28},
   };
   for (std::uint32_t format = kOldestReplayVersion; format <= kReplayVersion; ++format) {
     Settings set;
@@ -465,7 +466,9 @@ struct OlderFormat {
 // - 25, only the lightest stepping aside: bridge16_mixed at seed 18, a red jeep meeting blue's
 //   tanks leaving its goal area;
 // - 26, waiting to be pushed inside a passage: three tanks a side through a 5-wide corridor at
-//   seed 15, where blue's first, parked at the east mouth, is pushed back in by red's last.
+//   seed 15, where blue's first, parked at the east mouth, is pushed back in by red's last;
+// - 27, places on paths moving forward only: the same corridor at seed 165, where blue's last
+//   tank is pushed back through the corridor by red's column.
 void PrintTo(const OlderFormat& f, std::ostream* out) {
   *out << "format " << f.format << ", " << f.scenario;
 }
@@ -512,6 +515,8 @@ INSTANTIATE_TEST_SUITE_P(
         OlderFormat{24, "scenarios/chokepoints/bridge_two_way.yaml", nullptr, 0, 1500},
         OlderFormat{25, "scenarios/chokepoints/variations/bridge16_mixed.yaml", nullptr, 18, 600},
         OlderFormat{26, "scenarios/chokepoints/variations/corridor5_tanks_3v3.yaml", nullptr, 15,
+                    2400},
+        OlderFormat{27, "scenarios/chokepoints/variations/corridor5_tanks_3v3.yaml", nullptr, 165,
                     2400}),
     [](const ::testing::TestParamInfo<OlderFormat>& param) {
       // Format25_bridge16_mixed: the format and the scenario file's stem.
@@ -527,21 +532,21 @@ TEST_F(Replays, AnotherVersionIsRefused) {
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
                                  ": replay format version 1 is not supported (this build reads "
-                                 "versions 2 to 27); it was written before battles were recorded: "
+                                 "versions 2 to 28); it was written before battles were recorded: "
                                  "record it again with rts run --replay");
   RtsResult r = rts("replay verify " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(file.string() + ": replay format version 1 is not supported"),
             std::string::npos)
       << r.out;
-  bytes[8] = 28;
+  bytes[8] = 29;
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
-                                 ": replay format version 28 is not supported (this build reads "
-                                 "versions 2 to 27)");
+                                 ": replay format version 29 is not supported (this build reads "
+                                 "versions 2 to 28)");
   r = rts("replay info " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_NE(r.out.find("version 28 is not supported"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("version 29 is not supported"), std::string::npos) << r.out;
   EXPECT_EQ(rts("replay verify " + (dir_ / "none.rpl").string()).status, 2);
 }
 
@@ -650,7 +655,7 @@ TEST_F(Replays, ABattleRecordsAndVerifies) {
 
   const RtsResult info = rts("replay info " + file.string());
   EXPECT_EQ(info.status, 0) << info.out;
-  EXPECT_NE(info.out.find("format version: 27\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("format version: 28\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("orders: 4 (2 attack_move, 1 attack, 1 reinforce)\n"), std::string::npos)
       << info.out;
   const RtsResult verify = rts("replay verify " + file.string());

@@ -93,6 +93,19 @@ TEST(Steering, SkipsWaypointsTheUnitWasPushedPast) {
   EXPECT_GT(r.desiredVelocity.x, 0.0);
 }
 
+TEST(Steering, ARewoundWaypointIsTheNextFromWhereAPushedBackUnitStands) {
+  // A corridor along x, then a turn south: pushed back from waypoint 5 to x = 1.7, the unit has
+  // passed (1, 0) and would head for (2, 0).
+  const std::vector<Cell> path{{0, 0}, {1, 0}, {2, 0}, {3, 0}, {4, 0}, {5, 0}, {5, 1}};
+  EXPECT_EQ(rewoundWaypoint(path, 5, 1, {1.7, 0.5}, 0.5), 2u);
+  // Within the radius of the waypoint before, or beside the path rather than behind: no change.
+  EXPECT_EQ(rewoundWaypoint(path, 5, 1, {4.2, 0.5}, 0.5), 5u);
+  EXPECT_EQ(rewoundWaypoint(path, 6, 1, {5.5, 0.2}, 0.5), 6u);
+  EXPECT_EQ(rewoundWaypoint(path, 3, 1, {2.6, 2.5}, 0.5), 3u);
+  // Never before the path's start.
+  EXPECT_EQ(rewoundWaypoint(path, 5, 1, {-3.0, 0.5}, 0.5), 0u);
+}
+
 TEST(Steering, LargeUnitsSteerTheirCentreToTheFootprintCentre) {
   const std::vector<Cell> path{{10, 10}, {10, 11}};
   const SteeringResult r = steer(path, 1, 3, anchorToCentre({10, 10}, 3), 1.0);

@@ -35,6 +35,18 @@ SteeringResult steer(std::span<const pathing::Cell> path, std::size_t next, int 
   return result;
 }
 
+std::size_t rewoundWaypoint(std::span<const pathing::Cell> path, std::size_t next, int size,
+                            Vec2 centre, double radius) {
+  while (next > 0) {
+    const Vec2 before = anchorToCentre(path[next - 1], size);
+    const Vec2 from = centre - before;
+    if (from.length() <= radius || from.dot(anchorToCentre(path[next], size) - before) >= 0.0)
+      break;
+    --next;
+  }
+  return next;
+}
+
 double turnLimitedSpeed(Vec2 velocity, Vec2 offset, double turnRate, double within) {
   const double speed = velocity.length();
   const double distance = offset.length();

@@ -184,6 +184,12 @@ struct PathServiceSettings {
   // it had (ending at its goal, say) and waited to be pushed, and the two could press together
   // in a corridor until the run ended (docs/cooperative.md, "Backing out ahead of the holder").
   bool keptOutBacksOut = true;
+  // Not a scenario key: false plays back replays before format 28, when a unit pushed back along
+  // its path went on as if it stood at the waypoint it had reached: it read what lies ahead (the
+  // passage it must ask to cross, the stream it leaves) from there and steered back to it, so a
+  // tank shoved back through a corridor took the corridor as behind it and drove into it again
+  // without asking for its turn (docs/cooperative.md, "Pushed back along the path").
+  bool rewindPushedBack = true;
   pathing::LaneRules laneRules() const {
     return {lanesThroughJunctions, laneApproaches, widerLaneApproaches, wideLaneDetours};
   }

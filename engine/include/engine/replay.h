@@ -80,9 +80,12 @@ namespace warpath::engine {
 // it (older files play back with only the lightest kind stepping aside, turning the shorter
 // way). 27: the same records and hashes; a unit kept out of a passage but standing inside it with
 // the holder of its turn, who comes the other way, plans windows that back it out ahead of the
-// holder (older files play back with it keeping its window and waiting to be pushed).
+// holder (older files play back with it keeping its window and waiting to be pushed). 28: the
+// same records and hashes; a unit pushed back along its path reads what lies ahead from where it
+// stands and, pushed back farther than its length, heads for the path from there (older files
+// play back with it going on from the waypoint it had reached).
 // Version-1 files (move orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 27;
+inline constexpr std::uint32_t kReplayVersion = 28;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -160,6 +163,10 @@ inline constexpr std::uint32_t kFirstLighterVehiclesStepAsideReplayVersion = 26;
 // with the holder kept its window and waited to be pushed: they play back so
 // (PathServiceSettings::keptOutBacksOut off).
 inline constexpr std::uint32_t kFirstKeptOutBacksOutReplayVersion = 27;
+// Formats before this one were recorded when a unit pushed back along its path went on from the
+// waypoint it had reached, however far it was pushed: they play back so
+// (PathServiceSettings::rewindPushedBack off).
+inline constexpr std::uint32_t kFirstRewindPushedBackReplayVersion = 28;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

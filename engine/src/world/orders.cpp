@@ -160,6 +160,15 @@ Cell nearestStandable(const Refs& w, const Unit& unit) {
   return best;
 }
 
+std::size_t placeOnPath(const Refs& w, const Unit& unit) {
+  std::size_t next = unit.next;
+  if (w.settings.pathing.cooperative && w.settings.pathing.rewindPushedBack) {
+    next = units::rewoundWaypoint(unit.path->cells, next, w.typeOf(unit).size, unit.position,
+                                  w.settings.steering.waypointRadius);
+  }
+  return next > 0 ? next - 1 : 0;
+}
+
 void leaveOrder(Refs& w, Unit& unit) {
   const int size = w.typeOf(unit).size;
   if (unit.state == UnitState::Parked)

@@ -60,6 +60,11 @@ void leaveOrder(Refs& w, Unit& unit);
 void pursue(Refs& w, Unit& unit, bool force);
 // The anchor nearest the unit's body where its footprint fits.
 pathing::Cell nearestStandable(const Refs& w, const Unit& unit);
+// The index of the path cell the unit last passed, where what lies ahead on its path is read
+// from: the waypoint before the one it steers to, or with PathServiceSettings::rewindPushedBack
+// the last one it stands beyond, if it was pushed back behind that one.
+// [Limit: unit.path]
+std::size_t placeOnPath(const Refs& w, const Unit& unit);
 void requestPath(Refs& w, Unit& unit);
 // Drops the unit's path and window (and what they reserve) and asks for a new path, the
 // progress window restarted: a repath from scratch.

@@ -462,6 +462,12 @@ void steerAll(Refs& w, SteeringScratch& scratch) {
       tolerance = w.settings.steering.arrivalRadius;
     } else if (unit.state == UnitState::Moving && unit.path) {
       const double speed = speedHere(w, unit, type);
+      // Pushed back farther than its own length, it heads for its path again from there, not for
+      // the waypoint it had reached (a shorter push, as at a corner taken wide, is steered out).
+      if (cooperative && w.settings.pathing.rewindPushedBack) {
+        unit.next = units::rewoundWaypoint(unit.path->cells, unit.next, type.size, unit.position,
+                                           w.settings.steering.waypointRadius + type.size);
+      }
       const units::SteeringResult r = units::steer(unit.path->cells, unit.next, type.size,
                                                    unit.position, speed, w.settings.steering);
       // `next` also tells the stuck rule how far along its path the unit is.

@@ -249,7 +249,7 @@ bool Traffic::chokepointAhead(const Refs& w, const Unit& unit) {
   // The path cells found untracked are remembered: a unit scans about a cell a tick.
   Lookahead& known = lookaheadOf(w, unit);
   const std::vector<Cell>& cells = unit.path->cells;
-  const std::size_t from = unit.next > 0 ? unit.next - 1 : 0;
+  const std::size_t from = placeOnPath(w, unit);
   const std::size_t reach = static_cast<std::size_t>(w.settings.pathing.window + size + 2);
   const std::size_t to = std::min(cells.size(), from + reach);
   for (std::size_t i = std::max(from, known.clearUntil); i < to; ++i) {
@@ -601,7 +601,7 @@ std::int32_t Traffic::passageAhead(const Refs& w, const Unit& unit) {
   // The scan along the path changes with its first waypoint only (the passages are found again
   // only when the tracked cells change, which begins the Lookahead anew).
   Lookahead& known = lookaheadOf(w, unit);
-  const std::size_t from = unit.next > 0 ? unit.next - 1 : 0;
+  const std::size_t from = placeOnPath(w, unit);
   if (known.passageFrom == from) return known.passage;
   const std::vector<Cell>& cells = unit.path->cells;
   const std::size_t reach = static_cast<std::size_t>(w.settings.pathing.window + type.size + 2);
@@ -618,7 +618,7 @@ units::Vec2 Traffic::passageHeading(const Refs& w, const Unit& unit, std::int32_
   // of path cells.
   const std::vector<std::uint8_t>& passing = passingRoom(w, w.typeOf(unit).agent());
   const std::vector<Cell>& cells = unit.path->cells;
-  const std::size_t from = unit.next > 0 ? unit.next - 1 : 0;
+  const std::size_t from = placeOnPath(w, unit);
   const std::size_t reach = static_cast<std::size_t>(2 * w.settings.pathing.window);
   std::size_t first = cells.size();
   std::size_t last = cells.size();
@@ -688,7 +688,7 @@ void Traffic::addStream(const Refs& w, const Unit& unit, std::vector<std::uint32
   const units::UnitType& type = w.typeOf(unit);
   const GridMap& map = w.map();
   const std::vector<Cell>& cells = unit.path->cells;
-  const std::size_t from = unit.next > 0 ? unit.next - 1 : 0;
+  const std::size_t from = placeOnPath(w, unit);
   const std::size_t reach =
       static_cast<std::size_t>(w.settings.pathing.window + type.size + 2 + kStream);
   const std::vector<std::uint8_t>& passing = passingRoom(w, type.agent());

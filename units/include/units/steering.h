@@ -54,6 +54,17 @@ struct SteeringResult {
 SteeringResult steer(std::span<const pathing::Cell> path, std::size_t next, int size, Vec2 centre,
                      double maxSpeed, const SteeringParams& params = {});
 
+// For a unit pushed back along its path, the waypoint it should be heading for were it steering
+// from where it stands: `next` moved back while the unit stands behind the waypoint before it (on
+// the far side from `next`, and beyond `radius` of it [Unit: cells]). steer() only ever skips
+// ahead (a vehicle turned about for a waypoint it was pushed a cell past would orbit it), so
+// after a long push its `next` lies far ahead of it; with `radius` above the unit's length this
+// is where it heads for again, and what is read along the path from the unit's place (the
+// passage ahead, the stream it leaves) is read from here.
+// [Limit: next < path.size()]
+std::size_t rewoundWaypoint(std::span<const pathing::Cell> path, std::size_t next, int size,
+                            Vec2 centre, double radius);
+
 // [Unit: cells/s] The fastest a unit that turns at most `turnRate` [rad/s] can go, heading along
 // `velocity`, and still pass through a point `offset` away: the circle tangent to the heading
 // through the point has radius |offset| / (2 sin θ), θ the angle between heading and offset, and
