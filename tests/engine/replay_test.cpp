@@ -411,6 +411,7 @@ TEST_F(Replays, EachRuleIsSetBackForTheFormatsBeforeIt) {
       {&Settings::turnAwayFromWalls, 26},
       {&Settings::keptOutBacksOut, 27},
       {&Settings::rewindPushedBack, 28},
+      {&Settings::routeFromPlaceOnPath, 29},
   };
   for (std::uint32_t format = kOldestReplayVersion; format <= kReplayVersion; ++format) {
     Settings set;
@@ -469,6 +470,9 @@ struct OlderFormat {
 //   seed 15, where blue's first, parked at the east mouth, is pushed back in by red's last;
 // - 27, places on paths moving forward only: the same corridor at seed 165, where blue's last
 //   tank is pushed back through the corridor by red's column.
+// Format 28 has no row: its rule (a terrain change checked against a unit's path from its place
+// on it) changes no bundled run (bridge_demolition at seeds 1-300 hashes the same either way);
+// WorldTerrainChange.AUnitPushedBackRepathsForAChangeBehindItsWaypoint shows what it changes.
 void PrintTo(const OlderFormat& f, std::ostream* out) {
   *out << "format " << f.format << ", " << f.scenario;
 }
@@ -532,21 +536,21 @@ TEST_F(Replays, AnotherVersionIsRefused) {
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
                                  ": replay format version 1 is not supported (this build reads "
-                                 "versions 2 to 28); it was written before battles were recorded: "
+                                 "versions 2 to 29); it was written before battles were recorded: "
                                  "record it again with rts run --replay");
   RtsResult r = rts("replay verify " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(file.string() + ": replay format version 1 is not supported"),
             std::string::npos)
       << r.out;
-  bytes[8] = 29;
+  bytes[8] = 30;
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
-                                 ": replay format version 29 is not supported (this build reads "
-                                 "versions 2 to 28)");
+                                 ": replay format version 30 is not supported (this build reads "
+                                 "versions 2 to 29)");
   r = rts("replay info " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_NE(r.out.find("version 29 is not supported"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("version 30 is not supported"), std::string::npos) << r.out;
   EXPECT_EQ(rts("replay verify " + (dir_ / "none.rpl").string()).status, 2);
 }
 
@@ -655,7 +659,7 @@ TEST_F(Replays, ABattleRecordsAndVerifies) {
 
   const RtsResult info = rts("replay info " + file.string());
   EXPECT_EQ(info.status, 0) << info.out;
-  EXPECT_NE(info.out.find("format version: 28\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("format version: 29\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("orders: 4 (2 attack_move, 1 attack, 1 reinforce)\n"), std::string::npos)
       << info.out;
   const RtsResult verify = rts("replay verify " + file.string());

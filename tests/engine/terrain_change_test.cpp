@@ -333,6 +333,36 @@ TEST(WorldTerrainChange, AMovingUnitWhosePathCrossesTheChangeRepaths) {
   EXPECT_GE(world.find(truck)->arrivalTick, 0);
 }
 
+// A unit pushed back along its path has cells behind its waypoint to walk again: a change there
+// makes it repath too (replay format 29). The push is put in by hand: the truck, 4 cells along
+// its way east, is set back to its start, and a wall rises across the cells in between.
+TEST(WorldTerrainChange, AUnitPushedBackRepathsForAChangeBehindItsWaypoint) {
+  for (const bool rule : {true, false}) {
+    WorldSettings settings;
+    settings.terrainChanges = true;
+    settings.combat.enabled = false;
+    settings.pathing.routeFromPlaceOnPath = rule;
+    World world(openGrid(30, 12), {kind("truck", 1)}, settings);
+    const UnitId truck = world.spawn(0, 0, 0, {2, 5});
+    world.orderMove({truck}, {26, 5, 2, 2});
+    while (world.find(truck)->position.x < 7.0 && world.tick() < 300)
+      world.step();
+    // (The world gives out its units read-only; the test writes the push into the unit's state
+    // as the physics step would, and the next step's terrain phase reads it before physics.)
+    Unit& u = const_cast<Unit&>(*world.find(truck));
+    ASSERT_EQ(u.state, UnitState::Moving);
+    ASSERT_TRUE(u.path);
+    ASSERT_GT(units::anchorToCentre(u.path->cells[u.next - 1], 1).x, 5.0);
+    u.position = {2.5, 5.5};
+    world.setTerrain({4, 0, 1, 10}, Terrain::Water);  // behind the waypoint it had passed
+    world.step();
+    EXPECT_EQ(std::count_if(world.events().begin(), world.events().end(),
+                            [](auto& e) { return e.kind == EventKind::Repath && e.detail == 3; }),
+              rule ? 1 : 0)
+        << (rule ? "with" : "without") << " the rule";
+  }
+}
+
 // A unit that found no way to its goal tries again when terrain opens one: a river cuts the map
 // in two, the unit's order fails, then a ford appears (water set to ground) and it crosses.
 TEST(WorldTerrainChange, AUnitWithNoPathTriesAgainWhenTerrainOpensAWay) {

@@ -190,6 +190,11 @@ struct PathServiceSettings {
   // tank shoved back through a corridor took the corridor as behind it and drove into it again
   // without asking for its turn (docs/cooperative.md, "Pushed back along the path").
   bool rewindPushedBack = true;
+  // Not a scenario key: false plays back replays before format 29, when a terrain change made a
+  // unit repath if it touched its path from the waypoint before the one it steers to, not from
+  // its place on the path (docs/terrain_changes.md): a unit pushed back behind that waypoint
+  // kept a path through a change on the cells it had yet to walk again.
+  bool routeFromPlaceOnPath = true;
   pathing::LaneRules laneRules() const {
     return {lanesThroughJunctions, laneApproaches, widerLaneApproaches, wideLaneDetours};
   }

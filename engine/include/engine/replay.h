@@ -85,7 +85,7 @@ namespace warpath::engine {
 // stands and, pushed back farther than its length, heads for the path from there (older files
 // play back with it going on from the waypoint it had reached).
 // Version-1 files (move orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 28;
+inline constexpr std::uint32_t kReplayVersion = 29;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -167,6 +167,10 @@ inline constexpr std::uint32_t kFirstKeptOutBacksOutReplayVersion = 27;
 // waypoint it had reached, however far it was pushed: they play back so
 // (PathServiceSettings::rewindPushedBack off).
 inline constexpr std::uint32_t kFirstRewindPushedBackReplayVersion = 28;
+// Formats before this one were recorded when a terrain change was checked against a unit's path
+// from the waypoint before the one it steered to: they play back so
+// (PathServiceSettings::routeFromPlaceOnPath off).
+inline constexpr std::uint32_t kFirstRouteFromPlaceOnPathReplayVersion = 29;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

@@ -19,11 +19,16 @@ bool footprintMeets(Cell anchor, int size, const CellRect& area) {
   return area.overlaps({anchor.x, anchor.y, size, size});
 }
 
-// What is left of the unit's path (from the waypoint it left), or its window, crosses `area`.
-bool routeCrosses(const Unit& unit, int size, const CellRect& area) {
+// What is left of the unit's path (from the waypoint it left: its place on the path, or with
+// PathServiceSettings::routeFromPlaceOnPath off the waypoint before the one it steers to), or
+// its window, crosses `area`.
+bool routeCrosses(const Refs& w, const Unit& unit, int size, const CellRect& area) {
   if (unit.path) {
     const std::vector<Cell>& cells = unit.path->cells;
-    for (std::size_t i = unit.next > 0 ? unit.next - 1 : 0; i < cells.size(); ++i) {
+    const std::size_t from = w.settings.pathing.routeFromPlaceOnPath ? placeOnPath(w, unit)
+                             : unit.next > 0                         ? unit.next - 1
+                                                                     : 0;
+    for (std::size_t i = from; i < cells.size(); ++i) {
       if (footprintMeets(cells[i], size, area)) return true;
     }
   }
@@ -155,8 +160,9 @@ void afterTerrainChange(Refs& w, const CellRect& area, bool push, bool mayOpen) 
       continue;
     const bool goalGone =
         footprintMeets(unit.goalCell, type.size, area) && !w.grid.canStand(agent, unit.goalCell);
-    if (unit.state == UnitState::Parked ? goalGone
-                                        : pushed || goalGone || routeCrosses(unit, type.size, area))
+    if (unit.state == UnitState::Parked
+            ? goalGone
+            : pushed || goalGone || routeCrosses(w, unit, type.size, area))
       repath(w, unit, goalGone);
   }
 }
