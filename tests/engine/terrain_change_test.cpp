@@ -334,7 +334,7 @@ TEST(WorldTerrainChange, AMovingUnitWhosePathCrossesTheChangeRepaths) {
 }
 
 // A unit pushed back along its path has cells behind its waypoint to walk again: a change there
-// makes it repath too (replay format 29). The push is put in by hand: the truck, 4 cells along
+// makes it repath too (replay format 29). The push is put in by hand: the truck, 4.5 cells along
 // its way east, is set back to its start, and a wall rises across the cells in between.
 TEST(WorldTerrainChange, AUnitPushedBackRepathsForAChangeBehindItsWaypoint) {
   for (const bool rule : {true, false}) {
@@ -352,6 +352,7 @@ TEST(WorldTerrainChange, AUnitPushedBackRepathsForAChangeBehindItsWaypoint) {
     Unit& u = const_cast<Unit&>(*world.find(truck));
     ASSERT_EQ(u.state, UnitState::Moving);
     ASSERT_TRUE(u.path);
+    ASSERT_GT(u.next, 1u);
     ASSERT_GT(units::anchorToCentre(u.path->cells[u.next - 1], 1).x, 5.0);
     u.position = {2.5, 5.5};
     world.setTerrain({4, 0, 1, 10}, Terrain::Water);  // behind the waypoint it had passed

@@ -83,7 +83,10 @@ namespace warpath::engine {
 // holder (older files play back with it keeping its window and waiting to be pushed). 28: the
 // same records and hashes; a unit pushed back along its path reads what lies ahead from where it
 // stands and, pushed back farther than its length, heads for the path from there (older files
-// play back with it going on from the waypoint it had reached).
+// play back with it going on from the waypoint it had reached). 29: the same records and hashes;
+// a terrain change is checked against a unit's path from its place on it, so a unit pushed back
+// along its path repaths for a change on the cells it must walk again (older files play back
+// checking from the waypoint before the one it steers to).
 // Version-1 files (move orders only) are refused with a message saying so.
 inline constexpr std::uint32_t kReplayVersion = 29;
 // Formats before this one were recorded before cooperative movement and play back without it.
