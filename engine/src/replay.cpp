@@ -393,7 +393,8 @@ void rulesOfReplayFormat(PathServiceSettings& rules, std::uint32_t version) {
   // aside too and units turned away from walls, and units kept out of a passage but caught
   // inside it with the holder waiting to be pushed before they backed out ahead of it, and
   // units pushed back along their paths going on from the waypoint they had reached before they
-  // went on from where they stood.
+  // went on from where they stood, and terrain changes checked against such a unit's path from
+  // that waypoint before they were checked from where it stood.
   if (version < kCooperativeByDefaultReplayVersion) rules.cooperative = false;
   if (version < kFirstCongestionReplayVersion) rules.congestion = false;
   if (version < kFirstSlicedWindowsReplayVersion) rules.slicedWindows = false;

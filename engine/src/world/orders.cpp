@@ -160,9 +160,9 @@ Cell nearestStandable(const Refs& w, const Unit& unit) {
   return best;
 }
 
-std::size_t placeOnPath(const Refs& w, const Unit& unit) {
+std::size_t placeOnPath(const Refs& w, const Unit& unit, bool rewind) {
   std::size_t next = unit.next;
-  if (w.settings.pathing.cooperative && w.settings.pathing.rewindPushedBack) {
+  if (rewind && w.settings.pathing.cooperative && w.settings.pathing.rewindPushedBack) {
     next = units::rewoundWaypoint(unit.path->cells, next, w.typeOf(unit).size, unit.position,
                                   w.settings.steering.waypointRadius);
   }

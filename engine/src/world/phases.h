@@ -62,9 +62,10 @@ void pursue(Refs& w, Unit& unit, bool force);
 pathing::Cell nearestStandable(const Refs& w, const Unit& unit);
 // The index of the path cell the unit last passed, where what lies ahead on its path is read
 // from: the waypoint before the one it steers to, or with PathServiceSettings::rewindPushedBack
-// the last one it stands beyond, if it was pushed back behind that one.
+// the last one it stands beyond, if it was pushed back behind that one. `rewind` false: the
+// waypoint before, whatever the rule (the terrain check of replays before format 29).
 // [Limit: unit.path]
-std::size_t placeOnPath(const Refs& w, const Unit& unit);
+std::size_t placeOnPath(const Refs& w, const Unit& unit, bool rewind = true);
 void requestPath(Refs& w, Unit& unit);
 // Drops the unit's path and window (and what they reserve) and asks for a new path, the
 // progress window restarted: a repath from scratch.

@@ -25,9 +25,7 @@ bool footprintMeets(Cell anchor, int size, const CellRect& area) {
 bool routeCrosses(const Refs& w, const Unit& unit, int size, const CellRect& area) {
   if (unit.path) {
     const std::vector<Cell>& cells = unit.path->cells;
-    const std::size_t from = w.settings.pathing.routeFromPlaceOnPath ? placeOnPath(w, unit)
-                             : unit.next > 0                         ? unit.next - 1
-                                                                     : 0;
+    const std::size_t from = placeOnPath(w, unit, w.settings.pathing.routeFromPlaceOnPath);
     for (std::size_t i = from; i < cells.size(); ++i) {
       if (footprintMeets(cells[i], size, area)) return true;
     }
