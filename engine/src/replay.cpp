@@ -432,6 +432,7 @@ void rulesOfReplayFormat(PathServiceSettings& rules, std::uint32_t version) {
   if (version < kFirstKeptOutBacksOutReplayVersion) rules.keptOutBacksOut = false;
   if (version < kFirstRewindPushedBackReplayVersion) rules.rewindPushedBack = false;
   if (version < kFirstRouteFromPlaceOnPathReplayVersion) rules.routeFromPlaceOnPath = false;
+  if (version < kFirstDetoursToGoalReplayVersion) rules.detoursToGoal = false;
 }
 
 Result<Scenario> replayScenario(const Replay& replay) {

@@ -441,6 +441,7 @@ TEST(Cooperative, LanesHeldBeyondTheBridgeKeepTheMouthsApart) {
 // arrived after its bound at seeds 6, 44, 46 and 47; with the rule all arrive in time.
 TEST(Cooperative, VehiclesMeetingHeadOnInTheOpenVeerRight) {
   Scenario s = chokepoint("variations/bridge16_tanks.yaml");
+  s.settings.pathing.detoursToGoal = false;         // measured before format 30
   s.settings.pathing.turnAwayFromWalls = false;     // measured before format 26
   s.settings.pathing.wideLaneDetours = false;       // which spares those tanks too (format 22)
   s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
@@ -494,6 +495,7 @@ TEST(Cooperative, AUnitCaughtInsideAPassageGoesFirst) {
 // to its own.
 TEST(Cooperative, AParkedTeammateInTheWayMovesOn) {
   Scenario s = bundled("scenarios/demo.yaml");
+  s.settings.pathing.detoursToGoal = false;         // measured before format 30
   s.settings.pathing.rewindPushedBack = false;      // measured before format 28
   s.settings.pathing.turnAwayFromWalls = false;     // measured before format 26
   s.settings.pathing.turnsWithinWaypoints = false;  // measured before format 25
@@ -614,6 +616,38 @@ TEST(Cooperative, ARiflemanBetweenATankAndAWallStepsOutOnTheOpenSide) {
   }
 }
 
+// At seeds 1 and 2 the scenario passes, with at least one detour.
+void expectPassesByDetoursAtSeedsOneAndTwo(const Scenario& s) {
+  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+    const Report r = runToEnd(s, seed);
+    EXPECT_TRUE(r.passed()) << "seed " << seed;
+    EXPECT_GE(r.pathing.detours, 1u) << "seed " << seed;
+  }
+}
+
+// A scenario on a map of `rows` (quoted and joined), combat off: the group `squad` of red (its
+// YAML, `squadGroup`) holds position from the start, braced, and blue's `blueGroup` moves, with
+// one arrival rate expected of it (`arrival`).
+Scenario withRedSquadHolding(const std::string& rows, int duration, const std::string& squadGroup,
+                             const std::string& blueGroup, const std::string& arrival) {
+  return parse("map: {rows: [" + rows + "]}\n" +
+               "catalogue: ../assets/units.yaml\n"
+               "duration: " +
+               std::to_string(duration) +
+               "\n"
+               "combat: {enabled: false}\n"
+               "teams: [blue, red]\n"
+               "groups:\n"
+               "  - " +
+               squadGroup + "\n  - " + blueGroup +
+               "\n"
+               "orders:\n"
+               "  - {at: 0, group: squad, order: hold}\n"
+               "expectations:\n"
+               "  - arrival_rate: " +
+               arrival + "\n");
+}
+
 // A repath after a jam changes something (jamDetours, replay format 13): a road 5 cells wide
 // runs below a wall, with another above it, and a squad of 15 riflemen holds position across the
 // lower road, braced. A tank on the lower road jams against the squad at 21 s, asks for a detour
@@ -627,34 +661,48 @@ TEST(Cooperative, AJammedTankTakesADetourAroundASquadHoldingItsRoad) {
     rows +=
         std::string(y > 0 ? ", '" : "'") + std::string(20, '.') + wall + std::string(21, '.') + "'";
   }
-  const std::string text =
-      "map: {rows: [" + rows +
-      "]}\n"
-      "catalogue: ../assets/units.yaml\n"
-      "duration: 60\n"
-      "combat: {enabled: false}\n"
-      "teams: [blue, red]\n"
-      "groups:\n"
-      "  - {name: squad, team: red, type: infantry, count: 15,\n"
-      "     spawn: {x: 28, y: 8, w: 3, h: 5}}\n"
-      "  - {name: tank, team: blue, type: tank, count: 1,\n"
-      "     spawn: {x: 1, y: 9, w: 3, h: 3}, goal: {x: 55, y: 9, w: 3, h: 3}}\n"
-      "orders:\n"
-      "  - {at: 0, group: squad, order: hold}\n"
-      "expectations:\n"
-      "  - arrival_rate: {team: blue, type: tank, at_least: 1.0, by: 50}\n";
-  Scenario s = parse(text);
+  Scenario s = withRedSquadHolding(
+      rows, 60,
+      "{name: squad, team: red, type: infantry, count: 15, spawn: {x: 28, y: 8, w: 3, h: 5}}",
+      "{name: tank, team: blue, type: tank, count: 1,\n"
+      "     spawn: {x: 1, y: 9, w: 3, h: 3}, goal: {x: 55, y: 9, w: 3, h: 3}}",
+      "{team: blue, type: tank, at_least: 1.0, by: 50}");
   ASSERT_TRUE(s.settings.pathing.jamDetours);  // the default
-  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
-    const Report r = runToEnd(s, seed);
-    EXPECT_TRUE(r.passed()) << "seed " << seed;
-    EXPECT_GE(r.pathing.detours, 1u) << "seed " << seed;
-  }
+  expectPassesByDetoursAtSeedsOneAndTwo(s);
   s.settings.pathing.jamDetours = false;
   for (std::uint64_t seed = 1; seed <= 2; ++seed) {
     const Report r = runToEnd(s, seed);
     EXPECT_FALSE(r.passed()) << "seed " << seed;
     EXPECT_EQ(r.pathing.detours, 0u) << "seed " << seed;
+  }
+}
+
+// A detour may end at the goal (detoursToGoal, replay format 30): a red squad of ten holds a
+// line across the field (the squad), braced, one cell before a blue rifleman's goal cell. Jammed
+// against the line, the rifleman goes round its end to the goal, and the way round keeps clear of
+// every unit standing there, not only the one on its path. Before, with the squad standing at the
+// end of its path a detour "led nowhere", its goal area had no other cell, and it pressed against
+// the line until the run ended.
+TEST(Cooperative, AJammedRiflemanGoesRoundALineHoldingJustBeforeItsGoal) {
+  std::string rows;
+  for (int y = 0; y < 20; ++y)
+    rows += std::string(y > 0 ? ", '" : "'") + std::string(30, '.') + "'";
+  Scenario s = withRedSquadHolding(
+      rows, 40,
+      "{name: squad, team: red, type: infantry, count: 10, spawn: {x: 12, y: 4, w: 1, h: 10}}",
+      "{name: rifle, team: blue, type: infantry, count: 1,\n"
+      "     spawn: {x: 2, y: 9, w: 1, h: 1}, goal: {x: 13, y: 9, w: 1, h: 1}}",
+      "{team: blue, type: infantry, at_least: 1.0, by: 25}");
+  ASSERT_TRUE(s.settings.pathing.detoursToGoal);  // the default
+  expectPassesByDetoursAtSeedsOneAndTwo(s);
+  s.settings.pathing.detoursToGoal = false;
+  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+    const Report r = runToEnd(s, seed);
+    for (const ArrivalStats& a : r.arrivals) {
+      if (a.team == "blue") {
+        EXPECT_EQ(a.arrived, 0) << "seed " << seed;
+      }
+    }
   }
 }
 

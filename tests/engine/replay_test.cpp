@@ -412,6 +412,7 @@ TEST_F(Replays, EachRuleIsSetBackForTheFormatsBeforeIt) {
       {&Settings::keptOutBacksOut, 27},
       {&Settings::rewindPushedBack, 28},
       {&Settings::routeFromPlaceOnPath, 29},
+      {&Settings::detoursToGoal, 30},
   };
   for (std::uint32_t format = kOldestReplayVersion; format <= kReplayVersion; ++format) {
     Settings set;
@@ -473,6 +474,7 @@ struct OlderFormat {
 // Format 28 has no row: its rule (a terrain change checked against a unit's path from its place
 // on it) changes no bundled run (bridge_demolition at seeds 1-300 hashes the same either way);
 // WorldTerrainChange.AUnitPushedBackRepathsForAChangeBehindItsWaypoint shows what it changes.
+// - 29, a new goal cell before a detour, and no detour to the goal: `demo` at seed 156.
 void PrintTo(const OlderFormat& f, std::ostream* out) {
   *out << "format " << f.format << ", " << f.scenario;
 }
@@ -521,7 +523,8 @@ INSTANTIATE_TEST_SUITE_P(
         OlderFormat{26, "scenarios/chokepoints/variations/corridor5_tanks_3v3.yaml", nullptr, 15,
                     2400},
         OlderFormat{27, "scenarios/chokepoints/variations/corridor5_tanks_3v3.yaml", nullptr, 165,
-                    2400}),
+                    2400},
+        OlderFormat{29, "scenarios/demo.yaml", nullptr, 156, 2700}),
     [](const ::testing::TestParamInfo<OlderFormat>& param) {
       // Format25_bridge16_mixed: the format and the scenario file's stem.
       return "Format" + std::to_string(param.param.format) + "_" +
@@ -536,21 +539,21 @@ TEST_F(Replays, AnotherVersionIsRefused) {
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
                                  ": replay format version 1 is not supported (this build reads "
-                                 "versions 2 to 29); it was written before battles were recorded: "
+                                 "versions 2 to 30); it was written before battles were recorded: "
                                  "record it again with rts run --replay");
   RtsResult r = rts("replay verify " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(file.string() + ": replay format version 1 is not supported"),
             std::string::npos)
       << r.out;
-  bytes[8] = 30;
+  bytes[8] = 31;
   spit(file, bytes);
   EXPECT_EQ(readError(file), file.string() +
-                                 ": replay format version 30 is not supported (this build reads "
-                                 "versions 2 to 29)");
+                                 ": replay format version 31 is not supported (this build reads "
+                                 "versions 2 to 30)");
   r = rts("replay info " + file.string());
   EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_NE(r.out.find("version 30 is not supported"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("version 31 is not supported"), std::string::npos) << r.out;
   EXPECT_EQ(rts("replay verify " + (dir_ / "none.rpl").string()).status, 2);
 }
 
@@ -659,7 +662,7 @@ TEST_F(Replays, ABattleRecordsAndVerifies) {
 
   const RtsResult info = rts("replay info " + file.string());
   EXPECT_EQ(info.status, 0) << info.out;
-  EXPECT_NE(info.out.find("format version: 29\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("format version: 30\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("orders: 4 (2 attack_move, 1 attack, 1 reinforce)\n"), std::string::npos)
       << info.out;
   const RtsResult verify = rts("replay verify " + file.string());

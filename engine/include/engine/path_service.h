@@ -195,6 +195,14 @@ struct PathServiceSettings {
   // its place on the path (docs/terrain_changes.md): a unit pushed back behind that waypoint
   // kept a path through a change on the cells it had yet to walk again.
   bool routeFromPlaceOnPath = true;
+  // Not a scenario key: false plays back replays before format 30, when a jammed unit asked for
+  // a new goal cell before a way round the units standing in its way, a detour was refused when
+  // they stood within a footprint and two cells of the path's end, and a detour kept clear only of
+  // the units standing on the path's next stretch: a rifleman jammed against a line of parked
+  // jeeps just before its goal area was given goal cells behind the line until the run ended
+  // (docs/cooperative.md, "Detours to the goal"). Teammates of the unit's kind sent to its area
+  // standing in its way are still the goal rule's first.
+  bool detoursToGoal = true;
   pathing::LaneRules laneRules() const {
     return {lanesThroughJunctions, laneApproaches, widerLaneApproaches, wideLaneDetours};
   }

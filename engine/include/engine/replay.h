@@ -86,9 +86,14 @@ namespace warpath::engine {
 // play back with it going on from the waypoint it had reached). 29: the same records and hashes;
 // a terrain change is checked against a unit's path from its place on it, so a unit pushed back
 // along its path repaths for a change on the cells it must walk again (older files play back
-// checking from the waypoint before the one it steers to).
-// Version-1 files (move orders only) are refused with a message saying so.
-inline constexpr std::uint32_t kReplayVersion = 29;
+// checking from the waypoint before the one it steers to). 30: the same records and hashes; a
+// jammed unit asks for a way round the units standing in its way (unless all are teammates of
+// its kind sent to its area) before a new goal cell, a way that may end at its goal when they
+// stand just before it and that keeps clear of every unit standing in its region (older files play
+// back asking for a new goal cell first, with no detour when they stand near the path's end and one
+// kept clear only of those on the path). Version-1 files (move orders only) are refused with a
+// message saying so.
+inline constexpr std::uint32_t kReplayVersion = 30;
 // Formats before this one were recorded before cooperative movement and play back without it.
 inline constexpr std::uint32_t kFirstCooperativeReplayVersion = 4;
 // Formats before this one were recorded before terrain changes: they play back with wrecks that
@@ -174,6 +179,10 @@ inline constexpr std::uint32_t kFirstRewindPushedBackReplayVersion = 28;
 // from the waypoint before the one it steered to: they play back so
 // (PathServiceSettings::routeFromPlaceOnPath off).
 inline constexpr std::uint32_t kFirstRouteFromPlaceOnPathReplayVersion = 29;
+// Formats before this one were recorded when a jammed unit asked for a new goal cell before a
+// detour, and detours neither ended at the goal nor kept clear of units standing off the path:
+// they play back so (PathServiceSettings::detoursToGoal off).
+inline constexpr std::uint32_t kFirstDetoursToGoalReplayVersion = 30;
 inline constexpr std::uint32_t kOldestReplayVersion = 2;
 
 // A file the scenario read, under the path the scenario resolved for it.

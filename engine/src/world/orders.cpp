@@ -288,7 +288,7 @@ void startPathAfresh(Refs& w, Unit& unit) {
   requestPath(w, unit);
 }
 
-bool requestDetour(Refs& w, Unit& unit) {
+bool requestDetour(Refs& w, Unit& unit, bool beforeNewGoal) {
   const int size = w.typeOf(unit).size;
   const std::vector<Cell>& path = unit.path->cells;
   // The stretch looked at: four footprints and four cells ahead, as the footprint sweeps it.
@@ -298,30 +298,45 @@ bool requestDetour(Refs& w, Unit& unit) {
   CellRect swept = footprint(from);
   for (std::size_t i = from + 1; i < to; ++i)
     swept = swept.joinedWith(footprint(i));
-  auto detour = std::make_shared<Detour>();
-  std::size_t last = from;  // the last cell of the stretch that meets one of them
-  for (const Unit& other : w.state.units) {
-    if (!other.alive() || other.id == unit.id) continue;
-    // Standing for good: parked, holding, waiting for orders. Units on their way are traffic,
-    // for the windows and steering: going round crawling ones too made crowds worse
-    // (docs/cooperative.md, "Detours").
-    if (other.state == UnitState::Moving) continue;
+  // The footprint of another unit standing for good: parked, holding, waiting for orders. Units
+  // on their way are traffic, for the windows and steering: going round crawling ones too made
+  // crowds worse (docs/cooperative.md, "Detours").
+  const auto standing = [&](const Unit& other) -> std::optional<CellRect> {
+    if (!other.alive() || other.id == unit.id || other.state == UnitState::Moving) return {};
     const int otherSize = w.typeOf(other).size;
     const Cell at = units::centreToAnchor(other.position, otherSize);
-    const CellRect body{at.x, at.y, otherSize, otherSize};
-    if (!swept.overlaps(body)) continue;
+    return CellRect{at.x, at.y, otherSize, otherSize};
+  };
+  auto detour = std::make_shared<Detour>();
+  std::size_t last = from;    // the last cell of the stretch that meets one of them
+  bool onlyTeammates = true;  // of the same kind, sent to the same area
+  for (const Unit& other : w.state.units) {
+    const std::optional<CellRect> standsAt = standing(other);
+    if (!standsAt || !swept.overlaps(*standsAt)) continue;
+    const CellRect& body = *standsAt;
     bool inTheWay = false;
     for (std::size_t i = from; i < to; ++i) {
       if (!footprint(i).overlaps(body)) continue;
       inTheWay = true;
       last = std::max(last, i);
     }
-    if (inTheWay) detour->avoid.push_back(body);
+    if (!inTheWay) continue;
+    detour->avoid.push_back(body);
+    onlyTeammates = onlyTeammates && other.team == unit.team && other.type == unit.type &&
+                    other.goalArea == unit.goalArea;
   }
-  // Standing at the end of the path, they are at the goal: a way around them leads nowhere
-  // (a goal cell taken is the goal rule's to change).
-  if (detour->avoid.empty() || last + static_cast<std::size_t>(size + 2) >= path.size() - 1)
-    return false;
+  if (beforeNewGoal && onlyTeammates) return false;
+  // Standing at the end of the path, on the goal, a way around them leads nowhere (a goal cell
+  // taken is the goal rule's to change); with detoursToGoal a way to a goal they stand just
+  // before is sought, unless only teammates of its kind stand there, as in a goal area filling
+  // up, where a new goal cell serves (before it, standing that near the end refused a detour).
+  if (detour->avoid.empty()) return false;
+  if (last + static_cast<std::size_t>(size + 2) >= path.size() - 1) {
+    if (!w.settings.pathing.detoursToGoal || onlyTeammates) return false;
+    const CellRect goal = footprint(path.size() - 1);
+    for (const CellRect& body : detour->avoid)
+      if (body.overlaps(goal)) return false;
+  }
   // Back onto the path a footprint and two cells past the last of them, through a block around
   // them all with room to go round.
   detour->rest = unit.path;
@@ -335,6 +350,15 @@ bool requestDetour(Refs& w, Unit& unit) {
   around = {around.x - margin, around.y - margin, around.width + 2 * margin,
             around.height + 2 * margin};
   detour->region = w.map().clip(around);
+  if (w.settings.pathing.detoursToGoal) {
+    // The way around keeps clear of every unit standing in the region, not only of those on
+    // the stretch: it went round one parked jeep through the next one beside it.
+    detour->avoid.clear();
+    for (const Unit& other : w.state.units) {
+      const std::optional<CellRect> standsAt = standing(other);
+      if (standsAt && detour->region.overlaps(*standsAt)) detour->avoid.push_back(*standsAt);
+    }
+  }
   PathRequest request = nextRequest(w, unit, start);
   request.detour = std::move(detour);
   w.state.paths->request(request);

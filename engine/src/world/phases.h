@@ -72,8 +72,11 @@ void requestPath(Refs& w, Unit& unit);
 void startPathAfresh(Refs& w, Unit& unit);
 // A jammed unit asks for a way around the units standing for good (not following a path) on the
 // next stretch of its path, back onto the path past them (docs/cooperative.md, "Detours"). False,
-// asking nothing, when none stands there, or they stand at the end of the path.
-bool requestDetour(Refs& w, Unit& unit);
+// asking nothing, when none stands there, or they stand at the end of the path. `beforeNewGoal`
+// (PathServiceSettings::detoursToGoal, asked before a new goal cell): false as well when all of
+// them are teammates sent to the same area as the same type, whom a new goal cell or the parked
+// teammates' rule serve better.
+bool requestDetour(Refs& w, Unit& unit, bool beforeNewGoal = false);
 // Parked teammates move on (docs/cooperative.md): a unit waiting on a teammate parked on the
 // way into their goal area by an order of the same kind (same type, team and area) takes that
 // one's goal cell and hands it its own, which lies beyond it; both ask for paths. False,

@@ -105,17 +105,20 @@ void checkProgress(Refs& w, Unit& unit, Cell anchor, FullGoalAreas& fullGoalArea
       unit.everStuck = true;
       w.log(EventKind::StuckFlagged, unit);
     }
-    // Near the goal, a crowd is the likely cause: a free goal cell resolves it.
-    const bool newGoal = movingToArea && nearEnd && reassignGoal(w, unit, &fullGoalAreas);
     w.log(EventKind::Repath, unit, 0);
     // Units standing for good on the path ahead would jam it again: a way around them
-    // (detours). Else the traffic jammed it: a unit keeping to a window plans a new one
-    // against today's reservations (at the same place at a passage's gate); one following its
-    // path asks for it again, which plans its window anew too.
-    const bool detours = settings.pathing.cooperative && settings.pathing.jamDetours && !newGoal;
+    // (detours). With detoursToGoal it is asked for first, unless only teammates of its kind
+    // stand there, and may lead to the goal itself when they stand just before it. Else, near
+    // the goal, a crowd is the likely cause: a free goal cell resolves it. Else the traffic
+    // jammed it: a unit keeping to a window plans a new one against today's reservations (at
+    // the same place at a passage's gate); one following its path asks for it again, which
+    // plans its window anew too.
+    const bool detours = settings.pathing.cooperative && settings.pathing.jamDetours;
+    if (detours && settings.pathing.detoursToGoal && requestDetour(w, unit, true)) return;
+    const bool newGoal = movingToArea && nearEnd && reassignGoal(w, unit, &fullGoalAreas);
     if (cooperative) {
-      if (!detours || !requestDetour(w, unit)) expireWindow(w, unit);
-    } else if (!detours || !requestDetour(w, unit)) {
+      if (!detours || newGoal || !requestDetour(w, unit)) expireWindow(w, unit);
+    } else if (!detours || newGoal || !requestDetour(w, unit)) {
       requestPath(w, unit);
     }
   }
