@@ -72,9 +72,11 @@ void requestPath(Refs& w, Unit& unit);
 void startPathAfresh(Refs& w, Unit& unit);
 // A jammed unit asks for a way around the units standing for good (not following a path) on the
 // next stretch of its path, back onto the path past them (docs/cooperative.md, "Detours"). False,
-// asking nothing, when none stands there, or they stand at the end of the path. `beforeNewGoal`
-// (PathServiceSettings::detoursToGoal, asked before a new goal cell): false as well when all of
-// them are teammates sent to the same area as the same type, whom a new goal cell or the parked
+// asking nothing, when none stands there, or they stand at the end of the path; with
+// PathServiceSettings::detoursToGoal only when one stands on the goal, or all of them are
+// teammates sent to the same area as the same type (else the way leads to the goal, and keeps
+// clear of every unit standing in its region). `beforeNewGoal` (asked before a new goal cell):
+// false as well for such teammates anywhere on the stretch, whom a new goal cell or the parked
 // teammates' rule serve better.
 bool requestDetour(Refs& w, Unit& unit, bool beforeNewGoal = false);
 // Parked teammates move on (docs/cooperative.md): a unit waiting on a teammate parked on the
