@@ -288,6 +288,15 @@ void startPathAfresh(Refs& w, Unit& unit) {
   requestPath(w, unit);
 }
 
+namespace {
+
+// The same type and team sent to the same area: teammates of one order's kind.
+bool sentAlike(const Unit& a, const Unit& b) {
+  return a.type == b.type && a.team == b.team && a.goalArea == b.goalArea;
+}
+
+}  // namespace
+
 bool requestDetour(Refs& w, Unit& unit, bool beforeNewGoal) {
   const int size = w.typeOf(unit).size;
   const std::vector<Cell>& path = unit.path->cells;
@@ -322,8 +331,7 @@ bool requestDetour(Refs& w, Unit& unit, bool beforeNewGoal) {
     }
     if (!inTheWay) continue;
     detour->avoid.push_back(body);
-    onlyTeammates = onlyTeammates && other.team == unit.team && other.type == unit.type &&
-                    other.goalArea == unit.goalArea;
+    onlyTeammates = onlyTeammates && sentAlike(other, unit);
   }
   if (beforeNewGoal && onlyTeammates) return false;
   // Standing at the end of the path, on the goal, a way around them leads nowhere (a goal cell
@@ -379,8 +387,7 @@ bool takeGoalOfParkedTeammate(Refs& w, Unit& unit, Unit& parked) {
   // Of the same order's kind: the same type and team sent to the same area, so the one's goal
   // cell fits the other and counts the same for the report; and the goals apart, so that the
   // parked one has somewhere else to go.
-  if (!parkedByMove(parked) || parked.id == unit.id || parked.type != unit.type ||
-      parked.team != unit.team || parked.goalArea != unit.goalArea ||
+  if (!parkedByMove(parked) || parked.id == unit.id || !sentAlike(parked, unit) ||
       (unit.order != OrderKind::Move && unit.order != OrderKind::AttackMove))
     return false;
   const int size = w.typeOf(unit).size;
