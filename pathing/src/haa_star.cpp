@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -360,6 +361,119 @@ class StraightWalker {
   const GridMap& map_;
   const AgentLayer& layer_;
   const CostField* costs_;
+};
+
+// Which cells a walk from one cell might reach when each of its moves is legal for the agent
+// and advances one step along the walk's major axis and one or none along its minor axis. Every
+// shape StraightWalker tries is such a walk, so a cell ruled out here needs no shape tried: the
+// same shortcuts are taken, and on winding paths (mazes) nearly every candidate is ruled out at
+// a comparison (maze512-4-0: 97 % of those past the cost bound).
+//
+// Per family of walks (which axis is major, its sign, the minor axis's sign) and number of
+// moves k, it keeps an interval of minor offsets holding every offset such walks reach in k
+// moves: the next interval runs from the lowest offset one legal move from the interval to the
+// highest, found by scanning in from its ends (two reads a step in the open). Offsets inside it
+// that no walk reaches make it weaker, never wrong. It is found at first ask, as far as asked,
+// and ends at the first step no walk gets past (a wall across every way).
+class MonotoneReach {
+ public:
+  // Cells farther than this are not ruled on.
+  static constexpr int kMaxMoves = 63;
+
+  MonotoneReach(const GridMap& map, const AgentLayer& layer)
+      : masks_(layer.moveMasks().data()), width_(map.width()) {}
+
+  void from(Cell origin, std::uint32_t originIndex) {
+    origin_ = origin;
+    originIndex_ = originIndex;
+    computedTo_.fill(-1);
+    deadFrom_.fill(kMaxMoves + 1);
+  }
+
+  // False when no such walk from the origin reaches `to`; true when one might, or when `to` is
+  // more than kMaxMoves moves away.
+  bool mayReach(Cell to) {
+    const int dx = to.x - origin_.x;
+    const int dy = to.y - origin_.y;
+    const int ax = std::abs(dx);
+    const int ay = std::abs(dy);
+    const bool xMajor = ax >= ay;
+    const int moves = xMajor ? ax : ay;
+    if (moves > kMaxMoves) return true;
+    const bool majorPositive = (xMajor ? dx : dy) >= 0;
+    const bool minorPositive = (xMajor ? dy : dx) >= 0;
+    const std::size_t family =
+        (xMajor ? 4u : 0u) + (majorPositive ? 2u : 0u) + (minorPositive ? 1u : 0u);
+    if (computedTo_[family] < moves) extend(family, moves);
+    if (moves >= deadFrom_[family]) return false;
+    const Span& span = spans_[family][static_cast<std::size_t>(moves)];
+    const int offset = xMajor ? ay : ax;
+    return span.low <= offset && offset <= span.high;
+  }
+
+ private:
+  struct Span {
+    std::int8_t low;
+    std::int8_t high;
+  };
+
+  void extend(std::size_t family, int moves) {
+    const bool xMajor = family >= 4;
+    const int major = (family & 2u) != 0 ? 1 : -1;
+    const int minor = (family & 1u) != 0 ? 1 : -1;
+    std::array<Span, kMaxMoves + 1>& spans = spans_[family];
+    int& k = computedTo_[family];
+    if (k < 0) {
+      spans[0] = {0, 0};
+      k = 0;
+    }
+    const std::int64_t width = width_;
+    const std::int64_t majorStep = xMajor ? major : major * width;
+    const std::int64_t minorStep = xMajor ? minor * width : minor;
+    const unsigned straightBit = 1u << directionOf(xMajor ? major : 0, xMajor ? 0 : major);
+    const unsigned diagonalBit = 1u << directionOf(xMajor ? major : minor, xMajor ? minor : major);
+    for (; k < moves; ++k) {
+      const Span span = spans[static_cast<std::size_t>(k)];
+      // Cells between two cells of the map on one line are on it too, so every read is.
+      const std::uint8_t* column = masks_ + static_cast<std::int64_t>(originIndex_) + k * majorStep;
+      int low = -1;
+      for (int m = span.low; m <= span.high && low < 0; ++m) {
+        const unsigned mask = column[m * minorStep];
+        if ((mask & straightBit) != 0) {
+          low = m;
+        } else if ((mask & diagonalBit) != 0) {
+          low = m + 1;
+        }
+      }
+      if (low < 0) {  // no walk gets past this step
+        deadFrom_[family] = k + 1;
+        k = kMaxMoves;
+        return;
+      }
+      int high = low;
+      for (int m = span.high; m >= span.low; --m) {
+        const unsigned mask = column[m * minorStep];
+        if ((mask & diagonalBit) != 0) {
+          high = m + 1;
+          break;
+        }
+        if ((mask & straightBit) != 0) {
+          high = m;
+          break;
+        }
+      }
+      spans[static_cast<std::size_t>(k) + 1] = {static_cast<std::int8_t>(low),
+                                                static_cast<std::int8_t>(high)};
+    }
+  }
+
+  const std::uint8_t* masks_;
+  int width_;
+  Cell origin_{};
+  std::uint32_t originIndex_ = 0;
+  std::array<int, 8> computedTo_{};
+  std::array<int, 8> deadFrom_{};  // the first step no walk of the family reaches
+  std::array<std::array<Span, kMaxMoves + 1>, 8> spans_{};
 };
 
 }  // namespace
@@ -804,6 +918,7 @@ void HierarchicalAStar::smooth(const AgentLayer& layer) {
   const std::size_t lookahead = static_cast<std::size_t>(abstraction_.spec().clusterSize) * 3;
   const StraightWalker walker(map, layer, costs);
   StraightWalker::Rays rays(walker, cells, static_cast<int>(lookahead), s.rayLengths);
+  MonotoneReach reach(map, layer);
   std::vector<Cell>& out = s.smoothed;
   out.clear();
   out.push_back(cells[0]);
@@ -819,11 +934,15 @@ void HierarchicalAStar::smooth(const AgentLayer& layer) {
              cells[k].y - cells[k - 1].y != cells[k + 1].y - cells[k].y;
     };
     const std::size_t farthest = turnsAt(i) ? std::min(n - 1, i + lookahead) : i + 1;
+    if (farthest > i + 1) reach.from(cells[i], map.indexOf(cells[i]));
+    // The reach is asked only once a shortcut from here failed: in the open the first one
+    // tried usually succeeds, and finding the reach of long walks would cost more than it saves.
+    bool ruling = false;
     for (std::size_t j = farthest; j >= i + 2; --j) {
       // Under costs shortcuts also end only where the path turns: a weighted path turns at
       // most terrain edges, and walking every candidate in between was a third of a query's
       // time on the patchwork map (docs/benchmarks.md).
-      if (costs && !turnsAt(j)) continue;
+      if ((costs && !turnsAt(j)) || (ruling && !reach.mayReach(cells[j]))) continue;
       const double budget = s.prefixCost[j] - s.prefixCost[i] - 1e-9;
       const double direct =
           scale * octileDistance(cells[j].x - cells[i].x, cells[j].y - cells[i].y);
@@ -832,6 +951,7 @@ void HierarchicalAStar::smooth(const AgentLayer& layer) {
         next = j;
         break;
       }
+      ruling = true;
     }
     if (next == i + 1) out.push_back(cells[i + 1]);
     i = next;

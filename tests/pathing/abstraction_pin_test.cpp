@@ -14,24 +14,12 @@
 #include "pathing/random.h"
 #include "pathing/terrain_costs.h"
 #include "random_grid.h"
+#include "support/fingerprint.h"
 
 namespace warpath::pathing {
 namespace {
 
-// FNV-1a over 64-bit words.
-struct Fingerprint {
-  std::uint64_t value = 14695981039346656037ull;
-  void add(std::uint64_t word) {
-    for (int i = 0; i < 8; ++i) {
-      value ^= (word >> (8 * i)) & 0xFFu;
-      value *= 1099511628211ull;
-    }
-  }
-  void add(Cell c) {
-    add(static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.x)) << 32 |
-        static_cast<std::uint32_t>(c.y));
-  }
-};
+using testing::Fingerprint;
 
 void addGraph(Fingerprint& f, const ClusterAbstraction& g) {
   std::vector<Cell> cells;
