@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "pathing/haa_star.h"
 #include "pathing/map_generator.h"
 #include "pathing/random.h"
+#include "pathing/terrain_costs.h"
 #include "random_grid.h"
 #include "support/fingerprint.h"
 
@@ -81,11 +83,16 @@ struct PinnedRun {
   int shortened = 0;  // smoothing found a path cheaper than the refined one
 };
 
-// Queries between random cells where each agent can stand, answered smoothed and unsmoothed.
-PinnedRun runPinQueries(const GridMap& map, std::uint64_t seed) {
+// Queries between random cells where each agent can stand, answered smoothed and unsmoothed:
+// ground agents of sizes 1 and 2, or with `costs` the one size-1 agent of a weighted graph.
+PinnedRun runPinQueries(const GridMap& map, std::uint64_t seed,
+                        std::optional<TerrainCosts> costs = std::nullopt) {
   const AnnotatedGrid grid(map);
-  const Capability ground = Capability::of({Terrain::Ground});
-  const AbstractionSpec spec{.clusterSize = 16, .maxAgentSize = 2, .capabilities = {ground}};
+  const Capability capability = costs ? costs->capability() : Capability::of({Terrain::Ground});
+  const AbstractionSpec spec{.clusterSize = 16,
+                             .maxAgentSize = costs ? 1 : 2,
+                             .capabilities = {capability},
+                             .costs = costs};
   const ClusterAbstraction abstraction = ClusterAbstraction::build(grid, spec);
   HierarchicalAStar smoothed(abstraction, HaaOptions{});
   HierarchicalAStar raw(abstraction, HaaOptions{.smooth = false});
@@ -101,8 +108,8 @@ PinnedRun runPinQueries(const GridMap& map, std::uint64_t seed) {
   testing::Fingerprint f;
   std::vector<Cell> path;
   std::vector<Cell> unsmoothed;
-  for (int size : {1, 2}) {
-    const Agent agent{.size = size, .capability = ground};
+  for (int size = 1; size <= spec.maxAgentSize; ++size) {
+    const Agent agent{.size = size, .capability = capability};
     for (int q = 0; q < 150; ++q) {
       const Cell start = anyCell(agent);
       const Cell goal = anyCell(agent);
@@ -140,6 +147,18 @@ TEST(SmoothingPin, MazesOpenAndPatchworkMapsTakeThePinnedShortcuts) {
     EXPECT_GT(run.shortened, run.queries / 10) << c.name;
     EXPECT_EQ(run.fingerprint, c.pinned) << c.name;
   }
+}
+
+// Under terrain costs a shortcut must also be faster, and ends only where the path turns.
+TEST(SmoothingPin, AWeightedGraphTakesThePinnedShortcuts) {
+  TerrainCosts infantry;  // s per cell: speeds 1.5 on ground, 0.8 in swamp, 1 in trees
+  infantry.perCell[static_cast<std::size_t>(Terrain::Ground)] = 1.0 / 1.5;
+  infantry.perCell[static_cast<std::size_t>(Terrain::Swamp)] = 1.0 / 0.8;
+  infantry.perCell[static_cast<std::size_t>(Terrain::Trees)] = 1.0;
+  const PinnedRun run = runPinQueries(randomTerrainMap(19, 100, 100, 8, 20), 23, infantry);
+  EXPECT_GE(run.queries, 150);
+  EXPECT_GT(run.shortened, run.queries / 10);
+  EXPECT_EQ(run.fingerprint, 14316635237735178048u);
 }
 
 }  // namespace
