@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -88,10 +89,10 @@ struct HierarchicalAStar::Scratch {
   std::size_t refineIndex = 0;   // the abstract path's next step to refine
   bool refineSearching = false;  // AA* re-planning that step is under way
 
-  // Per-cell stamps for loop removal in smoothing (cell -> index in the path).
-  std::vector<std::uint32_t> cellStamp;
-  std::vector<std::uint32_t> cellIndex;
-  std::uint32_t cellGeneration = 0;
+  // Loop removal in smoothing: cell -> index in the path, a hash table sized by the path
+  // (open addressing; a slot holds (map index + 1) << 32 | path index, 0 when empty). Arrays
+  // over the map held 8 bytes a cell (32 MB at 2048²) and missed the cache at every cell.
+  std::vector<std::uint64_t> visits;
 
   void begin(std::size_t nodes) {
     if (stamp.size() != nodes + 2) {
@@ -877,25 +878,23 @@ void HierarchicalAStar::smooth(const AgentLayer& layer) {
   std::vector<Cell>& cells = s.refined;
 
   // (1) Loops: keep the first visit of a cell and drop everything up to its last visit.
-  if (s.cellStamp.size() != map.cellCount()) {
-    s.cellStamp.assign(map.cellCount(), 0);
-    s.cellIndex.assign(map.cellCount(), 0);
-    s.cellGeneration = 0;
-  }
-  if (++s.cellGeneration == 0) {
-    std::fill(s.cellStamp.begin(), s.cellStamp.end(), 0);
-    s.cellGeneration = 1;
-  }
+  const std::size_t slots = std::bit_ceil(std::max<std::size_t>(2 * cells.size(), 16));
+  s.visits.assign(slots, 0);
+  const std::size_t slotMask = slots - 1;
+  const int shift = 64 - std::countr_zero(slots);
   std::size_t kept = 0;
   for (std::size_t i = 0; i < cells.size(); ++i) {
-    const std::uint32_t index = map.indexOf(cells[i]);
-    if (s.cellStamp[index] == s.cellGeneration && s.cellIndex[index] < kept &&
-        cells[s.cellIndex[index]] == cells[i]) {
-      kept = s.cellIndex[index];  // back to the first visit; the loop is dropped
+    const std::uint64_t key = std::uint64_t{map.indexOf(cells[i])} + 1;
+    // Fibonacci hashing: neighbouring cells land far apart.
+    std::size_t slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift);
+    while (s.visits[slot] != 0 && (s.visits[slot] >> 32) != key)
+      slot = (slot + 1) & slotMask;
+    const auto first = static_cast<std::uint32_t>(s.visits[slot]);
+    if (s.visits[slot] != 0 && first < kept && cells[first] == cells[i]) {
+      kept = first;  // back to the first visit; the loop is dropped
     } else {
       cells[kept] = cells[i];
-      s.cellStamp[index] = s.cellGeneration;
-      s.cellIndex[index] = static_cast<std::uint32_t>(kept);
+      s.visits[slot] = key << 32 | kept;
     }
     ++kept;
   }
