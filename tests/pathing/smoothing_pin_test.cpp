@@ -1,5 +1,5 @@
 // HAA*'s smoothing pinned: a fingerprint of every cell of the paths it returns on mazes (where
-// nearly every shortcut it weighs fails) and on open and patchwork maps (where most succeed).
+// nearly every shortcut it weighs fails) and on open and patchwork maps (where many succeed).
 // Faster smoothing must take exactly the shortcuts it took: the engine's units follow these
 // paths, so a change shows here before it moves a scenario's state hash.
 
