@@ -381,11 +381,11 @@ class MonotoneReach {
   static constexpr int kMaxMoves = 63;
 
   MonotoneReach(const GridMap& map, const AgentLayer& layer)
-      : masks_(layer.moveMasks().data()), width_(map.width()) {}
+      : map_(map), masks_(layer.moveMasks().data()) {}
 
-  void from(Cell origin, std::uint32_t originIndex) {
+  void from(Cell origin) {
     origin_ = origin;
-    originIndex_ = originIndex;
+    originIndex_ = map_.indexOf(origin);
     computedTo_.fill(-1);
     deadFrom_.fill(kMaxMoves + 1);
   }
@@ -427,7 +427,7 @@ class MonotoneReach {
       spans[0] = {0, 0};
       k = 0;
     }
-    const std::int64_t width = width_;
+    const std::int64_t width = map_.width();
     const std::int64_t majorStep = xMajor ? major : major * width;
     const std::int64_t minorStep = xMajor ? minor * width : minor;
     const unsigned straightBit = 1u << directionOf(xMajor ? major : 0, xMajor ? 0 : major);
@@ -467,8 +467,8 @@ class MonotoneReach {
     }
   }
 
+  const GridMap& map_;
   const std::uint8_t* masks_;
-  int width_;
   Cell origin_{};
   std::uint32_t originIndex_ = 0;
   std::array<int, 8> computedTo_{};
@@ -932,7 +932,6 @@ void HierarchicalAStar::smooth(const AgentLayer& layer) {
              cells[k].y - cells[k - 1].y != cells[k + 1].y - cells[k].y;
     };
     const std::size_t farthest = turnsAt(i) ? std::min(n - 1, i + lookahead) : i + 1;
-    if (farthest > i + 1) reach.from(cells[i], map.indexOf(cells[i]));
     // The reach is asked only once a shortcut from here failed: in the open the first one
     // tried usually succeeds, and finding the reach of long walks would cost more than it saves.
     bool ruling = false;
@@ -949,6 +948,7 @@ void HierarchicalAStar::smooth(const AgentLayer& layer) {
         next = j;
         break;
       }
+      if (!ruling) reach.from(cells[i]);
       ruling = true;
     }
     if (next == i + 1) out.push_back(cells[i + 1]);

@@ -9,13 +9,17 @@
 
 namespace warpath::pathing {
 
-inline AnnotatedGrid randomGrid(int width, int height, std::uint64_t seed, int blockedPercent) {
+inline GridMap randomBlockedMap(int width, int height, std::uint64_t seed, int blockedPercent) {
   RandomMapSpec spec;
   spec.width = width;
   spec.height = height;
   spec.seed = seed;
   spec.blockedPercent = blockedPercent;
-  return AnnotatedGrid(generateRandomMap(spec));
+  return generateRandomMap(spec);
+}
+
+inline AnnotatedGrid randomGrid(int width, int height, std::uint64_t seed, int blockedPercent) {
+  return AnnotatedGrid(randomBlockedMap(width, height, seed, blockedPercent));
 }
 
 // A map of patches up to `maxPatch` cells of every terrain: 20 % swamp, 12 % trees, 12 % water,

@@ -13,7 +13,6 @@
 
 #include "pathing/cluster_abstraction.h"
 #include "pathing/haa_star.h"
-#include "pathing/map_generator.h"
 #include "pathing/random.h"
 #include "pathing/terrain_costs.h"
 #include "random_grid.h"
@@ -66,15 +65,6 @@ GridMap pinMaze(int cols, int rows, int corridor, std::uint64_t seed) {
     stack.push_back({nx, ny});
   }
   return map;
-}
-
-GridMap pinRandom(int width, int height, std::uint64_t seed, int blockedPercent) {
-  RandomMapSpec spec;
-  spec.width = width;
-  spec.height = height;
-  spec.seed = seed;
-  spec.blockedPercent = blockedPercent;
-  return generateRandomMap(spec);
 }
 
 struct PinnedRun {
@@ -150,7 +140,7 @@ TEST(SmoothingPin, MazesOpenAndPatchworkMapsTakeThePinnedShortcuts) {
       {"maze, corridors 3 wide", pinMaze(25, 25, 3, 3), 5059739425473341551u},
       {"maze, corridors 2 wide", pinMaze(30, 30, 2, 5), 6448732547460962942u},
       {"maze, corridors 4 wide", pinMaze(20, 20, 4, 7), 2776193406088344704u},
-      {"random, 10 % blocked", pinRandom(100, 100, 11, 10), 1382875130746604065u},
+      {"random, 10 % blocked", randomBlockedMap(100, 100, 11, 10), 1382875130746604065u},
       {"patchwork", randomTerrainMap(13, 100, 100, 8, 20), 18282239086067315641u},
   };
   for (const PinCase& c : cases) {
